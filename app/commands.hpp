@@ -1,0 +1,26 @@
+// The subcommands of `nsbridge`. Each adds itself to the CLI11 app and sets its callback.
+//
+// Exit codes: 0 success; 1 the computation ran but did not succeed (e.g. an LCP solver
+// status other than solved, a run that stopped early); 2 bad input (file, key, option).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <stdexcept>
+#include <string>
+
+namespace nsb::app {
+
+// Thrown by a command for bad input; main prints "nsbridge: <what>" and exits with 2.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A command's callback stores its exit code here (0 unless it sets it).
+int& exit_code();
+
+void add_lcp_command(CLI::App& app);        // nsbridge lcp FILE ...
+void add_criterion_command(CLI::App& app);  // nsbridge criterion ...
+void add_run_command(CLI::App& app);        // nsbridge run SCENE.toml ...
+
+}  // namespace nsb::app

@@ -1,0 +1,38 @@
+// nsbridge: nonsmooth seismic response of bridges with deck-abutment pounding.
+#include "app/commands.hpp"
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+namespace nsb::app {
+int& exit_code() {
+  static int code = 0;
+  return code;
+}
+}  // namespace nsb::app
+
+int main(int argc, char** argv) {
+  CLI::App app{"nsbridge: nonsmooth seismic response of bridges with deck-abutment pounding"};
+  app.require_subcommand(1);
+  nsb::app::add_lcp_command(app);
+  nsb::app::add_criterion_command(app);
+  nsb::app::add_run_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 exits 0 for --help; every other parse error is a usage error (exit 2).
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const nsb::app::InputError& e) {
+    std::cerr << "nsbridge: " << e.what() << '\n';
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "nsbridge: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "nsbridge: internal error: " << e.what() << '\n';
+    return 1;
+  }
+  return nsb::app::exit_code();
+}

@@ -1,0 +1,84 @@
+# Helpers shared by every folder: one library per folder, one test file per module.
+
+# Compile options every nsbridge target gets.
+function(nsb_target_options target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow)
+  if(NSB_WARNINGS_AS_ERRORS)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(NSB_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
+                                             -fno-sanitize-recover=all)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# The doctest main, compiled once and linked into every test executable.
+function(nsb_add_doctest_main)
+  add_library(nsb_doctest_main STATIC ${PROJECT_SOURCE_DIR}/cmake/doctest_main.cpp)
+  target_link_libraries(nsb_doctest_main PUBLIC doctest::doctest)
+  nsb_target_options(nsb_doctest_main)
+endfunction()
+
+# nsb_add_library(<name> SOURCES <files...> DEPS <targets...>)
+# Adds the static library nsb_<name> whose public headers live in the folder itself and are
+# included as "<folder>/<header>.hpp" from the project root.
+function(nsb_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(nsb_${name} STATIC ${ARG_SOURCES})
+  target_include_directories(nsb_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(nsb_${name} PUBLIC ${ARG_DEPS})
+  nsb_target_options(nsb_${name})
+  if(NSB_SANITIZE)
+    target_link_options(nsb_${name} INTERFACE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# nsb_add_test(<file.cpp> DEPS <targets...> [LABELS <labels...>] [FIXTURES_SETUP <f>]
+#              [FIXTURES_REQUIRED <f>] [TIMEOUT <s>])
+# One doctest executable per test file, registered with CTest under the file's stem.
+# Every test gets the label "unit" unless LABELS says otherwise.
+function(nsb_add_test file)
+  cmake_parse_arguments(ARG "" "TIMEOUT" "DEPS;LABELS;FIXTURES_SETUP;FIXTURES_REQUIRED" ${ARGN})
+  get_filename_component(stem ${file} NAME_WE)
+  add_executable(${stem} ${file})
+  target_link_libraries(${stem} PRIVATE ${ARG_DEPS} nsb_doctest_main doctest::doctest)
+  target_compile_definitions(${stem} PRIVATE NSB_DATA_DIR="${NSB_DATA_DIR}"
+                                             NSB_SCENES_DIR="${NSB_SCENES_DIR}")
+  nsb_target_options(${stem})
+  add_test(NAME ${stem} COMMAND ${stem})
+  if(NOT ARG_LABELS)
+    set(ARG_LABELS unit)
+  endif()
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 300)
+  endif()
+  set_tests_properties(${stem} PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+  if(ARG_FIXTURES_SETUP)
+    set_tests_properties(${stem} PROPERTIES FIXTURES_SETUP "${ARG_FIXTURES_SETUP}")
+  endif()
+  if(ARG_FIXTURES_REQUIRED)
+    set_tests_properties(${stem} PROPERTIES FIXTURES_REQUIRED "${ARG_FIXTURES_REQUIRED}")
+  endif()
+endfunction()
+
+# nsb_add_folder_tests(<library target>)
+# Registers every test/<module>_test.cpp of the current folder as a unit test linked to the
+# folder's library.
+function(nsb_add_folder_tests lib)
+  file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/*_test.cpp)
+  foreach(t ${tests})
+    nsb_add_test(${t} DEPS ${lib})
+  endforeach()
+endfunction()
+
+# nsb_include_fragments()
+# Includes every *.cmake file of the current folder, in name order, so that each module adds
+# its own executables and tests without editing a shared list.
+macro(nsb_include_fragments)
+  file(GLOB _nsb_fragments CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cmake)
+  list(SORT _nsb_fragments)
+  foreach(_f ${_nsb_fragments})
+    include(${_f})
+  endforeach()
+endmacro()

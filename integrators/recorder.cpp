@@ -1,0 +1,97 @@
+#include "integrators/recorder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace nsb::integrators {
+
+std::string_view to_string(EventKind k) {
+  switch (k) {
+    case EventKind::kImpact: return "impact";
+    case EventKind::kClose: return "close";
+    case EventKind::kOpen: return "open";
+    case EventKind::kStick: return "stick";
+    case EventKind::kSlip: return "slip";
+    case EventKind::kWarning: return "warning";
+  }
+  return "unknown";
+}
+
+void EnergyBalance::close() {
+  const double lhs = kinetic + stored;
+  const double rhs = initial + external + ground - damping - hysteretic + impacts + friction;
+  double scale = 1.0;
+  for (double v : {kinetic, stored, initial, external, ground, damping, hysteretic, impacts,
+                   friction}) {
+    scale = std::max(scale, std::abs(v));
+  }
+  error = std::abs(lhs - rhs) / scale;
+}
+
+Recorder::Recorder(const System& system, double sample_dt)
+    : ndof_(system.dofs()), ncontacts_(system.contacts()), sample_dt_(sample_dt) {
+  if (!(sample_dt >= 0.0) || !std::isfinite(sample_dt)) {
+    throw std::invalid_argument("output.sample_dt must be a finite number >= 0 [s]");
+  }
+  columns_.push_back("t");
+  for (auto& n : system.coordinate_names()) columns_.push_back(n);
+  for (auto& n : system.velocity_names()) columns_.push_back(n);
+  for (int i = 1; i <= ncontacts_; ++i) {
+    columns_.push_back("gN" + std::to_string(i));
+    columns_.push_back("lambdaN" + std::to_string(i));
+    columns_.push_back("lambdaT" + std::to_string(i));
+  }
+  columns_.push_back("energy_error");
+}
+
+void Recorder::sample(double t, const Vector& q, const Vector& u,
+                      const std::vector<ContactData>& c, const Vector& lambda_n,
+                      const Vector& lambda_t, double energy_error) {
+  // A small slack keeps round-off in t from skipping a sample.
+  if (t + 1e-9 * std::max(1.0, sample_dt_) < next_sample_) return;
+  sample_now(t, q, u, c, lambda_n, lambda_t, energy_error);
+  next_sample_ = (sample_dt_ > 0.0) ? (std::floor(t / sample_dt_ + 1e-9) + 1.0) * sample_dt_
+                                    : -1e300;
+}
+
+void Recorder::sample_now(double t, const Vector& q, const Vector& u,
+                          const std::vector<ContactData>& c, const Vector& lambda_n,
+                          const Vector& lambda_t, double energy_error) {
+  data_.push_back(t);
+  for (int i = 0; i < ndof_; ++i) data_.push_back(q[i]);
+  for (int i = 0; i < ndof_; ++i) data_.push_back(u[i]);
+  for (int i = 0; i < ncontacts_; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    data_.push_back(k < c.size() ? c[k].gap_normal : 0.0);
+    data_.push_back(i < lambda_n.size() ? lambda_n[i] : 0.0);
+    data_.push_back(i < lambda_t.size() ? lambda_t[i] : 0.0);
+  }
+  data_.push_back(energy_error);
+}
+
+void Recorder::event(double t, int contact, EventKind kind, std::string note) {
+  events_.push_back(Event{t, contact, kind, std::move(note)});
+}
+
+std::size_t Recorder::column(std::string_view name) const {
+  auto it = std::find(columns_.begin(), columns_.end(), name);
+  if (it == columns_.end()) {
+    throw std::out_of_range("no history column named '" + std::string(name) + "'");
+  }
+  return static_cast<std::size_t>(it - columns_.begin());
+}
+
+std::vector<double> Recorder::series(std::string_view name) const {
+  const std::size_t col = column(name);
+  std::vector<double> s(rows());
+  for (std::size_t r = 0; r < s.size(); ++r) s[r] = at(r, col);
+  return s;
+}
+
+std::size_t Recorder::count(EventKind kind) const {
+  return static_cast<std::size_t>(std::count_if(
+      events_.begin(), events_.end(), [kind](const Event& e) { return e.kind == kind; }));
+}
+
+}  // namespace nsb::integrators

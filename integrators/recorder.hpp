@@ -1,0 +1,107 @@
+// What a run records, shared by every integrator: a sampled time history, per-contact events,
+// and the run's statistics with its energy balance. The column names and summary keys are a
+// contract documented in docs/outputs.md.
+#pragma once
+
+#include "integrators/system.hpp"
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace nsb::integrators {
+
+enum class EventKind {
+  kImpact,   // an impact (velocity jump) at a contact
+  kClose,    // a contact becomes closed (persistent contact starts)
+  kOpen,     // a closed contact opens (lift-off)
+  kStick,    // a closed contact starts to stick
+  kSlip,     // a closed contact starts to slip (or reverses its slip direction)
+  kWarning,  // the integrator reports something the user should see (see Event::note)
+};
+std::string_view to_string(EventKind k);
+
+struct Event {
+  double t = 0.0;     // [s]
+  int contact = 0;    // 1-based contact index; 0 when the event concerns no single contact
+  EventKind kind = EventKind::kImpact;
+  std::string note;   // free text, used by warnings
+};
+
+// Energy balance [kJ], accumulated from t0:
+//   kinetic + stored = initial + external + ground - damping - hysteretic + impacts + friction
+// where `impacts` and `friction` are the (non-positive) work of the contact impulses
+// and forces. error = |lhs - rhs| / max(1, max of the magnitudes of the terms).
+struct EnergyBalance {
+  double kinetic = 0.0;
+  double stored = 0.0;
+  double initial = 0.0;     // kinetic + stored at t0
+  double external = 0.0;    // work of applied loads
+  double ground = 0.0;      // work put in through support motion
+  double damping = 0.0;     // dissipated by viscous damping (>= 0)
+  double hysteretic = 0.0;  // dissipated by hysteresis (>= 0)
+  double impacts = 0.0;     // work of normal contact impulses/forces (<= 0 for eps <= 1)
+  double friction = 0.0;    // work of tangential contact impulses/forces (<= 0)
+  double error = 0.0;       // relative balance error, see above
+  void close();             // computes `error` from the other fields
+};
+
+// Statistics of one run, written to summary.json. Every integrator returns one:
+//   RunStats <method>(System&, const <Method>Options&, Recorder&);
+struct RunStats {
+  std::string method;                  // "moreau", "event_driven" or "compliance"
+  bool completed = false;              // reached end_time
+  std::string message;                 // why it stopped early, if it did
+  double end_time = 0.0;               // simulated time reached [s]
+  std::int64_t steps = 0;              // accepted steps
+  std::int64_t rejected_steps = 0;
+  std::int64_t steps_with_lcp = 0;     // steps or events that solved a contact problem
+  std::int64_t lcp_solves = 0;
+  std::int64_t lcp_fallbacks = 0;      // solves where the chosen solver failed and Lemke ran
+  std::map<std::string, std::int64_t> lcp_status;  // count per lcp::Status name
+  std::int64_t factorizations = 0;     // iteration-matrix factorizations
+  double wall_time = 0.0;              // [s]
+  EnergyBalance energy;
+  std::vector<std::string> warnings;
+};
+
+// Collects the time history at a fixed sampling interval, and every event.
+// Columns: t, <coordinate names>, <velocity names>, then per contact i = 1..m
+// gN<i>, lambdaN<i>, lambdaT<i>, then energy_error.
+class Recorder {
+ public:
+  // sample_dt [s] >= 0; 0 records every call to sample().
+  Recorder(const System& system, double sample_dt);
+
+  // Records a row if t has reached the next sampling time (always the first call).
+  // lambda_n, lambda_t are contact *forces* [kN] (impulse / step for time-stepping).
+  void sample(double t, const Vector& q, const Vector& u, const std::vector<ContactData>& c,
+              const Vector& lambda_n, const Vector& lambda_t, double energy_error);
+  // Records a row unconditionally (used for the final state).
+  void sample_now(double t, const Vector& q, const Vector& u, const std::vector<ContactData>& c,
+                  const Vector& lambda_n, const Vector& lambda_t, double energy_error);
+  void event(double t, int contact, EventKind kind, std::string note = {});
+
+  const std::vector<std::string>& columns() const { return columns_; }
+  std::size_t rows() const { return columns_.empty() ? 0 : data_.size() / columns_.size(); }
+  double at(std::size_t row, std::size_t col) const { return data_[row * columns_.size() + col]; }
+  // Index of a column by name; throws std::out_of_range if absent.
+  std::size_t column(std::string_view name) const;
+  // One column as a vector.
+  std::vector<double> series(std::string_view name) const;
+  const std::vector<Event>& events() const { return events_; }
+  std::size_t count(EventKind kind) const;
+
+ private:
+  int ndof_ = 0;
+  int ncontacts_ = 0;
+  double sample_dt_ = 0.0;
+  double next_sample_ = -1e300;
+  std::vector<std::string> columns_;
+  std::vector<double> data_;
+  std::vector<Event> events_;
+};
+
+}  // namespace nsb::integrators

@@ -1,0 +1,106 @@
+// The one interface through which every integrator (Moreau–Jean, event-driven, compliance)
+// sees a nonsmooth mechanical system. Integrators never know what a bridge is.
+//
+// Equations of motion (eq. 2 of Shi & Dimitrakopoulos 2017):
+//   M du = f(t, q, u) dt + W_N dP_N + W_T dP_T,     dq = u dt,
+// with unilateral contacts g_N,i(t, q) >= 0 and planar Coulomb friction. Contacts may be
+// rheonomic (moving obstacles):
+//   gdot_N = W_N^T u + what_N(t, q),        gddot_N = W_N^T udot + wbar_N(t, q, u),
+// and likewise for the tangential direction.
+//
+// Units: kN, t, m, s, rad throughout.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <string>
+#include <vector>
+
+namespace nsb::integrators {
+
+using Matrix = Eigen::MatrixXd;
+using Vector = Eigen::VectorXd;
+
+// What a system says about one potential contact at (t, q, u).
+struct ContactData {
+  double gap_normal = 0.0;     // g_N [m]; > 0 open, < 0 penetrated
+  Vector w_normal;             // W_N column, size ndof (generalized normal direction)
+  Vector w_tangent;            // W_T column, size ndof
+  double what_normal = 0.0;    // rheonomic part of gdot_N [m/s]
+  double what_tangent = 0.0;   // rheonomic part of gdot_T [m/s]
+  double wbar_normal = 0.0;    // gddot_N - W_N^T udot: the part independent of udot [m/s^2]
+  double wbar_tangent = 0.0;   // gddot_T - W_T^T udot [m/s^2]
+  double restitution = 0.0;    // Newton's coefficient eps_i in [0, 1]
+  double friction = 0.0;       // Coulomb's coefficient mu_i >= 0
+  bool far = false;            // the system guarantees this contact cannot close within
+                               // the current step bound; integrators may skip it
+
+  double gap_rate(const Vector& u) const { return w_normal.dot(u) + what_normal; }
+  double slip_rate(const Vector& u) const { return w_tangent.dot(u) + what_tangent; }
+};
+
+// Instantaneous energy flows, for the energy balance. Powers in kW = kN m/s.
+struct PowerTerms {
+  double damping = 0.0;   // rate of energy dissipated by viscous damping (>= 0)
+  double ground = 0.0;    // rate of energy put in through support motion
+  double external = 0.0;  // rate of work of applied loads (gravity, forcing)
+};
+
+// Energies held by the system's internal state [kJ].
+struct EnergyState {
+  double stored = 0.0;      // recoverable potential: elastic springs, gravity
+  double hysteretic = 0.0;  // energy dissipated by hysteresis since t0 (>= 0)
+};
+
+class System {
+ public:
+  virtual ~System() = default;
+
+  // Number of generalized coordinates.
+  virtual int dofs() const = 0;
+  // Column names of q and u in outputs, e.g. {"x","y","theta"} and {"vx","vy","omega"}.
+  virtual std::vector<std::string> coordinate_names() const = 0;
+  virtual std::vector<std::string> velocity_names() const = 0;
+
+  // Constant, symmetric positive definite mass matrix [t, t m^2].
+  virtual const Matrix& mass() const = 0;
+
+  // Initial state at t0 (the scene's). Sizes dofs().
+  virtual double initial_time() const { return 0.0; }
+  virtual Vector initial_position() const = 0;
+  virtual Vector initial_velocity() const = 0;
+
+  // Smooth generalized force f(t, q, u) (damping, springs, hysteresis, loads) [kN].
+  // Evaluates the *trial* internal state from the committed one; commit() accepts it,
+  // revert() drops it. Writes into f, already of size dofs(): no allocation.
+  virtual void forces(double t, const Vector& q, const Vector& u, Vector& f) = 0;
+  // Tangent matrices K = -df/dq and C = -df/du at the trial state [kN/m, kN s/m].
+  virtual void tangent(double t, const Vector& q, const Vector& u, Matrix& K, Matrix& C) = 0;
+  // True when the tangent returned by tangent() has changed since the last commit
+  // (e.g. a hysteretic spring changed branch). A linear system always returns false.
+  virtual bool tangent_changed() const { return false; }
+  virtual void commit() {}
+  virtual void revert() {}
+
+  // Number of potential contacts, and their data at (t, q, u). `out` is sized contacts()
+  // with every vector of size dofs(); implementations write in place.
+  virtual int contacts() const = 0;
+  virtual void contact_data(double t, const Vector& q, const Vector& u,
+                            std::vector<ContactData>& out) const = 0;
+
+  // Energy bookkeeping at the trial state.
+  virtual PowerTerms power(double t, const Vector& q, const Vector& u) const = 0;
+  virtual EnergyState energy(double t, const Vector& q) const = 0;
+
+  // Helper: a ContactData vector with every column sized for this system.
+  std::vector<ContactData> make_contact_buffer() const {
+    std::vector<ContactData> c(static_cast<std::size_t>(contacts()));
+    for (auto& ci : c) {
+      ci.w_normal = Vector::Zero(dofs());
+      ci.w_tangent = Vector::Zero(dofs());
+    }
+    return c;
+  }
+};
+
+}  // namespace nsb::integrators

@@ -1,0 +1,75 @@
+// The planar frictional contact problem at velocity (impact) or acceleration level, and
+// its LCP form, eq. (6) of Shi & Dimitrakopoulos (2017).
+//
+// For m contacts with normal and tangential directions W_N, W_T (n x m each) and an
+// effective inverse mass A^-1 (M^-1 for an impact; the Moreau–Jean iteration matrix inverse
+// in a time step), the contact velocities after the impulses Lambda are
+//
+//   gdot_N+ = G_NN Lambda_N + G_NT Lambda_T + gdot_N,free
+//   gdot_T+ = G_TN Lambda_N + G_TT Lambda_T + gdot_T,free            G_XY = W_X^T A^-1 W_Y  (8)
+//
+// subject to Newton's impact law and Coulomb's law per contact i:
+//   gdot_N0,i = gdot_N+,i + eps_i gdot_N-,i >= 0,  Lambda_N,i >= 0,  complementary    (3), (7)
+//   |Lambda_T,i| <= mu_i Lambda_N,i,  and  gdot_T+,i != 0  =>  Lambda_T,i = -mu_i Lambda_N,i sgn(gdot_T+,i)
+//
+// For an impact gdot_free = gdot- (the pre-impact velocities). At acceleration level the
+// same form holds with accelerations in place of velocities and eps = 0.
+//
+// Sign convention of the tangential impulse: Lambda_T acts along +W_T on the body, so a
+// body sliding with gdot_T > 0 receives Lambda_T = -mu Lambda_N.
+#pragma once
+
+#include "lcp/lcp.hpp"
+#include "lcp/solve.hpp"
+
+namespace nsb::lcp {
+
+struct FrictionalProblem {
+  // The Delassus matrix G = [G_NN G_NT; G_TN G_TT], 2m x 2m, ordered normals first.
+  // When every mu_i = 0 it may instead be m x m (G_NN only): no tangential unknowns.
+  Matrix delassus;
+  Vector gdot_free;    // [gdot_N,free; gdot_T,free], size 2m (or m when frictionless)
+  Vector gdot_n_minus; // pre-impact normal velocities for the restitution law, size m
+  Vector restitution;  // eps_i in [0, 1], size m
+  Vector friction;     // mu_i >= 0, size m
+
+  Eigen::Index contacts() const { return restitution.size(); }
+  bool frictionless() const { return delassus.rows() == contacts(); }
+  void validate() const;  // throws std::invalid_argument naming the field and the entry
+};
+
+struct FrictionalResult {
+  Vector lambda_n;      // Lambda_N, size m
+  Vector lambda_t;      // Lambda_T, size m (zeros when frictionless)
+  Vector gdot_n_plus;   // post-impact normal velocities
+  Vector gdot_t_plus;   // post-impact tangential velocities
+  Status status = Status::kNotRun;
+  Solver solver_used = Solver::kLemke;  // the solver that produced the answer
+  bool used_fallback = false;           // true if the requested solver failed and Lemke ran
+  int iterations = 0;
+  double residual = std::numeric_limits<double>::infinity();  // see frictional_residual
+  bool ok() const { return status == Status::kSolved; }
+};
+
+// Eq. (6): the LCP of size 3m in the unknowns (Lambda_N, Lambda_TR, gdot_TL+) with
+//   Lambda_TR = mu Lambda_N + Lambda_T,  Lambda_TL = mu Lambda_N - Lambda_T,
+//   gdot_TR+ = (|gdot_T+| + gdot_T+)/2,  gdot_TL+ = (|gdot_T+| - gdot_T+)/2   (eq. 4, corrected)
+// For a frictionless problem the LCP is of size m: G_NN Lambda_N + gdot_N,free + eps gdot_N-.
+Problem build_eq6(const FrictionalProblem& fp);
+
+// Turns the solution z of build_eq6(fp) back into impulses and post-impact velocities.
+FrictionalResult read_eq6(const FrictionalProblem& fp, const Vector& z);
+
+// Residual of the frictional problem, independent of its LCP form: the largest violation of
+// the normal complementarity (natural map), of the friction cone, and of the maximum
+// dissipation (sliding opposite to the friction impulse), scaled by (1 + ||gdot_free||_inf).
+double frictional_residual(const FrictionalProblem& fp, const Vector& lambda_n,
+                           const Vector& lambda_t);
+
+// Solves fp: Lemke, Newton–FB and enumeration on eq. (6); PGS on the natural form
+// (normal impulses in [0, inf), tangential in [-mu Lambda_N, mu Lambda_N]). If the chosen
+// solver does not reach kSolved and fallback is true, Lemke runs and used_fallback is set.
+FrictionalResult solve_frictional(const FrictionalProblem& fp, Solver solver,
+                                  const SolveOptions& options = {}, bool fallback = true);
+
+}  // namespace nsb::lcp

@@ -1,0 +1,3 @@
+#include "lcp/lcp.hpp"
+
+namespace nsb::lcp {}

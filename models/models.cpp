@@ -1,0 +1,2 @@
+// Models: systems behind the integrators/system.hpp interface.
+namespace nsb::models {}

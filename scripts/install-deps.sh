@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the Debian packages nsbridge needs to build, test and plot. Idempotent: when every
+# package is present it prints nothing and changes nothing.
+#   --with-siconos   also install Siconos Numerics, the optional reference for benchmarks
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libboost-dev libgsl-dev
+  doctest-dev libcli11-dev libtomlplusplus-dev
+  libgnuplot-iostream-dev libboost-iostreams-dev libboost-system-dev libboost-filesystem-dev
+  gnuplot-nox
+  libbenchmark-dev
+)
+if [[ "${1:-}" == "--with-siconos" ]]; then
+  packages+=(libsiconos-numerics-dev)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+echo "install-deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq >/dev/null
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
