@@ -5,6 +5,7 @@
 
 #include "integrators/system.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -83,7 +84,12 @@ class Recorder {
   void sample_now(double t, const Vector& q, const Vector& u, const std::vector<ContactData>& c,
                   const Vector& lambda_n, const Vector& lambda_t, double energy_error);
   void event(double t, int contact, EventKind kind, std::string note = {});
+  // True when sample(t, ...) would record a row, so that an integrator computes what only a
+  // recorded row needs (e.g. the energy balance) only then. Same rule as sample().
+  bool due(double t) const { return !(t + 1e-9 * std::max(1.0, sample_dt_) < next_sample_); }
 
+  // The sampling interval [s] given at construction (0 = every call to sample()).
+  double sample_dt() const { return sample_dt_; }
   const std::vector<std::string>& columns() const { return columns_; }
   std::size_t rows() const { return columns_.empty() ? 0 : data_.size() / columns_.size(); }
   double at(std::size_t row, std::size_t col) const { return data_[row * columns_.size() + col]; }

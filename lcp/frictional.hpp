@@ -20,7 +20,11 @@
 #pragma once
 
 #include "lcp/lcp.hpp"
+#include "lcp/lemke.hpp"
+#include "lcp/pgs.hpp"
 #include "lcp/solve.hpp"
+
+#include <vector>
 
 namespace nsb::lcp {
 
@@ -55,9 +59,19 @@ struct FrictionalResult {
 //   Lambda_TR = mu Lambda_N + Lambda_T,  Lambda_TL = mu Lambda_N - Lambda_T,
 //   gdot_TR+ = (|gdot_T+| + gdot_T+)/2,  gdot_TL+ = (|gdot_T+| - gdot_T+)/2   (eq. 4, corrected)
 // For a frictionless problem the LCP is of size m: G_NN Lambda_N + gdot_N,free + eps gdot_N-.
+//
+//        | G_NN - G_NT mu   G_NT   0 |        | gdot_N,free + eps gdot_N- |
+//   M =  | G_TN - G_TT mu   G_TT   E |,   q = | gdot_T,free               |
+//        | 2 mu             -E     0 |        | 0                         |
+//
+// (mu = diag(mu_i), E = identity; with gdot_free = gdot- this is the paper's eq. 6.)
+// When every mu_i = 0 the tangential unknowns are dropped even if the Delassus matrix is
+// 2m x 2m ("frictionless" below means: all mu_i = 0 or the Delassus matrix is m x m).
 Problem build_eq6(const FrictionalProblem& fp);
+// Size of the LCP build_eq6 returns: m when frictionless in the sense above, else 3m.
+Eigen::Index eq6_size(const FrictionalProblem& fp);
 
-// Turns the solution z of build_eq6(fp) back into impulses and post-impact velocities.
+// Turns the solution z of build_eq6(fp) (size eq6_size(fp)) back into impulses and post-impact velocities.
 FrictionalResult read_eq6(const FrictionalProblem& fp, const Vector& z);
 
 // Residual of the frictional problem, independent of its LCP form: the largest violation of
@@ -68,8 +82,50 @@ double frictional_residual(const FrictionalProblem& fp, const Vector& lambda_n,
 
 // Solves fp: Lemke, Newton–FB and enumeration on eq. (6); PGS on the natural form
 // (normal impulses in [0, inf), tangential in [-mu Lambda_N, mu Lambda_N]). If the chosen
-// solver does not reach kSolved and fallback is true, Lemke runs and used_fallback is set.
+// solver does not reach kSolved and fallback is true, Lemke runs (with its own pivot limit)
+// and used_fallback is set. When Lemke ends on a secondary ray, it is retried on eq. (6) with
+// a diagonal shift of 1e-14 to 1e-12 (relative to the diagonal); such an answer is accepted
+// only if it solves the unshifted LCP to options.tolerance. This handles a body wedged
+// between contacts whose impulses can balance each other, where the solution set is
+// unbounded and round-off otherwise ends the pivoting path on a ray.
 FrictionalResult solve_frictional(const FrictionalProblem& fp, Solver solver,
                                   const SolveOptions& options = {}, bool fallback = true);
+
+// PGS on the natural form (no LCP of eq. 6): one sweep visits the contacts in order and sets
+//   Lambda_N,i <- max(0, Lambda_N,i - omega gdot_N0,i / G_NN,ii)
+//   Lambda_T,i <- clamp(Lambda_T,i - omega gdot_T+,i / G_TT,ii, -mu_i Lambda_N,i, mu_i Lambda_N,i)
+// with gdot_N0 = gdot_N+ + eps gdot_N- (eqs. 3 and 7) evaluated with the newest impulses.
+// A G_NN,ii <= 0 (or G_TT,ii <= 0 with mu_i > 0) gives kZeroDiagonal. It stops when
+// frictional_residual <= options.tolerance. The start is (lambda_n0, lambda_t0) when their
+// sizes are m, else zero. options.max_iterations (sweeps) and options.relaxation apply.
+FrictionalResult pgs_frictional(const FrictionalProblem& fp, const PgsOptions& options,
+                                const Vector& lambda_n0 = {}, const Vector& lambda_t0 = {});
+
+// The same computations as solve_frictional with workspaces kept between calls, for the
+// integrators that solve one contact problem per step. After reserve(m) (or a first call with
+// m contacts), a call with at most m contacts allocates nothing for Lemke and PGS apart from
+// resizing the result's vectors, which Eigen does only when the contact count changes.
+// Newton–FB and enumeration allocate (they are not meant for the time-stepping hot path).
+class FrictionalSolver {
+ public:
+  explicit FrictionalSolver(Eigen::Index max_contacts = 0);
+  void reserve(Eigen::Index contacts);
+  // Same semantics and result as solve_frictional(fp, solver, options, fallback).
+  void solve(const FrictionalProblem& fp, Solver solver, const SolveOptions& options,
+             bool fallback, FrictionalResult& result);
+  FrictionalResult solve(const FrictionalProblem& fp, Solver solver,
+                         const SolveOptions& options = {}, bool fallback = true);
+
+ private:
+  void assemble(const FrictionalProblem& fp, Eigen::Index n);
+  bool run_lemke(const FrictionalProblem& fp, const SolveOptions& options, bool own_limit,
+                 FrictionalResult& result);
+  Eigen::Index capacity_ = 0;
+  std::vector<double> matrix_;  // eq. (6) M, column-major, up to (3m)^2
+  std::vector<double> q_;
+  std::vector<double> z_;
+  std::vector<double> lambda_;  // PGS: [Lambda_N; Lambda_T]
+  Lemke lemke_;
+};
 
 }  // namespace nsb::lcp

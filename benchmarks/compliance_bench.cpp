@@ -1,0 +1,277 @@
+// Compliance (gap element) method on the benchmark bridge under excitation 5: wall time and
+// step count against the contact stiffness k = factor * k0, beside the nonsmooth methods, and
+// the error of the compliance theta(t) against the nonsmooth (Moreau–Jean) history computed
+// with eps = e_effective of the same damping law (docs/compliance.md). Also the first
+// pounding's penetration depth and contact duration (the paper's Figure 8 trend).
+//
+// Usage: compliance_bench [--scene FILE] [--law NAME] [--restitution E] [--end-time T]
+//                         [--factors f1,f2,...] [--repeat N] [--reference-step H]
+//                         [--event-driven] [--csv FILE] [--history-dir DIR]
+// Writes one CSV row per run; compliance_plot.gp turns it into pictures.
+#include "integrators/compliance.hpp"
+#include "integrators/event_driven.hpp"
+#include "integrators/moreau_jean.hpp"
+#include "models/scene.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using nsb::integrators::Recorder;
+using nsb::integrators::RunStats;
+
+struct History {
+  std::vector<double> t, theta;
+};
+
+History history(const Recorder& rec) { return {rec.series("t"), rec.series("theta")}; }
+
+// Linear interpolation of h at time t (h.t ascending).
+double interpolate(const History& h, double t) {
+  auto it = std::lower_bound(h.t.begin(), h.t.end(), t);
+  if (it == h.t.begin()) return h.theta.front();
+  if (it == h.t.end()) return h.theta.back();
+  const auto i = static_cast<std::size_t>(it - h.t.begin());
+  const double s = (t - h.t[i - 1]) / (h.t[i] - h.t[i - 1]);
+  return (1 - s) * h.theta[i - 1] + s * h.theta[i];
+}
+
+double peak_abs(const History& h) {
+  double p = 0.0;
+  for (double v : h.theta) p = std::max(p, std::abs(v));
+  return p;
+}
+
+struct ThetaError {
+  double rms = 0.0;  // RMS of theta - theta_ref over the reference samples, / peak |theta_ref|
+  double max = 0.0;  // max |theta - theta_ref| / peak |theta_ref|
+  double peak = 0.0; // (peak |theta| - peak |theta_ref|) / peak |theta_ref|
+};
+
+ThetaError theta_error(const History& h, const History& ref) {
+  ThetaError e;
+  const double scale = std::max(peak_abs(ref), 1e-12);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < ref.t.size(); ++i) {
+    const double d = interpolate(h, ref.t[i]) - ref.theta[i];
+    sum += d * d;
+    e.max = std::max(e.max, std::abs(d));
+  }
+  e.rms = std::sqrt(sum / static_cast<double>(std::max<std::size_t>(1, ref.t.size()))) / scale;
+  e.max /= scale;
+  e.peak = (peak_abs(h) - peak_abs(ref)) / scale;
+  return e;
+}
+
+// The first pounding: the first close event and the open event of the same contact; the
+// largest penetration of that contact in between.
+struct Pounding {
+  int contact = 0;
+  double t_close = 0.0, duration = 0.0, penetration = 0.0, peak_force = 0.0;
+};
+
+Pounding first_pounding(const Recorder& rec) {
+  Pounding p;
+  for (const auto& ev : rec.events()) {
+    if (p.contact == 0 && ev.kind == nsb::integrators::EventKind::kClose && ev.contact > 0) {
+      p.contact = ev.contact;
+      p.t_close = ev.t;
+    } else if (p.contact != 0 && ev.contact == p.contact &&
+               ev.kind == nsb::integrators::EventKind::kOpen) {
+      p.duration = ev.t - p.t_close;
+      break;
+    }
+  }
+  if (p.contact == 0) return p;
+  const auto t = rec.series("t");
+  const auto g = rec.series("gN" + std::to_string(p.contact));
+  const auto f = rec.series("lambdaN" + std::to_string(p.contact));
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < p.t_close || t[i] > p.t_close + p.duration) continue;
+    p.penetration = std::max(p.penetration, -g[i]);
+    p.peak_force = std::max(p.peak_force, f[i]);
+  }
+  return p;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+std::string number(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+void write_history(const std::filesystem::path& file, const History& h) {
+  std::ofstream out(file);
+  out << "t,theta\n";
+  out.precision(10);
+  for (std::size_t i = 0; i < h.t.size(); ++i) out << h.t[i] << ',' << h.theta[i] << '\n';
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"compliance method on the bridge: cost and error against the stiffness"};
+  std::string scene = std::string(NSB_SCENES_DIR) + "/bridge-exc5.toml";
+  std::string law_name = "hertzdamp";
+  double restitution = 0.0;  // e_set of the contacts (the paper's eps_N = 0)
+  double end_time = 0.0;     // 0: the scene's
+  std::vector<double> factors{1e-4, 1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2};
+  int repeat = 3;
+  double reference_step = 1e-4;
+  bool event_driven = false;
+  std::string csv = "compliance_bench.csv";
+  std::string history_dir;
+  app.add_option("--scene", scene, "bridge scene file");
+  app.add_option("--law", law_name, "damping law")
+      ->check(CLI::IsMember(nsb::integrators::damping_law_names()));
+  app.add_option("--restitution", restitution, "e_set of the gap elements")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--end-time", end_time, "simulated time [s]; 0 keeps the scene's");
+  app.add_option("--factors", factors, "stiffness factors k / k0")->delimiter(',');
+  app.add_option("--repeat", repeat, "runs per configuration (median wall time)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--reference-step", reference_step, "Moreau–Jean step of the reference [s]");
+  app.add_flag("--event-driven", event_driven, "also time the event-driven method");
+  app.add_option("--csv", csv, "output CSV");
+  app.add_option("--history-dir", history_dir, "write theta(t) of every run here");
+  CLI11_PARSE(app, argc, argv);
+
+  const auto law = nsb::integrators::parse_damping_law(law_name);
+  const double e_eff = nsb::integrators::hunt_crossley_restitution(
+      nsb::integrators::damping_factor(law, restitution));
+  std::printf("compliance_bench: build %s, revision %s\n", NSB_BUILD_TYPE, NSB_GIT_REVISION);
+  std::printf("scene %s, law %s, e_set %.3f, e_effective %.6f\n", scene.c_str(),
+              law_name.c_str(), restitution, e_eff);
+  if (!history_dir.empty()) std::filesystem::create_directories(history_dir);
+
+  std::vector<std::string> base{"model.seats.restitution=" + number(restitution)};
+  std::vector<std::string> reference_overrides{"model.seats.restitution=" + number(e_eff)};
+  if (end_time > 0.0) {
+    base.push_back("solver.end_time=" + number(end_time));
+    reference_overrides.push_back("solver.end_time=" + number(end_time));
+  }
+
+  std::ofstream out(csv);
+  out << "method,law,e_set,e_effective,factor,stiffness,wall_time_median,steps,rejected_steps,"
+         "completed,theta_rms_error,theta_max_error,peak_theta,peak_theta_error,"
+         "first_contact,first_close,first_duration,first_penetration,first_peak_force\n";
+  const auto row = [&](const std::string& method, double factor, double k,
+                       const std::vector<double>& walls, const RunStats& st,
+                       const ThetaError& err, double peak, const Pounding& p) {
+    out << method << ',' << law_name << ',' << restitution << ',' << e_eff << ',' << factor
+        << ',' << k << ',' << median(walls) << ',' << st.steps << ',' << st.rejected_steps
+        << ',' << (st.completed ? 1 : 0) << ',' << err.rms << ',' << err.max << ',' << peak
+        << ',' << err.peak << ',' << p.contact << ',' << p.t_close << ',' << p.duration << ','
+        << p.penetration << ',' << p.peak_force << '\n';
+    out.flush();
+  };
+
+  // The nonsmooth reference: Moreau–Jean with eps = e_effective.
+  History ref;
+  {
+    std::vector<double> walls;
+    RunStats st;
+    Recorder keep(*nsb::models::load_scene(scene, reference_overrides).system, 0.0);
+    for (int r = 0; r < repeat; ++r) {
+      auto sc = nsb::models::load_scene(scene, reference_overrides);
+      nsb::integrators::MoreauJeanOptions o;
+      o.end_time = sc.solver.end_time;
+      o.step = reference_step;
+      o.theta = sc.solver.theta;
+      Recorder rec(*sc.system, sc.output.sample_dt);
+      st = nsb::integrators::moreau_jean(*sc.system, o, rec);
+      walls.push_back(st.wall_time);
+      if (r == 0) keep = rec;
+    }
+    ref = history(keep);
+    const Pounding p = first_pounding(keep);
+    std::printf("%-14s h = %.1e: wall %.3f s (median of %d), steps %lld, peak |theta| %.4e rad, "
+                "first contact %d at %.4f s\n",
+                "moreau", reference_step, median(walls), repeat,
+                static_cast<long long>(st.steps), peak_abs(ref), p.contact, p.t_close);
+    row("moreau", 0.0, 0.0, walls, st, ThetaError{}, peak_abs(ref), p);
+    if (!history_dir.empty()) write_history(history_dir + "/moreau.csv", ref);
+  }
+  // Coarser Moreau–Jean runs, for the work-precision comparison.
+  for (double h : {1e-3, 3e-4}) {
+    auto sc = nsb::models::load_scene(scene, reference_overrides);
+    nsb::integrators::MoreauJeanOptions o;
+    o.end_time = sc.solver.end_time;
+    o.step = h;
+    o.theta = sc.solver.theta;
+    Recorder rec(*sc.system, sc.output.sample_dt);
+    const RunStats st = nsb::integrators::moreau_jean(*sc.system, o, rec);
+    const History hh = history(rec);
+    const ThetaError err = theta_error(hh, ref);
+    std::printf("%-14s h = %.1e: wall %.3f s, steps %lld, theta rms error %.3e\n", "moreau", h,
+                st.wall_time, static_cast<long long>(st.steps), err.rms);
+    row("moreau_h" + number(h), 0.0, 0.0, {st.wall_time}, st, err, peak_abs(hh),
+        first_pounding(rec));
+  }
+  if (event_driven) {
+    auto sc = nsb::models::load_scene(scene, reference_overrides);
+    nsb::integrators::EventDrivenOptions o;
+    o.end_time = sc.solver.end_time;
+    o.tolerance = sc.solver.tolerance;
+    Recorder rec(*sc.system, sc.output.sample_dt);
+    const RunStats st = nsb::integrators::event_driven(*sc.system, o, rec);
+    const History hh = history(rec);
+    const ThetaError err = theta_error(hh, ref);
+    std::printf("%-14s: wall %.3f s, steps %lld, completed %d, theta rms error %.3e %s\n",
+                "event_driven", st.wall_time, static_cast<long long>(st.steps),
+                st.completed ? 1 : 0, err.rms, st.message.c_str());
+    row("event_driven", 0.0, 0.0, {st.wall_time}, st, err, peak_abs(hh), first_pounding(rec));
+  }
+
+  for (double factor : factors) {
+    std::vector<double> walls;
+    RunStats st;
+    History hh;
+    Pounding p;
+    double k = 0.0;
+    for (int r = 0; r < repeat; ++r) {
+      auto sc = nsb::models::load_scene(scene, base);
+      nsb::integrators::ComplianceOptions o;
+      o.end_time = sc.solver.end_time;
+      o.tolerance = sc.solver.tolerance;
+      o.stiffness = k = sc.solver.contact_stiffness * factor;
+      o.stick_slip_velocity = sc.solver.stick_slip_velocity;
+      o.law = law;
+      Recorder rec(*sc.system, 0.0);
+      st = nsb::integrators::compliance(*sc.system, o, rec);
+      walls.push_back(st.wall_time);
+      if (r == 0) {
+        hh = history(rec);
+        p = first_pounding(rec);
+      }
+    }
+    const ThetaError err = theta_error(hh, ref);
+    std::printf("compliance %6.0e k0: wall %7.3f s, steps %8lld (+%lld rejected), theta rms "
+                "error %.3e, peak error %+.3e, first pounding: contact %d at %.4f s, "
+                "penetration %.3e m, duration %.4e s%s\n",
+                factor, median(walls), static_cast<long long>(st.steps),
+                static_cast<long long>(st.rejected_steps), err.rms, err.peak, p.contact,
+                p.t_close, p.penetration, p.duration, st.completed ? "" : " (NOT COMPLETED)");
+    row("compliance", factor, k, walls, st, err, peak_abs(hh), p);
+    if (!history_dir.empty()) {
+      write_history(history_dir + "/compliance_" + number(factor) + ".csv", hh);
+    }
+  }
+  std::printf("wrote %s\n", csv.c_str());
+  return 0;
+}

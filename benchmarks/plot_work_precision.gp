@@ -1,0 +1,33 @@
+# Work–precision plot of work_precision_bench's CSV (log–log: error against wall time).
+# gnuplot -e "csv='work_precision/work_precision.csv'; png='docs/benchmarks/work-precision.png'" \
+#         benchmarks/plot_work_precision.gp
+if (!exists("csv")) csv = 'work_precision/work_precision.csv'
+if (!exists("png")) png = 'docs/benchmarks/work-precision.png'
+set terminal pngcairo size 1400,1000 font ",11"
+set output png
+set datafile separator ","
+set logscale xy
+set format x "10^{%L}"
+set format y "10^{%L}"
+set grid
+set key bottom left
+set xlabel "wall time [s]"
+set multiplot layout 2,2 title "Work–precision: event-driven (tolerance 1e-3..1e-9) vs Moreau–Jean (h 1e-2..1e-5); reference = event-driven at 1e-10"
+sel(scene, method, col) = (strcol(1) eq scene && strcol(2) eq method && column(col) > 0) ? column(col) : NaN
+set ylabel "max |theta - theta_ref| [rad]"
+set title "bridge, excitation 5: theta(t) history"
+plot csv skip 1 using 4:(sel("bridge-exc5","event_driven",7)) with linespoints pt 7 title "event-driven", \
+     csv skip 1 using 4:(sel("bridge-exc5","moreau",7)) with linespoints pt 5 title "Moreau–Jean"
+set ylabel "|peak |theta| - reference| [rad]"
+set title "bridge, excitation 5: peak rotation"
+plot csv skip 1 using 4:(sel("bridge-exc5","event_driven",6)) with linespoints pt 7 title "event-driven", \
+     csv skip 1 using 4:(sel("bridge-exc5","moreau",6)) with linespoints pt 5 title "Moreau–Jean"
+set ylabel "max |y - y_ref| [m]"
+set title "bouncing ball (e = 0.8): y(t) history"
+plot csv skip 1 using 4:(sel("bouncing-ball","event_driven",7)) with linespoints pt 7 title "event-driven", \
+     csv skip 1 using 4:(sel("bouncing-ball","moreau",7)) with linespoints pt 5 title "Moreau–Jean"
+set ylabel "|peak y - reference| [m]"
+set title "bouncing ball: peak height"
+plot csv skip 1 using 4:(sel("bouncing-ball","event_driven",6)) with linespoints pt 7 title "event-driven", \
+     csv skip 1 using 4:(sel("bouncing-ball","moreau",6)) with linespoints pt 5 title "Moreau–Jean"
+unset multiplot

@@ -1,0 +1,636 @@
+#include "integrators/compliance.hpp"
+
+// Only the coefficient table of Odeint's rosenbrock4 (Hairer & Wanner's RODAS 4(3)) is
+// used: its stepper is built on uBLAS, whose storage in Boost 1.74 calls
+// std::allocator::construct, removed in C++20, so it cannot be instantiated here. The
+// stepper and controller below are the same algorithm on Eigen vectors.
+#include <boost/numeric/odeint/stepper/rosenbrock4.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace nsb::integrators {
+
+namespace {
+
+using State = Eigen::VectorXd;
+using JacobianMatrix = Eigen::MatrixXd;
+
+// Interior points of an accepted step at which the interpolated gaps are inspected for a
+// closure. A gap that dips below zero and comes back within 1/8 of a free-flight step is
+// caught by the Hermite cubic only if it is negative at one of these points; 8 points keep
+// the check cheap (one contact_data call each) while a free flight that passes through an
+// obstacle is a parabola-like arc that cannot hide between them.
+constexpr int kClosureProbes = 8;
+// Bisection of the closure time stops when the bracket is this fraction of the step: the
+// located time then sits within round-off of the interpolant's root.
+constexpr double kClosureRelativeWidth = 1e-12;
+constexpr int kMaxBisections = 60;
+// Relative step of the forward difference for df/dt (the rheonomic and load terms):
+// sqrt(machine epsilon), the usual optimum for a one-sided difference.
+const double kTimeDifferenceStep = std::sqrt(std::numeric_limits<double>::epsilon());
+// A step shorter than this fraction of max(1 s, |t|) means the step size has underflowed.
+constexpr double kMinRelativeStep = 1e-14;
+
+void require(bool ok, const char* field, const char* what) {
+  if (!ok) throw std::invalid_argument(std::string("compliance options: ") + field + ": " + what);
+}
+
+// Hermite basis on [0, 1] for position from (q0, u0 h, q1, u1 h): exact for cubics.
+struct Hermite {
+  double h00, h10, h01, h11;
+  explicit Hermite(double s)
+      : h00(2 * s * s * s - 3 * s * s + 1), h10(s * s * s - 2 * s * s + s),
+        h01(-2 * s * s * s + 3 * s * s), h11(s * s * s - s * s) {}
+};
+
+// The state of the integration: the system, its constant mass matrix, and every buffer the
+// right-hand side and the Jacobian need, sized once.
+class Core {
+ public:
+  Core(System& system, const ComplianceOptions& o)
+      : sys_(system), opt_(o), n_(system.dofs()), m_(system.contacts()) {
+    const Matrix& M = sys_.mass();
+    if (M.rows() != n_ || M.cols() != n_) {
+      throw std::invalid_argument("compliance: the system's mass matrix is not dofs() x dofs()");
+    }
+    Eigen::LLT<Matrix> llt(M);
+    if (llt.info() != Eigen::Success) {
+      throw std::invalid_argument("compliance: the system's mass matrix is not positive definite");
+    }
+    minv_ = llt.solve(Matrix::Identity(n_, n_));
+    q_ = Vector::Zero(n_);
+    u_ = Vector::Zero(n_);
+    f_ = Vector::Zero(n_);
+    acc_ = Vector::Zero(n_);
+    K_ = Matrix::Zero(n_, n_);
+    C_ = Matrix::Zero(n_, n_);
+    Jq_ = Matrix::Zero(n_, n_);
+    Ju_ = Matrix::Zero(n_, n_);
+    contacts_ = sys_.make_contact_buffer();
+    lambda_n_ = Vector::Zero(m_);
+    lambda_t_ = Vector::Zero(m_);
+    damping_part_ = Vector::Zero(m_);
+    chi_ = Vector::Zero(m_);
+    v_minus_ = Vector::Constant(m_, opt_.min_impact_velocity);
+    dxdt_plus_ = State::Zero(2 * n_);
+  }
+
+  int dofs() const { return n_; }
+  int contacts() const { return m_; }
+
+  // Loads q, u from x and evaluates f, the contact data and the contact forces at (t, q, u).
+  // With derivatives, also fills Jq_ = -dF/dq and Ju_ = -dF/du of the generalized contact
+  // force F = sum W_N lambda_N + W_T lambda_T (geometric terms dW/dq neglected: see below).
+  void evaluate(double t, const State& x, bool derivatives) {
+    q_ = x.head(n_);
+    u_ = x.tail(n_);
+    sys_.forces(t, q_, u_, f_);
+    sys_.contact_data(t, q_, u_, contacts_);
+    if (derivatives) {
+      Jq_.setZero();
+      Ju_.setZero();
+    }
+    for (int i = 0; i < m_; ++i) {
+      const ContactData& c = contacts_[static_cast<std::size_t>(i)];
+      lambda_n_[i] = 0.0;
+      lambda_t_[i] = 0.0;
+      damping_part_[i] = 0.0;
+      if (c.far || !(c.gap_normal < 0.0)) continue;
+      const double delta = -c.gap_normal;
+      const double delta_rate = -c.gap_rate(u_);
+      const NormalForce fn =
+          hertz_damp_force(opt_.stiffness, chi_[i], v_minus_[i], delta, delta_rate);
+      lambda_n_[i] = fn.force;
+      damping_part_[i] = fn.force - opt_.stiffness * delta * std::sqrt(delta);
+      f_.noalias() += c.w_normal * fn.force;
+      TangentForce ft;
+      if (c.friction > 0.0) {
+        ft = regularized_coulomb(c.friction, fn.force, c.slip_rate(u_),
+                                 opt_.stick_slip_velocity);
+        lambda_t_[i] = ft.force;
+        f_.noalias() += c.w_tangent * ft.force;
+      }
+      if (derivatives) {
+        // delta = -g_N with dg_N/dq = W_N^T, and deltadot = -(W_N^T u + what_N), so
+        // dlambda_N/dq = -dF/ddelta W_N^T, dlambda_N/du = -dF/ddeltadot W_N^T.
+        // The terms (dW_N/dq) u of dgdot/dq are left out: they are of the order of the
+        // rotation rate times the damping force, small beside the stiffness terms, and a
+        // Rosenbrock step with an approximate Jacobian stays consistent (the error control
+        // sees the difference).
+        Jq_.noalias() += fn.d_penetration * c.w_normal * c.w_normal.transpose();
+        Ju_.noalias() += fn.d_rate * c.w_normal * c.w_normal.transpose();
+        if (c.friction > 0.0) {
+          Jq_.noalias() += (ft.d_normal * fn.d_penetration) * c.w_tangent * c.w_normal.transpose();
+          Ju_.noalias() += (ft.d_normal * fn.d_rate) * c.w_tangent * c.w_normal.transpose();
+          Ju_.noalias() -= ft.d_slip * c.w_tangent * c.w_tangent.transpose();
+        }
+      }
+    }
+  }
+
+  // dx/dt = (u, M^-1 (f + F)).
+  void rhs(const State& x, State& dxdt, double t) {
+    evaluate(t, x, false);
+    acc_.noalias() = minv_ * f_;
+    dxdt.head(n_) = u_;
+    dxdt.tail(n_) = acc_;
+  }
+
+  // J = [0, I; -M^-1 (K + Jq), -M^-1 (C + Ju)], dfdt by a forward difference in t.
+  void jacobian(const State& x, JacobianMatrix& J, double t, State& dfdt) {
+    rhs(x, dfdt, t);  // dfdt holds f(t) until the difference below
+    const double ht = kTimeDifferenceStep * std::max(1.0, std::abs(t));
+    rhs(x, dxdt_plus_, t + ht);
+    dfdt = (dxdt_plus_ - dfdt) / ht;
+    evaluate(t, x, true);
+    sys_.tangent(t, q_, u_, K_, C_);
+    K_ += Jq_;
+    C_ += Ju_;
+    Jq_.noalias() = -minv_ * K_;
+    Ju_.noalias() = -minv_ * C_;
+    J.topLeftCorner(n_, n_).setZero();
+    J.topRightCorner(n_, n_).setIdentity();
+    J.bottomLeftCorner(n_, n_) = Jq_;
+    J.bottomRightCorner(n_, n_) = Ju_;
+  }
+
+  // Gaps at the cubic Hermite interpolant of q (and the linear one of u) at t0 + s h.
+  const std::vector<ContactData>& gaps_at(double t0, const State& x0, double t1,
+                                          const State& x1, double s) {
+    const double h = t1 - t0;
+    const Hermite b(s);
+    q_ = b.h00 * x0.head(n_) + (b.h10 * h) * x0.tail(n_) + b.h01 * x1.head(n_) +
+         (b.h11 * h) * x1.tail(n_);
+    u_ = (1.0 - s) * x0.tail(n_) + s * x1.tail(n_);
+    sys_.contact_data(t0 + s * h, q_, u_, contacts_);
+    return contacts_;
+  }
+
+  System& sys_;
+  ComplianceOptions opt_;
+  int n_, m_;
+  Matrix minv_;
+  Vector q_, u_, f_, acc_;
+  Matrix K_, C_, Jq_, Ju_;
+  std::vector<ContactData> contacts_;
+  Vector lambda_n_, lambda_t_, damping_part_;
+  Vector chi_, v_minus_;
+  State dxdt_plus_;
+};
+
+// One RODAS 4(3) step (Hairer & Wanner 1996, "Solving ODEs II", §IV.7; the coefficients of
+// Odeint's rosenbrock4): six stages with one LU of (I / (gamma h) - J) per step, an embedded
+// third-order solution for the error estimate, and Odeint's controller (the error norm is
+// the RMS of err_i / (atol + rtol max(|x_old,i|, |x_new,i|)); step factor in [1/5, 6]
+// with safety 0.9 and Gustafsson's predictive control).
+class Rodas {
+ public:
+  Rodas(Core& core, double atol, double rtol, double max_dt)
+      : core_(core), atol_(atol), rtol_(rtol), max_dt_(max_dt) {
+    const Eigen::Index n = 2 * core.dofs();
+    for (State* v : {&dxdt_, &dfdt_, &g1_, &g2_, &g3_, &g4_, &g5_, &xtmp_, &dxdtnew_, &xerr_}) {
+      *v = State::Zero(n);
+    }
+    jac_ = JacobianMatrix::Zero(n, n);
+    lu_ = Eigen::PartialPivLU<JacobianMatrix>(n);
+  }
+
+  // Tries a step of size dt from (t, x). On success writes xout, advances t and proposes the
+  // next dt; on failure proposes a smaller dt. Mirrors odeint::rosenbrock4_controller.
+  bool try_step(const State& x, double& t, State& xout, double& dt) {
+    do_step(x, t, xout, dt);
+    double err = 0.0;
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      const double sk = atol_ + rtol_ * std::max(std::abs(x[i]), std::abs(xout[i]));
+      err += xerr_[i] * xerr_[i] / (sk * sk);
+    }
+    err = std::sqrt(err / static_cast<double>(x.size()));
+    if (!std::isfinite(err)) {
+      dt *= kMinFactor;
+      last_rejected_ = true;
+      return false;
+    }
+    constexpr double safe = 0.9, fac1 = 5.0, fac2 = 1.0 / 6.0;
+    double fac = std::max(fac2, std::min(fac1, std::pow(err, 0.25) / safe));
+    double dt_new = dt / fac;
+    if (err <= 1.0) {
+      if (!first_step_) {
+        double fac_pred = (dt_old_ / dt) * std::pow(err * err / err_old_, 0.25) / safe;
+        fac_pred = std::max(fac2, std::min(fac1, fac_pred));
+        fac = std::max(fac, fac_pred);
+        dt_new = dt / fac;
+      }
+      first_step_ = false;
+      dt_old_ = dt;
+      err_old_ = std::max(0.01, err);
+      if (last_rejected_) dt_new = std::min(dt_new, dt);
+      t += dt;
+      dt = std::min(max_dt_, dt_new);
+      last_rejected_ = false;
+      return true;
+    }
+    dt = dt_new;
+    last_rejected_ = true;
+    return false;
+  }
+
+ private:
+  static constexpr double kMinFactor = 0.25;  // step cut after a non-finite error estimate
+
+  void do_step(const State& x, double t, State& xout, double dt) {
+    const auto& c = coef_;
+    core_.rhs(x, dxdt_, t);
+    core_.jacobian(x, jac_, t, dfdt_);
+    jac_ *= -1.0;
+    jac_.diagonal().array() += 1.0 / (c.gamma * dt);
+    lu_.compute(jac_);
+    g1_ = dxdt_ + dt * c.d1 * dfdt_;
+    g1_ = lu_.solve(g1_);
+    xtmp_ = x + c.a21 * g1_;
+    core_.rhs(xtmp_, dxdtnew_, t + c.c2 * dt);
+    g2_ = dxdtnew_ + dt * c.d2 * dfdt_ + c.c21 * g1_ / dt;
+    g2_ = lu_.solve(g2_);
+    xtmp_ = x + c.a31 * g1_ + c.a32 * g2_;
+    core_.rhs(xtmp_, dxdtnew_, t + c.c3 * dt);
+    g3_ = dxdtnew_ + dt * c.d3 * dfdt_ + (c.c31 * g1_ + c.c32 * g2_) / dt;
+    g3_ = lu_.solve(g3_);
+    xtmp_ = x + c.a41 * g1_ + c.a42 * g2_ + c.a43 * g3_;
+    core_.rhs(xtmp_, dxdtnew_, t + c.c4 * dt);
+    g4_ = dxdtnew_ + dt * c.d4 * dfdt_ + (c.c41 * g1_ + c.c42 * g2_ + c.c43 * g3_) / dt;
+    g4_ = lu_.solve(g4_);
+    xtmp_ = x + c.a51 * g1_ + c.a52 * g2_ + c.a53 * g3_ + c.a54 * g4_;
+    core_.rhs(xtmp_, dxdtnew_, t + dt);
+    g5_ = dxdtnew_ + (c.c51 * g1_ + c.c52 * g2_ + c.c53 * g3_ + c.c54 * g4_) / dt;
+    g5_ = lu_.solve(g5_);
+    xtmp_ += g5_;
+    core_.rhs(xtmp_, dxdtnew_, t + dt);
+    xerr_ = dxdtnew_ + (c.c61 * g1_ + c.c62 * g2_ + c.c63 * g3_ + c.c64 * g4_ + c.c65 * g5_) / dt;
+    xerr_ = lu_.solve(xerr_);
+    xout = xtmp_ + xerr_;
+  }
+
+  Core& core_;
+  const boost::numeric::odeint::default_rosenbrock_coefficients<double> coef_;
+  double atol_, rtol_, max_dt_;
+  bool first_step_ = true, last_rejected_ = false;
+  double err_old_ = 0.0, dt_old_ = 0.0;
+  State dxdt_, dfdt_, g1_, g2_, g3_, g4_, g5_, xtmp_, dxdtnew_, xerr_;
+  JacobianMatrix jac_;
+  Eigen::PartialPivLU<JacobianMatrix> lu_;
+};
+
+bool finite(const State& x) { return x.allFinite(); }
+
+// Energy flows at one state, for the trapezoidal accumulation of the balance.
+struct Powers {
+  double external = 0, ground = 0, damping = 0, impacts = 0, friction = 0;
+};
+
+}  // namespace
+
+std::string_view to_string(DampingLaw law) {
+  switch (law) {
+    case DampingLaw::kHertzDamp: return "hertzdamp";
+    case DampingLaw::kFlores: return "flores";
+    case DampingLaw::kHuntCrossleyExact: return "hunt_crossley_exact";
+  }
+  return "unknown";
+}
+
+const std::vector<std::string>& damping_law_names() {
+  static const std::vector<std::string> names{"hertzdamp", "flores", "hunt_crossley_exact"};
+  return names;
+}
+
+DampingLaw parse_damping_law(std::string_view name) {
+  for (DampingLaw law :
+       {DampingLaw::kHertzDamp, DampingLaw::kFlores, DampingLaw::kHuntCrossleyExact}) {
+    if (name == to_string(law)) return law;
+  }
+  throw std::invalid_argument("damping_law: '" + std::string(name) +
+                              "' is not one of hertzdamp, flores, hunt_crossley_exact");
+}
+
+double hunt_crossley_restitution(double chi) {
+  if (!(chi >= 0.0) || !std::isfinite(chi)) {
+    throw std::invalid_argument("hunt_crossley_restitution: chi must be finite and >= 0");
+  }
+  if (chi == 0.0) return 1.0;
+  // psi(e) = 1 - chi e - (1 + chi) exp(-chi (1 + e)) is > 0 at e = 0 and < 0 at
+  // e = min(1, 1/chi) (docs/compliance.md); its root there is the restitution.
+  const auto psi = [chi](double e) { return 1.0 - chi * e - (1.0 + chi) * std::exp(-chi * (1.0 + e)); };
+  double lo = 0.0, hi = std::min(1.0, 1.0 / chi);
+  for (int it = 0; it < 200 && hi - lo > 1e-16; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (psi(mid) > 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double damping_factor(DampingLaw law, double restitution) {
+  if (!(restitution >= 0.0 && restitution <= 1.0)) {
+    throw std::invalid_argument("damping_factor: restitution must be in [0, 1]");
+  }
+  const double e = std::max(restitution, kMinLawRestitution);
+  switch (law) {
+    case DampingLaw::kHertzDamp: return 0.75 * (1.0 - restitution * restitution);
+    case DampingLaw::kFlores: return 8.0 * (1.0 - e) / (5.0 * e);
+    case DampingLaw::kHuntCrossleyExact: {
+      if (e >= 1.0) return 0.0;
+      // Invert hunt_crossley_restitution: e(chi) decreases from 1 (chi = 0) towards 0, and
+      // e(chi) < 1/chi, so the root lies in (0, 1/e]. Bisection in log(chi) (the range
+      // spans decades).
+      double lo = 1e-12, hi = 1.0 / e;
+      for (int it = 0; it < 200 && hi / lo - 1.0 > 1e-15; ++it) {
+        const double mid = std::sqrt(lo * hi);
+        (hunt_crossley_restitution(mid) > e ? lo : hi) = mid;
+      }
+      return std::sqrt(lo * hi);
+    }
+  }
+  return 0.0;
+}
+
+NormalForce hertz_damp_force(double k, double chi, double v_minus, double delta,
+                             double delta_rate) {
+  NormalForce r;
+  if (!(delta > 0.0)) return r;
+  const double root = std::sqrt(delta);
+  const double spring = k * delta * root;             // k delta^1.5
+  const double factor = 1.0 + chi * delta_rate / v_minus;
+  const double force = spring * factor;
+  if (force <= 0.0) return r;  // no adhesion: the dashpot cannot pull
+  r.force = force;
+  r.d_penetration = 1.5 * k * root * factor;
+  r.d_rate = spring * chi / v_minus;
+  return r;
+}
+
+TangentForce regularized_coulomb(double mu, double lambda_n, double slip_rate, double eps_v) {
+  TangentForce r;
+  const double x = slip_rate / eps_v;
+  const double sat = std::clamp(x, -1.0, 1.0);
+  r.force = -mu * lambda_n * sat;
+  r.d_normal = -mu * sat;
+  r.d_slip = (std::abs(x) < 1.0) ? -mu * lambda_n / eps_v : 0.0;
+  return r;
+}
+
+void ComplianceOptions::validate() const {
+  require(std::isfinite(end_time), "end_time", "must be finite [s]");
+  require(tolerance > 0.0 && tolerance < 0.1, "tolerance", "must be in (0, 0.1)");
+  require(stiffness > 0.0 && std::isfinite(stiffness), "stiffness",
+          "must be finite and > 0 [kN/m^1.5]");
+  require(stick_slip_velocity > 0.0 && std::isfinite(stick_slip_velocity),
+          "stick_slip_velocity", "must be finite and > 0 [m/s]");
+  require(law == DampingLaw::kHertzDamp || law == DampingLaw::kFlores ||
+              law == DampingLaw::kHuntCrossleyExact,
+          "law", "must be hertzdamp, flores or hunt_crossley_exact");
+  require(max_step > 0.0 && std::isfinite(max_step), "max_step", "must be finite and > 0 [s]");
+  require(min_impact_velocity > 0.0 && std::isfinite(min_impact_velocity),
+          "min_impact_velocity", "must be finite and > 0 [m/s]");
+  require(initial_step > 0.0 && std::isfinite(initial_step), "initial_step",
+          "must be finite and > 0 [s]");
+  require(max_steps > 0, "max_steps", "must be > 0");
+}
+
+RunStats compliance(System& system, const ComplianceOptions& options, Recorder& recorder) {
+  options.validate();
+  const auto wall_start = std::chrono::steady_clock::now();
+  RunStats stats;
+  stats.method = "compliance";
+  const double t0 = system.initial_time();
+  if (!(options.end_time > t0)) {
+    throw std::invalid_argument("compliance options: end_time: must be > the initial time");
+  }
+
+  Core core(system, options);
+  const int n = core.dofs();
+  const int m = core.contacts();
+  const double k = options.stiffness;
+
+  State x = State::Zero(2 * n), xnew = State::Zero(2 * n);
+  {
+    const Vector q0 = system.initial_position();
+    const Vector u0 = system.initial_velocity();
+    if (q0.size() != n || u0.size() != n) {
+      throw std::invalid_argument("compliance: initial state size differs from dofs()");
+    }
+    x.head(n) = q0;
+    x.tail(n) = u0;
+  }
+
+  // Per-contact state of the gap elements: closed flag and approach velocity v_minus.
+  std::vector<char> closed(static_cast<std::size_t>(m), 0);
+  std::vector<char> pending(static_cast<std::size_t>(m), 0);
+  double t = t0;
+  core.evaluate(t, x, false);
+  for (int i = 0; i < m; ++i) {
+    const ContactData& c = core.contacts_[static_cast<std::size_t>(i)];
+    core.chi_[i] = damping_factor(options.law, c.restitution);
+  }
+  const auto close_contact = [&](int i, double time) {
+    const ContactData& c = core.contacts_[static_cast<std::size_t>(i)];
+    closed[static_cast<std::size_t>(i)] = 1;
+    core.v_minus_[i] = std::max(-c.gap_rate(core.u_), options.min_impact_velocity);
+    recorder.event(time, i + 1, EventKind::kClose);
+  };
+  for (int i = 0; i < m; ++i) {
+    const ContactData& c = core.contacts_[static_cast<std::size_t>(i)];
+    if (!c.far && c.gap_normal <= 0.0) close_contact(i, t);
+  }
+  core.evaluate(t, x, false);
+  system.commit();
+
+  // Energy balance terms, accumulated by the trapezoidal rule over accepted steps.
+  const Matrix& M = system.mass();
+  const auto contact_potential = [&]() {
+    double v = 0.0;
+    for (const ContactData& c : core.contacts_) {
+      if (!c.far && c.gap_normal < 0.0) v += 0.4 * k * std::pow(-c.gap_normal, 2.5);
+    }
+    return v;
+  };
+  const auto powers = [&]() {
+    Powers p;
+    const PowerTerms s = system.power(t, core.q_, core.u_);
+    p.external = s.external;
+    p.ground = s.ground;
+    p.damping = s.damping;
+    for (int i = 0; i < m; ++i) {
+      const ContactData& c = core.contacts_[static_cast<std::size_t>(i)];
+      // Work of the contact forces on the system: lambda (W^T u) = lambda (gdot - what).
+      // The spring part of lambda_N is stored energy (contact_potential); the rest of the
+      // normal work is the dissipation of the dashpot; the what-terms are work done by
+      // moving obstacles (ground).
+      p.impacts += core.damping_part_[i] * c.gap_rate(core.u_);
+      p.ground -= core.lambda_n_[i] * c.what_normal + core.lambda_t_[i] * c.what_tangent;
+      p.friction += core.lambda_t_[i] * c.slip_rate(core.u_);
+    }
+    return p;
+  };
+  EnergyBalance energy;
+  const auto update_state_energy = [&]() {
+    energy.kinetic = 0.5 * core.u_.dot(M * core.u_);
+    const EnergyState es = system.energy(t, core.q_);
+    energy.stored = es.stored + contact_potential();
+    energy.hysteretic = es.hysteretic;
+  };
+  update_state_energy();
+  energy.initial = energy.kinetic + energy.stored;
+  energy.close();
+  Powers p_old = powers();
+  recorder.sample(t, core.q_, core.u_, core.contacts_, core.lambda_n_, core.lambda_t_, 0.0);
+
+  Rodas stepper(core, options.tolerance, options.tolerance, options.max_step);
+
+  double dt = std::min(options.initial_step, options.max_step);
+  double target = std::numeric_limits<double>::infinity();  // closure time to land on
+  const double time_scale = std::max(1.0, std::abs(options.end_time));
+  while (t < options.end_time) {
+    if (stats.steps + stats.rejected_steps >= options.max_steps) {
+      stats.message = "max_steps reached";
+      break;
+    }
+    dt = std::min({dt, options.end_time - t, target - t});
+    if (dt < kMinRelativeStep * std::max(1.0, std::abs(t))) {
+      std::ostringstream os;
+      os << "step size underflow at t = " << t;
+      stats.message = os.str();
+      break;
+    }
+    const double dt_try = dt;
+    double t_new = t;
+    ++stats.factorizations;
+    const bool ok = stepper.try_step(x, t_new, xnew, dt);
+    if (!ok || !finite(xnew)) {
+      if (ok) dt = 0.5 * dt_try;  // a finite error estimate but a non-finite state: halve
+      ++stats.rejected_steps;
+      continue;
+    }
+    // Landing exactly on the end time or the closure target must not be missed by round-off.
+    if (std::abs(t_new - options.end_time) <= 1e-14 * time_scale) t_new = options.end_time;
+    const bool landed = std::abs(t_new - target) <= 1e-14 * time_scale;
+    if (landed) t_new = target;
+
+    // Closure search over the gaps that are open at the start of the step: the first probe
+    // point where one is negative, then bisection on the interpolant between it and the
+    // previous probe. On a step that landed on a located closure, the contacts found then
+    // close now and are not searched again.
+    const auto searched = [&](int i, const ContactData& c) {
+      const auto ii = static_cast<std::size_t>(i);
+      return !closed[ii] && !c.far && !(landed && pending[ii]);
+    };
+    const auto min_open_gap = [&](double s) {
+      double g = std::numeric_limits<double>::infinity();
+      const auto& cs = core.gaps_at(t, x, t_new, xnew, s);
+      for (int i = 0; i < m; ++i) {
+        const ContactData& c = cs[static_cast<std::size_t>(i)];
+        if (searched(i, c)) g = std::min(g, c.gap_normal);
+      }
+      return g;
+    };
+    double s_lo = 0.0, s_hi = -1.0;
+    for (int j = 1; m > 0 && j <= kClosureProbes; ++j) {
+      const double s = static_cast<double>(j) / kClosureProbes;
+      if (min_open_gap(s) < 0.0) {
+        s_hi = s;
+        s_lo = static_cast<double>(j - 1) / kClosureProbes;
+        break;
+      }
+    }
+    bool close_at_start = false;
+    if (s_hi > 0.0) {
+      for (int it = 0; it < kMaxBisections && s_hi - s_lo > kClosureRelativeWidth; ++it) {
+        const double mid = 0.5 * (s_lo + s_hi);
+        (min_open_gap(mid) < 0.0 ? s_hi : s_lo) = mid;
+      }
+      const double t_close = t + s_lo * (t_new - t);
+      // The contacts that close first: their interpolated gap at s_hi is negative.
+      const auto& cs = core.gaps_at(t, x, t_new, xnew, s_hi);
+      std::fill(pending.begin(), pending.end(), 0);
+      for (int i = 0; i < m; ++i) {
+        const ContactData& c = cs[static_cast<std::size_t>(i)];
+        if (searched(i, c) && c.gap_normal < 0.0) pending[static_cast<std::size_t>(i)] = 1;
+      }
+      if (t_close - t > 10.0 * kMinRelativeStep * std::max(1.0, std::abs(t))) {
+        // Retake the step so that it ends at the closure: contact onset is a step boundary.
+        target = t_close;
+        dt = t_close - t;
+        ++stats.rejected_steps;
+        continue;
+      }
+      // The closure is at the start of the step: the pending contacts close now.
+      close_at_start = true;
+    }
+
+    // Accept the step. Openings: a closed gap that is positive at the end of the step; the
+    // crossing is located on the interpolant for the event time only (the force is
+    // continuous there).
+    const double h = t_new - t;
+    for (int i = 0; i < m; ++i) {
+      const auto ii = static_cast<std::size_t>(i);
+      if (!closed[ii]) continue;
+      if (!(core.gaps_at(t, x, t_new, xnew, 1.0)[ii].gap_normal > 0.0)) continue;
+      double lo = 0.0, hi = 1.0;
+      for (int it = 0; it < kMaxBisections && hi - lo > kClosureRelativeWidth; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (core.gaps_at(t, x, t_new, xnew, mid)[ii].gap_normal > 0.0 ? hi : lo) = mid;
+      }
+      closed[ii] = 0;
+      recorder.event(t + hi * h, i + 1, EventKind::kOpen);
+    }
+    x = xnew;
+    t = t_new;
+    ++stats.steps;
+    core.evaluate(t, x, false);
+    system.commit();
+    for (int i = 0; i < m; ++i) {
+      const auto ii = static_cast<std::size_t>(i);
+      const ContactData& c = core.contacts_[ii];
+      if (closed[ii] || c.far) {
+        pending[ii] = 0;
+        continue;
+      }
+      if (c.gap_normal < 0.0 || (pending[ii] && (landed || close_at_start))) {
+        close_contact(i, t);
+        pending[ii] = 0;
+      }
+    }
+    if (landed) {
+      target = std::numeric_limits<double>::infinity();
+      std::fill(pending.begin(), pending.end(), 0);
+    }
+    core.evaluate(t, x, false);  // forces with the new contact states, for the record
+
+    const Powers p_new = powers();
+    energy.external += 0.5 * h * (p_old.external + p_new.external);
+    energy.ground += 0.5 * h * (p_old.ground + p_new.ground);
+    energy.damping += 0.5 * h * (p_old.damping + p_new.damping);
+    energy.impacts += 0.5 * h * (p_old.impacts + p_new.impacts);
+    energy.friction += 0.5 * h * (p_old.friction + p_new.friction);
+    p_old = p_new;
+    update_state_energy();
+    energy.close();
+    recorder.sample(t, core.q_, core.u_, core.contacts_, core.lambda_n_, core.lambda_t_,
+                    energy.error);
+  }
+  stats.completed = (t >= options.end_time);
+  stats.end_time = t;
+  stats.energy = energy;
+  recorder.sample_now(t, core.q_, core.u_, core.contacts_, core.lambda_n_, core.lambda_t_,
+                      energy.error);
+  if (!stats.completed && stats.message.empty()) stats.message = "stopped before end_time";
+  stats.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return stats;
+}
+
+}  // namespace nsb::integrators

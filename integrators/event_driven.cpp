@@ -1,0 +1,846 @@
+#include "integrators/event_driven.hpp"
+
+#include "lcp/frictional.hpp"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+
+// Only the Odeint parts used here: <boost/numeric/odeint.hpp> pulls in uBLAS, which does not
+// compile as C++20.
+#include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
+#include <boost/numeric/odeint/stepper/dense_output_runge_kutta.hpp>
+#include <boost/numeric/odeint/stepper/generation.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace nsb::integrators {
+
+void EventDrivenOptions::validate() const {
+  auto fail = [](const std::string& what) {
+    throw std::invalid_argument("event_driven options: " + what);
+  };
+  if (!std::isfinite(end_time)) fail("end_time must be finite [s]");
+  if (!(tolerance > 0.0 && tolerance < 1.0)) fail("tolerance must be in (0, 1)");
+  if (!(lcp_tolerance > 0.0) || !std::isfinite(lcp_tolerance)) fail("lcp_tolerance must be > 0");
+  if (!(event_time_tolerance > 0.0) || !std::isfinite(event_time_tolerance)) {
+    fail("event_time_tolerance must be > 0 [s]");
+  }
+  if (!(closing_velocity >= 0.0) || !std::isfinite(closing_velocity)) {
+    fail("closing_velocity must be >= 0 [m/s]");
+  }
+  if (!(stick_velocity >= 0.0) || !std::isfinite(stick_velocity)) {
+    fail("stick_velocity must be >= 0 [m/s]");
+  }
+  if (!(gap_tolerance >= 0.0) || !std::isfinite(gap_tolerance)) {
+    fail("gap_tolerance must be >= 0 [m]");
+  }
+  if (!(max_step >= 0.0) || !std::isfinite(max_step)) fail("max_step must be >= 0 [s]");
+  if (!(initial_step > 0.0) || !std::isfinite(initial_step)) fail("initial_step must be > 0 [s]");
+  if (max_events_per_window <= 0) fail("max_events_per_window must be > 0");
+  if (!(event_window > 0.0) || !std::isfinite(event_window)) fail("event_window must be > 0 [s]");
+}
+
+namespace {
+
+namespace odeint = boost::numeric::odeint;
+using State = std::vector<double>;
+using Dopri = odeint::runge_kutta_dopri5<State>;
+using Dense = odeint::result_of::make_dense_output<Dopri>::type;
+
+// Mode of one contact during a smooth phase.
+enum class Mode { kOpen, kStick, kSlip };
+
+struct ContactMode {
+  Mode mode = Mode::kOpen;
+  double slip_sign = 0.0;  // sgn(gdot_T) while sliding; 0 for a frictionless closed contact
+};
+
+// Integrated energy terms appended to (q, u) in the Odeint state, so that the energy balance
+// is integrated to the same tolerance as the motion.
+enum EnergyIndex { kDamping = 0, kGround, kExternal, kNormal, kFriction, kEnergyTerms };
+
+// Relative size of the shifts that make "reaches 0" a strict sign change of an indicator
+// (lambda_N + shift, s gdot_T + shift): far below any tolerance a user can ask for, but
+// large enough that an indicator which starts a phase at round-off zero does not fire.
+constexpr double kIndicatorShift = 1e-10;
+// Iterations of the Newton projection onto g_N = 0 (the gaps are near-linear in q over the
+// drift corrected, so two or three iterations reach round-off).
+constexpr int kProjectionIterations = 4;
+// Brent iterations; the bracket halves at least every few iterations, so 200 is ample for
+// any step down to event_time_tolerance.
+constexpr int kBrentIterations = 200;
+// Relative margin below which |lambda_T| counts as on the friction cone mu lambda_N: the
+// contact LCP is solved to 1e-12.
+constexpr double kConeSaturation = 1e-9;
+
+class EventDriven {
+ public:
+  EventDriven(System& system, const EventDrivenOptions& options, Recorder& recorder)
+      : sys_(system), opt_(options), rec_(recorder) {
+    n_ = sys_.dofs();
+    m_ = sys_.contacts();
+    const double tol = opt_.tolerance;
+    closing_velocity_ = opt_.closing_velocity > 0.0 ? opt_.closing_velocity : 10.0 * tol;
+    stick_velocity_ = opt_.stick_velocity > 0.0 ? opt_.stick_velocity : 10.0 * tol;
+    gap_tolerance_ = opt_.gap_tolerance > 0.0 ? opt_.gap_tolerance : 10.0 * tol;
+    const Matrix& M = sys_.mass();
+    if (M.rows() != n_ || M.cols() != n_) {
+      throw std::invalid_argument("event_driven: mass matrix is not dofs() x dofs()");
+    }
+    Eigen::LLT<Matrix> llt(M);
+    if (llt.info() != Eigen::Success) {
+      throw std::invalid_argument("event_driven: mass matrix is not positive definite");
+    }
+    minv_ = llt.solve(Matrix::Identity(n_, n_));
+    cbuf_ = sys_.make_contact_buffer();
+    modes_.assign(static_cast<std::size_t>(m_), ContactMode{});
+    f_ = Vector::Zero(n_);
+    q_ = Vector::Zero(n_);
+    u_ = Vector::Zero(n_);
+    udot_ = Vector::Zero(n_);
+    lambda_n_ = Vector::Zero(m_);
+    lambda_t_ = Vector::Zero(m_);
+    h_ = Vector::Zero(2 * m_);
+    xs_.assign(static_cast<std::size_t>(2 * n_ + kEnergyTerms), 0.0);
+    stats_.method = "event_driven";
+    lcp_options_.tolerance = opt_.lcp_tolerance;
+  }
+
+  RunStats run();
+
+ private:
+  // ---- state helpers ----
+  void unpack(const State& x, Vector& q, Vector& u) const {
+    for (int i = 0; i < n_; ++i) {
+      q[i] = x[static_cast<std::size_t>(i)];
+      u[i] = x[static_cast<std::size_t>(n_ + i)];
+    }
+  }
+  double energy_term(const State& x, int k) const {
+    return x[static_cast<std::size_t>(2 * n_ + k)];
+  }
+  static std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+
+  // Accelerations and contact forces with the modes of the current phase held fixed:
+  //   M udot = f + sum_closed B_i lambda_N,i + sum_stick W_T,i lambda_T,i
+  // with B_i = W_N,i for sticking and B_i = W_N,i - mu_i s_i W_T,i for sliding contacts, and
+  // the constraints gddot_N,i = W_N,i^T udot + wbar_N,i = 0 (closed) and
+  // gddot_T,i = W_T,i^T udot + wbar_T,i = 0 (sticking). Redundant constraints (four corners
+  // closed on a three-DOF deck) give a singular system; its minimum-norm solution is one
+  // admissible distribution of the forces.
+  void phase_forces(double t, const Vector& q, const Vector& u) {
+    sys_.forces(t, q, u, f_);
+    lambda_n_.setZero();
+    lambda_t_.setZero();
+    int k = 0;
+    for (const auto& md : modes_) {
+      if (md.mode != Mode::kOpen) ++k;
+      if (md.mode == Mode::kStick) ++k;
+    }
+    if (k == 0) {
+      udot_.noalias() = minv_ * f_;
+      return;
+    }
+    sys_.contact_data(t, q, u, cbuf_);
+    Matrix B(n_, k), R(n_, k);
+    Vector wbar(k);
+    int j = 0;
+    for (int i = 0; i < m_; ++i) {
+      const auto& md = modes_[idx(i)];
+      const auto& c = cbuf_[idx(i)];
+      if (md.mode == Mode::kOpen) continue;
+      R.col(j) = c.w_normal;
+      B.col(j) = c.w_normal;
+      if (md.mode == Mode::kSlip && md.slip_sign != 0.0) {
+        B.col(j) -= c.friction * md.slip_sign * c.w_tangent;
+      }
+      wbar[j] = c.wbar_normal;
+      ++j;
+      if (md.mode == Mode::kStick) {
+        R.col(j) = c.w_tangent;
+        B.col(j) = c.w_tangent;
+        wbar[j] = c.wbar_tangent;
+        ++j;
+      }
+    }
+    const Vector a_free = minv_ * f_;
+    const Matrix A = R.transpose() * minv_ * B;
+    const Vector rhs = -(R.transpose() * a_free + wbar);
+    const Vector lam = A.completeOrthogonalDecomposition().solve(rhs);
+    udot_ = a_free + minv_ * (B * lam);
+    j = 0;
+    for (int i = 0; i < m_; ++i) {
+      const auto& md = modes_[idx(i)];
+      if (md.mode == Mode::kOpen) continue;
+      lambda_n_[i] = lam[j++];
+      if (md.mode == Mode::kStick) {
+        lambda_t_[i] = lam[j++];
+      } else if (md.mode == Mode::kSlip) {
+        lambda_t_[i] = -cbuf_[idx(i)].friction * md.slip_sign * lambda_n_[i];
+      }
+    }
+  }
+
+  // The right-hand side of the smooth phase: d/dt (q, u, energies).
+  void rhs(const State& x, State& dxdt, double t) {
+    ++rhs_evaluations_;
+    unpack(x, q_, u_);
+    phase_forces(t, q_, u_);
+    for (int i = 0; i < n_; ++i) {
+      dxdt[idx(i)] = u_[i];
+      dxdt[idx(n_ + i)] = udot_[i];
+    }
+    const PowerTerms p = sys_.power(t, q_, u_);
+    double normal = 0.0, friction = 0.0;
+    bool any_closed = false;
+    for (const auto& md : modes_) any_closed = any_closed || md.mode != Mode::kOpen;
+    if (any_closed) {
+      for (int i = 0; i < m_; ++i) {
+        if (modes_[idx(i)].mode == Mode::kOpen) continue;
+        const auto& c = cbuf_[idx(i)];
+        normal += lambda_n_[i] * c.w_normal.dot(u_);
+        friction += lambda_t_[i] * c.w_tangent.dot(u_);
+      }
+    }
+    dxdt[idx(2 * n_ + kDamping)] = p.damping;
+    dxdt[idx(2 * n_ + kGround)] = p.ground;
+    dxdt[idx(2 * n_ + kExternal)] = p.external;
+    dxdt[idx(2 * n_ + kNormal)] = normal;
+    dxdt[idx(2 * n_ + kFriction)] = friction;
+  }
+
+  // Event indicators at (t, x): h[2i] is g_N (open) or lambda_N + shift (closed); h[2i+1] is
+  // s gdot_T + shift (sliding with friction), mu lambda_N - |lambda_T| + shift (sticking),
+  // or +1 (no tangential event possible). An event is a sign change from >= 0 to < 0.
+  void indicators(double t, const State& x) {
+    unpack(x, q_, u_);
+    phase_forces(t, q_, u_);
+    sys_.contact_data(t, q_, u_, cbuf_);
+    for (int i = 0; i < m_; ++i) {
+      const auto& c = cbuf_[idx(i)];
+      const auto& md = modes_[idx(i)];
+      switch (md.mode) {
+        case Mode::kOpen:
+          h_[2 * i] = c.gap_normal;
+          h_[2 * i + 1] = 1.0;
+          break;
+        case Mode::kStick:
+          h_[2 * i] = lambda_n_[i] + force_shift_;
+          h_[2 * i + 1] = c.friction * lambda_n_[i] - std::abs(lambda_t_[i]) + force_shift_;
+          break;
+        case Mode::kSlip:
+          h_[2 * i] = lambda_n_[i] + force_shift_;
+          h_[2 * i + 1] = md.slip_sign != 0.0
+                              ? md.slip_sign * c.slip_rate(u_) + velocity_shift_
+                              : 1.0;
+          break;
+      }
+    }
+  }
+  double indicator_at(double t, int k) {
+    dense_.calc_state(t, xs_);
+    indicators(t, xs_);
+    return h_[k];
+  }
+  double gap_rate_at(double t, int i) {
+    dense_.calc_state(t, xs_);
+    unpack(xs_, q_, u_);
+    sys_.contact_data(t, q_, u_, cbuf_);
+    return cbuf_[idx(i)].gap_rate(u_);
+  }
+
+  // Brent's method (GSL) on fun over [a, b] with fun(a) >= 0 > fun(b). Returns the upper end
+  // of the final bracket: the first time located past the crossing, to event_time_tolerance.
+  template <class F>
+  double brent(const F& fun, double a, double b) {
+    if (!(b > a)) return b;
+    struct Thunk {
+      const F* f;
+      static double call(double x, void* p) { return (*static_cast<const Thunk*>(p)->f)(x); }
+    } thunk{&fun};
+    gsl_function gf;
+    gf.function = &Thunk::call;
+    gf.params = &thunk;
+    gsl_root_fsolver* s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    double lo = a, hi = b;
+    if (gsl_root_fsolver_set(s, &gf, a, b) == GSL_SUCCESS) {
+      for (int it = 0; it < kBrentIterations; ++it) {
+        if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS) break;
+        lo = gsl_root_fsolver_x_lower(s);
+        hi = gsl_root_fsolver_x_upper(s);
+        if (gsl_root_test_interval(lo, hi, opt_.event_time_tolerance, 0.0) == GSL_SUCCESS) break;
+      }
+    }
+    gsl_root_fsolver_free(s);
+    // Keep the side past the crossing (Brent's bracket always straddles the root).
+    if (fun(hi) >= 0.0 && fun(lo) < 0.0) return lo;
+    return hi;
+  }
+
+  // Earliest event time in (ta, tb] for indicator k, or +inf. ha = indicator at ta.
+  double locate(int k, double ta, double tb, double ha, double hb) {
+    const double inf = std::numeric_limits<double>::infinity();
+    const int i = k / 2;
+    const bool gap = (k % 2 == 0) && modes_[idx(i)].mode == Mode::kOpen;
+    auto h = [this, k](double t) { return indicator_at(t, k); };
+    if (!gap) {
+      if (hb >= 0.0) return inf;
+      if (ha < 0.0) return ta;
+      return brent(h, ta, tb);
+    }
+    // An open contact: an impact when g_N goes below 0 while closing.
+    auto gd = [this, i](double t) { return gap_rate_at(t, i); };
+    if (ha > 0.0 && hb < 0.0) return brent(h, ta, tb);
+    const double va = gd(ta), vb = gd(tb);
+    if (ha <= 0.0 && hb < 0.0) {
+      // The contact has just been released at ta. If it rose and came back, locate the apex
+      // (gdot_N = 0), then the crossing after it; otherwise it never left.
+      if (va > 0.0 && vb < 0.0) {
+        auto ngd = [&gd](double t) { return gd(t); };
+        const double apex = brent(ngd, ta, tb);
+        if (h(apex) > 0.0) return brent(h, apex, tb);
+      }
+      return va > 0.0 ? inf : ta;
+    }
+    if (ha > 0.0 && hb >= 0.0 && va < 0.0 && vb > 0.0) {
+      // Grazing inside the step: the gap has a minimum; test whether it dips below 0.
+      auto neg_gd = [&gd](double t) { return -gd(t); };
+      const double tmin = brent(neg_gd, ta, tb);
+      if (h(tmin) < 0.0) return brent(h, ta, tmin);
+    }
+    return inf;
+  }
+
+  // ---- events ----
+  void count_lcp(const lcp::FrictionalResult& r) {
+    ++stats_.lcp_solves;
+    if (r.used_fallback) ++stats_.lcp_fallbacks;
+    ++stats_.lcp_status[std::string(lcp::to_string(r.status))];
+  }
+  lcp::FrictionalResult solve_contact_problem(lcp::FrictionalProblem& fp);
+  void project_positions(double t, Vector& q, const Vector& u);
+  double project_velocities(double t, const Vector& q, Vector& u);
+  bool handle_event(double t, State& x, int trigger_contact, bool initial);
+  void record_sample(double t, const State& x, bool force);
+  double balance_error(double t, const State& x);
+  void warn(double t, int contact, const std::string& what) {
+    rec_.event(t, contact, EventKind::kWarning, what);
+    stats_.warnings.push_back("t = " + std::to_string(t) + " s, contact " +
+                              std::to_string(contact) + ": " + what);
+  }
+
+  System& sys_;
+  const EventDrivenOptions& opt_;
+  Recorder& rec_;
+  int n_ = 0, m_ = 0;
+  double closing_velocity_ = 0.0, stick_velocity_ = 0.0, gap_tolerance_ = 0.0;
+  double force_shift_ = 0.0, velocity_shift_ = 0.0;
+  Matrix minv_;
+  std::vector<ContactData> cbuf_;
+  std::vector<ContactMode> modes_;
+  Vector f_, q_, u_, udot_, lambda_n_, lambda_t_, h_;
+  State xs_;
+  Dense dense_ = odeint::make_dense_output(1e-8, 1e-8, Dopri());
+  RunStats stats_;
+  lcp::SolveOptions lcp_options_;
+  std::int64_t rhs_evaluations_ = 0;
+  double impact_normal_work_ = 0.0, impact_friction_work_ = 0.0;
+  double initial_energy_ = 0.0;
+  double next_sample_ = -std::numeric_limits<double>::infinity();
+  std::deque<double> recent_events_;
+  double forced_closure_until_ = -std::numeric_limits<double>::infinity();
+  bool stop_ = false;
+};
+
+// Solves an impact or contact problem with the chosen solver (and Lemke as its fallback).
+// Redundant contacts (four corners closed on a three-DOF deck) make the Delassus matrix
+// singular and eq. (6) non-monotone, where Lemke may end on a secondary ray although a
+// solution exists: then enumeration of the complementary bases and PGS on the natural form
+// are tried, and last the same chain with a Delassus matrix regularised by
+// kDelassusRegularization times its largest diagonal entry.
+lcp::FrictionalResult EventDriven::solve_contact_problem(lcp::FrictionalProblem& fp) {
+  constexpr double kDelassusRegularization = 1e-10;
+  lcp::FrictionalResult r = lcp::solve_frictional(fp, opt_.solver, lcp_options_, true);
+  count_lcp(r);
+  if (r.ok()) return r;
+  for (int pass = 0; pass < 2 && !r.ok(); ++pass) {
+    if (pass == 1) {
+      const double d = fp.delassus.diagonal().cwiseAbs().maxCoeff();
+      fp.delassus.diagonal().array() += kDelassusRegularization * std::max(d, 1e-300);
+    }
+    for (lcp::Solver alt : {lcp::Solver::kEnumeration, lcp::Solver::kPgs}) {
+      if (pass == 0 && alt == opt_.solver) continue;
+      r = lcp::solve_frictional(fp, alt, lcp_options_, false);
+      count_lcp(r);
+      ++stats_.lcp_fallbacks;
+      if (r.ok()) break;
+    }
+  }
+  return r;
+}
+
+void EventDriven::project_positions(double t, Vector& q, const Vector& u) {
+  // Closest point in the kinetic metric on g_N,i(q) = 0 for every closed contact:
+  //   dq = -M^-1 W (W^T M^-1 W)^+ g      (Newton iterations on the gap functions).
+  std::vector<int> closed;
+  for (int i = 0; i < m_; ++i) {
+    if (modes_[idx(i)].mode != Mode::kOpen) closed.push_back(i);
+  }
+  if (closed.empty()) return;
+  const int k = static_cast<int>(closed.size());
+  Matrix W(n_, k);
+  Vector g(k);
+  for (int it = 0; it < kProjectionIterations; ++it) {
+    sys_.contact_data(t, q, u, cbuf_);
+    for (int j = 0; j < k; ++j) {
+      W.col(j) = cbuf_[idx(closed[idx(j)])].w_normal;
+      g[j] = cbuf_[idx(closed[idx(j)])].gap_normal;
+    }
+    if (g.cwiseAbs().maxCoeff() <= 1e-15) break;
+    const Matrix G = W.transpose() * minv_ * W;
+    q -= minv_ * (W * G.completeOrthogonalDecomposition().solve(g));
+  }
+}
+
+double EventDriven::project_velocities(double t, const Vector& q, Vector& u) {
+  // gdot_N = 0 for closed contacts and gdot_T = 0 for sticking ones, closest in the kinetic
+  // metric: du = -M^-1 R (R^T M^-1 R)^+ (R^T u + what). Returns the change of kinetic energy.
+  sys_.contact_data(t, q, u, cbuf_);
+  int k = 0;
+  for (const auto& md : modes_) {
+    if (md.mode != Mode::kOpen) ++k;
+    if (md.mode == Mode::kStick) ++k;
+  }
+  if (k == 0) return 0.0;
+  Matrix R(n_, k);
+  Vector r(k);
+  int j = 0;
+  for (int i = 0; i < m_; ++i) {
+    const auto& c = cbuf_[idx(i)];
+    const auto& md = modes_[idx(i)];
+    if (md.mode == Mode::kOpen) continue;
+    R.col(j) = c.w_normal;
+    r[j++] = c.gap_rate(u);
+    if (md.mode == Mode::kStick) {
+      R.col(j) = c.w_tangent;
+      r[j++] = c.slip_rate(u);
+    }
+  }
+  const Matrix& M = sys_.mass();
+  const double before = 0.5 * u.dot(M * u);
+  const Matrix G = R.transpose() * minv_ * R;
+  u -= minv_ * (R * G.completeOrthogonalDecomposition().solve(r));
+  return 0.5 * u.dot(M * u) - before;
+}
+
+double EventDriven::balance_error(double t, const State& x) {
+  Vector q(n_), u(n_);
+  unpack(x, q, u);
+  EnergyBalance e;
+  const EnergyState es = sys_.energy(t, q);
+  e.kinetic = 0.5 * u.dot(sys_.mass() * u);
+  e.stored = es.stored;
+  e.hysteretic = es.hysteretic;
+  e.initial = initial_energy_;
+  e.damping = energy_term(x, kDamping);
+  e.ground = energy_term(x, kGround);
+  e.external = energy_term(x, kExternal);
+  e.impacts = energy_term(x, kNormal) + impact_normal_work_;
+  e.friction = energy_term(x, kFriction) + impact_friction_work_;
+  e.close();
+  stats_.energy = e;
+  return e.error;
+}
+
+void EventDriven::record_sample(double t, const State& x, bool force) {
+  indicators(t, x);  // fills contact data and the phase's contact forces at (t, x)
+  const double err = balance_error(t, x);
+  if (force) {
+    rec_.sample_now(t, q_, u_, cbuf_, lambda_n_, lambda_t_, err);
+  } else {
+    rec_.sample(t, q_, u_, cbuf_, lambda_n_, lambda_t_, err);
+  }
+}
+
+// Resolves what happens at time t in state x (modified in place): impacts, then the
+// acceleration-level contact problem that sets the modes of the next phase, then drift
+// projection. Returns false if the run must stop.
+bool EventDriven::handle_event(double t, State& x, int trigger_contact, bool initial) {
+  Vector q(n_), u(n_);
+  unpack(x, q, u);
+
+  // Zeno guard: a bounded number of events per window of time.
+  bool forced = t < forced_closure_until_;
+  if (!initial) {
+    recent_events_.push_back(t);
+    while (!recent_events_.empty() && recent_events_.front() < t - opt_.event_window) {
+      recent_events_.pop_front();
+    }
+    const auto count = static_cast<int>(recent_events_.size());
+    if (count >= 2 * opt_.max_events_per_window) {
+      warn(t, trigger_contact, "event bound reached again under forced closure; run stopped");
+      stats_.message = "more than " + std::to_string(2 * opt_.max_events_per_window) +
+                       " events within " + std::to_string(opt_.event_window) + " s at t = " +
+                       std::to_string(t) + " s";
+      return false;
+    }
+    if (count >= opt_.max_events_per_window && !forced) {
+      warn(t, trigger_contact,
+           "event bound reached (" + std::to_string(count) + " events within " +
+               std::to_string(opt_.event_window) + " s): touching contacts forced closed");
+      forced_closure_until_ = t + opt_.event_window;
+      forced = true;
+    }
+  }
+
+  sys_.forces(t, q, u, f_);
+  sys_.contact_data(t, q, u, cbuf_);
+  std::vector<int> touching;
+  bool any_impact = false;
+  for (int i = 0; i < m_; ++i) {
+    const auto& c = cbuf_[idx(i)];
+    const bool is_touching = modes_[idx(i)].mode != Mode::kOpen || c.gap_normal <= gap_tolerance_;
+    if (!is_touching) continue;
+    touching.push_back(i);
+    if (c.gap_rate(u) < -closing_velocity_) any_impact = true;
+    if (initial && c.gap_normal < -gap_tolerance_) {
+      warn(t, i + 1, "initial penetration g_N = " + std::to_string(c.gap_normal) + " m");
+    }
+  }
+  bool solved_lcp = false;
+
+  // 1. Impacts: eq. (6) on every touching contact that is closing or resting, with the
+  //    pre-impact velocities. Touching contacts that separate are left out: an impulse
+  //    elsewhere that would make them close is caught as an impact just after.
+  if (any_impact) {
+    touching.erase(std::remove_if(touching.begin(), touching.end(),
+                                  [&](int i) {
+                                    return cbuf_[idx(i)].gap_rate(u) > closing_velocity_;
+                                  }),
+                   touching.end());
+    const int k = static_cast<int>(touching.size());
+    bool frictionless = true;
+    for (int i : touching) frictionless = frictionless && cbuf_[idx(i)].friction == 0.0;
+    const int nt = frictionless ? 0 : k;
+    Matrix W(n_, k + nt);
+    lcp::FrictionalProblem fp;
+    fp.gdot_free.resize(k + nt);
+    fp.gdot_n_minus.resize(k);
+    fp.restitution.resize(k);
+    fp.friction.resize(k);
+    for (int j = 0; j < k; ++j) {
+      const auto& c = cbuf_[idx(touching[idx(j)])];
+      W.col(j) = c.w_normal;
+      fp.gdot_free[j] = c.gap_rate(u);
+      fp.gdot_n_minus[j] = std::min(0.0, c.gap_rate(u));
+      fp.restitution[j] = forced ? 0.0 : c.restitution;
+      fp.friction[j] = c.friction;
+      if (nt > 0) {
+        W.col(k + j) = c.w_tangent;
+        fp.gdot_free[k + j] = c.slip_rate(u);
+      }
+    }
+    fp.delassus = W.transpose() * minv_ * W;
+    const lcp::FrictionalResult r = solve_contact_problem(fp);
+    solved_lcp = true;
+    if (!r.ok()) {
+      stats_.message = "impact LCP (eq. 6) not solved at t = " + std::to_string(t) +
+                       " s: " + std::string(lcp::to_string(r.status));
+      warn(t, trigger_contact, stats_.message);
+      return false;
+    }
+    Vector impulse = W.leftCols(k) * r.lambda_n;
+    if (nt > 0) impulse += W.rightCols(k) * r.lambda_t;
+    const Vector u_plus = u + minv_ * impulse;
+    const Vector u_mid = 0.5 * (u + u_plus);
+    // Work of an impulse P on a velocity jump u- -> u+ is P . (u- + u+)/2 (Glocker 2001).
+    for (int j = 0; j < k; ++j) {
+      impact_normal_work_ += r.lambda_n[j] * W.col(j).dot(u_mid);
+      if (nt > 0) impact_friction_work_ += r.lambda_t[j] * W.col(k + j).dot(u_mid);
+      const auto& c = cbuf_[idx(touching[idx(j)])];
+      if (c.gap_rate(u) < -closing_velocity_ || r.lambda_n[j] > 0.0) {
+        if (c.gap_rate(u) < -closing_velocity_) {
+          rec_.event(t, touching[idx(j)] + 1, EventKind::kImpact);
+        }
+      }
+    }
+    u = u_plus;
+  }
+
+  // 2. Candidates for closure: touching and not separating faster than closing_velocity.
+  std::vector<ContactMode> old = modes_;
+  for (auto& md : modes_) md = ContactMode{};
+  for (int i : touching) {
+    const auto& c = cbuf_[idx(i)];
+    if (c.gap_rate(u) <= closing_velocity_) {
+      const bool stick_candidate = c.friction > 0.0 && std::abs(c.slip_rate(u)) <= stick_velocity_;
+      if (stick_candidate) {
+        modes_[idx(i)] = ContactMode{Mode::kStick, 0.0};
+      } else {
+        const double s = c.friction > 0.0 ? (c.slip_rate(u) > 0.0 ? 1.0 : -1.0) : 0.0;
+        modes_[idx(i)] = ContactMode{Mode::kSlip, s};
+      }
+    }
+  }
+  // Project the candidates onto the constraint manifold (drift correction, and gdot_N = 0
+  // for a contact whose post-impact velocity is below the Zeno threshold).
+  project_positions(t, q, u);
+  double dke = project_velocities(t, q, u);
+  impact_normal_work_ += dke;
+
+  // 3. The acceleration-level contact problem on the candidates: eq. (6) with accelerations
+  //    in place of velocities, eps = 0 (Pfeiffer & Glocker 1996, ch. 6). Sliding contacts
+  //    carry lambda_T = -mu s lambda_N in their normal column and no tangential unknown.
+  std::vector<int> cand;
+  for (int i = 0; i < m_; ++i) {
+    if (modes_[idx(i)].mode != Mode::kOpen) cand.push_back(i);
+  }
+  if (!cand.empty()) {
+    sys_.forces(t, q, u, f_);
+    sys_.contact_data(t, q, u, cbuf_);
+    const int k = static_cast<int>(cand.size());
+    bool frictionless = true;
+    for (int i : cand) frictionless = frictionless && modes_[idx(i)].mode != Mode::kStick;
+    const int nt = frictionless ? 0 : k;
+    Matrix Wr(n_, k + nt), Wc(n_, k + nt);
+    lcp::FrictionalProblem fp;
+    fp.gdot_free.resize(k + nt);
+    fp.gdot_n_minus = Vector::Zero(k);
+    fp.restitution = Vector::Zero(k);
+    fp.friction = Vector::Zero(k);
+    const Vector a_free = minv_ * f_;
+    for (int j = 0; j < k; ++j) {
+      const auto& c = cbuf_[idx(cand[idx(j)])];
+      const auto& md = modes_[idx(cand[idx(j)])];
+      Wr.col(j) = c.w_normal;
+      Wc.col(j) = c.w_normal;
+      if (md.mode == Mode::kSlip && md.slip_sign != 0.0) {
+        Wc.col(j) -= c.friction * md.slip_sign * c.w_tangent;
+      }
+      fp.gdot_free[j] = c.w_normal.dot(a_free) + c.wbar_normal;
+      if (nt > 0) {
+        Wr.col(k + j) = c.w_tangent;
+        Wc.col(k + j) = c.w_tangent;
+        fp.gdot_free[k + j] = c.w_tangent.dot(a_free) + c.wbar_tangent;
+        fp.friction[j] = md.mode == Mode::kStick ? c.friction : 0.0;
+      }
+    }
+    fp.delassus = Wr.transpose() * minv_ * Wc;
+    const lcp::FrictionalResult r = solve_contact_problem(fp);
+    solved_lcp = true;
+    if (r.ok()) {
+      // Scale of the accelerations, for "gddot = 0" decisions on round-off.
+      const double acc_scale =
+          1e-9 * (1.0 + fp.gdot_free.cwiseAbs().maxCoeff());
+      for (int j = 0; j < k; ++j) {
+        auto& md = modes_[idx(cand[idx(j)])];
+        const bool closed = r.lambda_n[j] > 0.0 || r.gdot_n_plus[j] <= acc_scale;
+        if (!closed) {
+          md = ContactMode{};
+          continue;
+        }
+        if (md.mode == Mode::kStick) {
+          // Stick while the friction force is inside the cone; on its boundary the contact
+          // slips against the friction force, lambda_T = -mu s lambda_N (eq. 5). Deciding on
+          // the force rather than on the sign of gddot_T, which is round-off at a stick-slip
+          // transition, keeps a transition from firing again at once.
+          const double lt = r.lambda_t[j], cone = fp.friction[j] * r.lambda_n[j];
+          const bool saturated = std::abs(lt) >= cone * (1.0 - kConeSaturation) && cone > 0.0;
+          const double at = r.gdot_t_plus[j];
+          if (saturated || std::abs(at) > acc_scale) {
+            const double s = saturated && lt != 0.0 ? (lt > 0.0 ? -1.0 : 1.0)
+                                                    : (at > 0.0 ? 1.0 : -1.0);
+            md = ContactMode{Mode::kSlip, s};
+          }
+        }
+      }
+    } else {
+      warn(t, cand.empty() ? 0 : cand.front() + 1,
+           "contact LCP not solved (" + std::string(lcp::to_string(r.status)) +
+               "): touching contacts kept closed in their current modes");
+    }
+    // Final projection with the decided modes (sticking contacts get gdot_T = 0).
+    project_positions(t, q, u);
+    dke = project_velocities(t, q, u);
+    impact_normal_work_ += dke;
+  }
+  if (solved_lcp) ++stats_.steps_with_lcp;
+
+  // 4. Record the mode changes.
+  for (int i = 0; i < m_; ++i) {
+    const auto& a = old[idx(i)];
+    const auto& b = modes_[idx(i)];
+    if (a.mode == Mode::kOpen && b.mode != Mode::kOpen) rec_.event(t, i + 1, EventKind::kClose);
+    if (a.mode != Mode::kOpen && b.mode == Mode::kOpen) rec_.event(t, i + 1, EventKind::kOpen);
+    if (b.mode == Mode::kStick && a.mode != Mode::kStick) rec_.event(t, i + 1, EventKind::kStick);
+    if (b.mode == Mode::kSlip && b.slip_sign != 0.0 &&
+        (a.mode != Mode::kSlip || a.slip_sign != b.slip_sign)) {
+      rec_.event(t, i + 1, EventKind::kSlip);
+    }
+  }
+
+  // Indicator shifts for the new phase, scaled to the forces and velocities in play.
+  sys_.forces(t, q, u, f_);
+  force_shift_ = kIndicatorShift * (1.0 + f_.cwiseAbs().maxCoeff());
+  velocity_shift_ = kIndicatorShift * (1.0 + u.cwiseAbs().maxCoeff());
+
+  for (int i = 0; i < n_; ++i) {
+    x[idx(i)] = q[i];
+    x[idx(n_ + i)] = u[i];
+  }
+  return true;
+}
+
+RunStats EventDriven::run() {
+  const auto wall0 = std::chrono::steady_clock::now();
+  gsl_error_handler_t* old_handler = gsl_set_error_handler_off();
+  double t = sys_.initial_time();
+  const double t_end = opt_.end_time;
+  if (!(t_end > t)) {
+    gsl_set_error_handler(old_handler);
+    throw std::invalid_argument("event_driven options: end_time must be > the initial time " +
+                                std::to_string(t) + " s");
+  }
+  State x(static_cast<std::size_t>(2 * n_ + kEnergyTerms), 0.0);
+  {
+    const Vector q0 = sys_.initial_position(), u0 = sys_.initial_velocity();
+    if (q0.size() != n_ || u0.size() != n_) {
+      gsl_set_error_handler(old_handler);
+      throw std::invalid_argument("event_driven: initial state has the wrong size");
+    }
+    for (int i = 0; i < n_; ++i) {
+      x[idx(i)] = q0[i];
+      x[idx(n_ + i)] = u0[i];
+    }
+    initial_energy_ = 0.5 * u0.dot(sys_.mass() * u0) + sys_.energy(t, q0).stored;
+  }
+  const double sample_dt = rec_.sample_dt();
+  const double max_step = opt_.max_step;
+  dense_ = odeint::make_dense_output(opt_.tolerance, opt_.tolerance, max_step, Dopri());
+
+  auto finish = [&](bool completed) {
+    stats_.completed = completed;
+    stats_.end_time = t;
+    record_sample(t, x, true);
+    stats_.wall_time =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    gsl_set_error_handler(old_handler);
+    return stats_;
+  };
+
+  if (!handle_event(t, x, 0, true)) return finish(false);
+  sys_.commit();
+  record_sample(t, x, false);
+  next_sample_ = sample_dt > 0.0 ? t + sample_dt : t;
+
+  auto rhs_fn = [this](const State& xx, State& dxdt, double tt) { rhs(xx, dxdt, tt); };
+  double dt = std::min(opt_.initial_step, t_end - t);
+  dense_.initialize(x, t, dt);
+  indicators(t, x);
+  Vector h_prev = h_;
+  const double min_step = 1e-14;
+
+  while (t < t_end) {
+    const std::int64_t evals0 = rhs_evaluations_;
+    dense_.do_step(std::ref(rhs_fn));
+    const std::int64_t evals = rhs_evaluations_ - evals0;
+    // Dormand–Prince with FSAL costs six right-hand sides per attempt.
+    stats_.rejected_steps += std::max<std::int64_t>(0, (evals + 5) / 6 - 1);
+    ++stats_.steps;
+    const double ta = dense_.previous_time();
+    double tb = std::min(dense_.current_time(), t_end);
+    if (!(dense_.current_time_step() > min_step * std::max(1.0, std::abs(ta)))) {
+      stats_.message = "step size underflow at t = " + std::to_string(ta) + " s";
+      warn(ta, 0, stats_.message);
+      t = ta;
+      dense_.calc_state(ta, x);
+      return finish(false);
+    }
+    dense_.calc_state(tb, x);
+    indicators(tb, x);
+    Vector h_b = h_;
+    // Earliest event in (ta, tb].
+    double t_event = std::numeric_limits<double>::infinity();
+    int k_event = -1;
+    for (int k = 0; k < 2 * m_; ++k) {
+      const double te = locate(k, ta, tb, h_prev[k], h_b[k]);
+      if (te < t_event) {
+        t_event = te;
+        k_event = k;
+      }
+    }
+    const double t_stop = std::min(t_event, tb);
+    // Samples from the dense output up to the end of this piece.
+    if (sample_dt > 0.0) {
+      while (next_sample_ <= t_stop) {
+        dense_.calc_state(next_sample_, xs_);
+        State xsample = xs_;
+        record_sample(next_sample_, xsample, false);
+        next_sample_ += sample_dt;
+      }
+    }
+    t = t_stop;
+    dense_.calc_state(t, x);
+    if (sample_dt == 0.0) record_sample(t, x, false);
+    if (k_event >= 0 && t_event <= tb) {
+      if (!handle_event(t, x, k_event / 2 + 1, false)) {
+        sys_.commit();
+        return finish(false);
+      }
+      sys_.commit();
+      dt = std::max(dense_.current_time_step(), 1e3 * min_step * std::max(1.0, std::abs(t)));
+      dt = std::min(dt, std::max(t_end - t, min_step));
+      if (t >= t_end) break;
+      dense_.initialize(x, t, dt);
+      indicators(t, x);
+      h_prev = h_;
+      continue;
+    }
+    // No event: commit the step's internal state; correct drift of closed contacts if it
+    // exceeds the gap tolerance.
+    unpack(x, q_, u_);
+    sys_.forces(t, q_, u_, f_);
+    sys_.commit();
+    h_prev = h_b;
+    if (t >= t_end) break;
+    bool drift = false;
+    sys_.contact_data(t, q_, u_, cbuf_);
+    for (int i = 0; i < m_; ++i) {
+      if (modes_[idx(i)].mode == Mode::kOpen) continue;
+      const auto& c = cbuf_[idx(i)];
+      drift = drift || std::abs(c.gap_normal) > gap_tolerance_ ||
+              std::abs(c.gap_rate(u_)) > closing_velocity_;
+    }
+    if (drift) {
+      Vector q = q_, u = u_;
+      project_positions(t, q, u);
+      impact_normal_work_ += project_velocities(t, q, u);
+      for (int i = 0; i < n_; ++i) {
+        x[idx(i)] = q[i];
+        x[idx(n_ + i)] = u[i];
+      }
+      dense_.initialize(x, t, dense_.current_time_step());
+      indicators(t, x);
+      h_prev = h_;
+    }
+  }
+  t = std::min(t, t_end);
+  return finish(true);
+}
+
+}  // namespace
+
+RunStats event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder) {
+  options.validate();
+  EventDriven integrator(system, options, recorder);
+  return integrator.run();
+}
+
+}  // namespace nsb::integrators

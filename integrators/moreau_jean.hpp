@@ -1,0 +1,54 @@
+// The theta-method Moreau–Jean time-stepping scheme (Jean 1999; Acary & Brogliato 2008,
+// Numerical Methods for Nonsmooth Dynamical Systems, ch. 10).
+//
+// On a step [t_k, t_k+1] of size h, with f_k = f(t_k, q_k, u_k) and the tangent K, C of the
+// committed state, the smooth force is linearised about (q_k, u_k) (Acary & Brogliato §10.1):
+//
+//   A (u_k+1 - u_k) = h [(1 - theta) f_k + theta f(t_k+1, q_k, u_k)] - h^2 theta K u_k
+//                     + W_N Lambda_N + W_T Lambda_T,          A = M + h theta C + h^2 theta^2 K
+//   q_k+1 = q_k + h [(1 - theta) u_k + theta u_k+1]
+//
+// so that u_k+1 = u_free + A^-1 (W_N Lambda_N + W_T Lambda_T). The contacts taking part in
+// the step are those with g_N + (h/2) gdot_N <= 0 at t_k (closed, or predicted to close
+// within the step). Over that index set one velocity-level frictional problem is solved
+// (lcp/frictional.hpp, eq. 6 of Shi & Dimitrakopoulos 2017) with the Delassus matrix
+// G = W^T A^-1 W, the free velocities W^T u_free + what and Newton's law applied to the
+// start-of-step normal velocity W_N^T u_k + what_N. The contact forces written to the
+// history are lambda = Lambda / h.
+//
+// See docs/moreau-jean.md for the derivation, the energy balance and what is skipped.
+#pragma once
+
+#include "integrators/recorder.hpp"
+#include "integrators/system.hpp"
+#include "lcp/solve.hpp"
+
+#include <cstdint>
+#include <functional>
+
+namespace nsb::integrators {
+
+struct MoreauJeanOptions {
+  double end_time = 1.0;       // final time [s], > initial time of the system
+  double step = 1e-4;          // time step h [s], > 0; the last step is shortened to end_time
+  double theta = 0.5;          // theta of the theta-method, in [0.5, 1]
+  lcp::Solver solver = lcp::Solver::kLemke;  // solver of the contact problem of each step
+  double lcp_tolerance = 1e-12;  // lcp::SolveOptions::tolerance, > 0
+  bool lcp_fallback = true;    // run Lemke when the chosen solver does not reach kSolved
+  // Normal or tangential contact velocity [m/s] below which a contact counts as resting or
+  // sticking, for events only (it does not change the dynamics); > 0.
+  double event_velocity_tolerance = 1e-6;
+  // Called about every progress_interval accepted steps with the current time [s]; may be
+  // empty. Lets a caller draw a progress bar without the integrator knowing about terminals.
+  std::function<void(double t)> progress;
+  std::int64_t progress_interval = 4096;  // > 0
+  void validate() const;       // throws std::invalid_argument naming the field
+};
+
+// Integrates system from its initial state to options.end_time. Samples the history into
+// recorder (contact forces lambda = Lambda / h) and records per-contact events. Throws
+// std::invalid_argument for bad options or a system whose sizes are inconsistent; every
+// numerical outcome (non-finite state, unsolved contact problems) is reported in RunStats.
+RunStats moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder);
+
+}  // namespace nsb::integrators

@@ -1,0 +1,407 @@
+#include "integrators/compliance.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace {
+
+using nsb::integrators::compliance;
+using nsb::integrators::ComplianceOptions;
+using nsb::integrators::ContactData;
+using nsb::integrators::DampingLaw;
+using nsb::integrators::EventKind;
+using nsb::integrators::Matrix;
+using nsb::integrators::Recorder;
+using nsb::integrators::RunStats;
+using nsb::integrators::Vector;
+
+// Point masses on a line, body j at x_j with mass m_j, linear springs to the ground
+// (stiffness s_j, so that a contact-free run has a closed form), one gap between body 0 and
+// either a fixed wall at x = 0 (one body: g_N = x_0) or body 1 (two bodies:
+// g_N = x_1 - x_0 - gap0). Optionally a second, tangential DOF with gravity pressing the
+// body onto a floor (the block). Counts commits to check the per-step commit.
+class Line final : public nsb::integrators::System {
+ public:
+  explicit Line(std::vector<double> masses) : masses_(std::move(masses)) {
+    const auto n = static_cast<Eigen::Index>(masses_.size());
+    M_ = Matrix::Zero(n, n);
+    for (Eigen::Index i = 0; i < n; ++i) M_(i, i) = masses_[static_cast<std::size_t>(i)];
+    q0_ = Vector::Zero(n);
+    u0_ = Vector::Zero(n);
+    springs_ = Vector::Zero(n);
+  }
+  Vector q0_, u0_, springs_;
+  double restitution = 0.5;
+  double friction = 0.0;
+  double gap0 = 0.0;     // two bodies: g_N = x_1 - x_0 - gap0
+  bool block = false;    // 2 DOF (x, y): floor contact g_N = y, slip along x, gravity on y
+  double gravity = 9.81;
+  int commits = 0;
+
+  int dofs() const override { return static_cast<int>(masses_.size()); }
+  std::vector<std::string> coordinate_names() const override {
+    std::vector<std::string> r;
+    for (int i = 0; i < dofs(); ++i) r.push_back(std::string(1, 'x').append(std::to_string(i)));
+    return r;
+  }
+  std::vector<std::string> velocity_names() const override {
+    std::vector<std::string> r;
+    for (int i = 0; i < dofs(); ++i) r.push_back(std::string(1, 'v').append(std::to_string(i)));
+    return r;
+  }
+  const Matrix& mass() const override { return M_; }
+  Vector initial_position() const override { return q0_; }
+  Vector initial_velocity() const override { return u0_; }
+  void forces(double, const Vector& q, const Vector&, Vector& f) override {
+    f = -springs_.cwiseProduct(q);
+    if (block) f[1] -= masses_[1] * gravity;
+  }
+  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
+    K = springs_.asDiagonal();
+    C.setZero();
+  }
+  void commit() override { ++commits; }
+  int contacts() const override { return 1; }
+  void contact_data(double, const Vector& q, const Vector&,
+                    std::vector<ContactData>& out) const override {
+    ContactData& c = out[0];
+    c.w_normal.setZero();
+    c.w_tangent.setZero();
+    if (block) {
+      c.gap_normal = q[1];
+      c.w_normal[1] = 1.0;
+      c.w_tangent[0] = 1.0;
+    } else if (dofs() == 1) {
+      c.gap_normal = q[0];
+      c.w_normal[0] = 1.0;
+    } else {
+      c.gap_normal = q[1] - q[0] - gap0;
+      c.w_normal[0] = -1.0;
+      c.w_normal[1] = 1.0;
+    }
+    c.restitution = restitution;
+    c.friction = friction;
+  }
+  nsb::integrators::PowerTerms power(double, const Vector&, const Vector& u) const override {
+    nsb::integrators::PowerTerms p;
+    if (block) p.external = -masses_[1] * gravity * u[1];
+    return p;
+  }
+  nsb::integrators::EnergyState energy(double, const Vector& q) const override {
+    return {0.5 * q.dot(springs_.cwiseProduct(q)), 0.0};
+  }
+
+ private:
+  std::vector<double> masses_;
+  Matrix M_;
+};
+
+// Integration tolerance of the impact runs: e_effective is then exact to ~1e-7.
+constexpr double kTightTolerance = 1e-11;
+// e_effective of a single impact against the closed form (Hunt–Crossley relation):
+// integration error plus the bisection of the closed form's root.
+constexpr double kRestitutionTolerance = 1e-5;
+
+// One body of mass m hits the wall at speed v0 from x = 0.01 m; returns -u(end)/v0 (the
+// body flies freely after the impact) and the stats.
+double wall_restitution(DampingLaw law, double e, double k, double m = 1.0, double v0 = 1.0,
+                        RunStats* stats = nullptr, Recorder* rec_out = nullptr) {
+  Line s({m});
+  s.q0_[0] = 0.01;
+  s.u0_[0] = -v0;
+  s.restitution = e;
+  ComplianceOptions o;
+  o.law = law;
+  o.stiffness = k;
+  o.tolerance = kTightTolerance;
+  o.max_step = 1.0;
+  // The slowest separation (hunt_crossley_exact at the e floor) leaves at ~1e-3 v0 from a
+  // penetration of ~(5 m v0^2 / 4 k)^0.4: end time 40 s covers it for k >= 1e4.
+  o.end_time = 40.0;
+  Recorder rec(s, 0.0);
+  const RunStats st = compliance(s, o, rec);
+  REQUIRE(st.completed);
+  if (stats) *stats = st;
+  if (rec_out) *rec_out = rec;
+  const auto v = rec.series("v0");
+  return -v.back() / (-v0);
+}
+
+}  // namespace
+
+TEST_CASE("compliance: normal and tangential force derivatives match finite differences") {
+  // Points away from the kinks (delta = 0, the zero-force clamp, |gdot_T| = eps_v).
+  const double k = 2.0e6, chi = 0.6, v = 0.3;
+  for (double delta : {1e-4, 3e-3}) {
+    for (double rate : {-0.1, 0.05, 0.4}) {
+      const auto f = nsb::integrators::hertz_damp_force(k, chi, v, delta, rate);
+      REQUIRE(f.force > 0.0);
+      const double hd = 1e-7 * delta, hr = 1e-7;
+      const double dd = (nsb::integrators::hertz_damp_force(k, chi, v, delta + hd, rate).force -
+                         nsb::integrators::hertz_damp_force(k, chi, v, delta - hd, rate).force) /
+                        (2 * hd);
+      const double dr = (nsb::integrators::hertz_damp_force(k, chi, v, delta, rate + hr).force -
+                         nsb::integrators::hertz_damp_force(k, chi, v, delta, rate - hr).force) /
+                        (2 * hr);
+      CHECK(f.d_penetration == doctest::Approx(dd).epsilon(1e-6));
+      CHECK(f.d_rate == doctest::Approx(dr).epsilon(1e-6));
+      // Hand value: k delta^1.5 (1 + chi rate / v).
+      CHECK(f.force == doctest::Approx(k * std::pow(delta, 1.5) * (1 + chi * rate / v)));
+    }
+  }
+  // Open gap and the no-adhesion clamp give zero force and zero derivatives.
+  CHECK(nsb::integrators::hertz_damp_force(k, chi, v, -1e-3, -1.0).force == 0.0);
+  const auto pulled = nsb::integrators::hertz_damp_force(k, chi, v, 1e-3, -10.0);
+  CHECK(pulled.force == 0.0);
+  CHECK(pulled.d_rate == 0.0);
+
+  const double mu = 0.5, eps = 1e-3, ln = 100.0;
+  for (double slip : {-5e-3, -4e-4, 2e-4, 7e-3}) {
+    const auto t = nsb::integrators::regularized_coulomb(mu, ln, slip, eps);
+    const double h = 1e-9;
+    const double ds = (nsb::integrators::regularized_coulomb(mu, ln, slip + h, eps).force -
+                       nsb::integrators::regularized_coulomb(mu, ln, slip - h, eps).force) /
+                      (2 * h);
+    const double dn = (nsb::integrators::regularized_coulomb(mu, ln + 1e-3, slip, eps).force -
+                       nsb::integrators::regularized_coulomb(mu, ln - 1e-3, slip, eps).force) /
+                      2e-3;
+    CHECK(t.d_slip == doctest::Approx(ds).epsilon(1e-6));
+    CHECK(t.d_normal == doctest::Approx(dn).epsilon(1e-9));
+    // Eq. (10): opposes the slip, |lambda_T| = mu lambda_N once |gdot_T| >= eps.
+    CHECK(t.force * slip < 0.0);
+    if (std::abs(slip) >= eps) CHECK(std::abs(t.force) == doctest::Approx(mu * ln));
+  }
+}
+
+TEST_CASE("compliance: the Hunt–Crossley restitution relation and the laws' factors") {
+  using nsb::integrators::damping_factor;
+  using nsb::integrators::hunt_crossley_restitution;
+  // Small chi: e = 1 - 2 chi / 3 + O(chi^2) (expand 1 - chi e = (1 + chi) e^{-chi (1 + e)}
+  // to third order in chi with e = 1 - a chi: a = 2/3; Lankarani–Nikravesh's
+  // chi = 3 (1 - e^2) / 4 ~ 3 (1 - e) / 2 is the same first-order result).
+  const double chi = 1e-4;
+  CHECK(hunt_crossley_restitution(chi) == doctest::Approx(1.0 - 2.0 * chi / 3.0).epsilon(1e-7));
+  CHECK(hunt_crossley_restitution(0.0) == 1.0);
+  // Large chi: e -> 1/chi from below (1 - chi e ~ (1 + chi) e^{-chi} is negligible).
+  CHECK(hunt_crossley_restitution(1e3) == doctest::Approx(1e-3).epsilon(1e-9));
+  // The exact law inverts the relation; the floor applies at e = 0.
+  for (double e : {nsb::integrators::kMinLawRestitution, 0.2, 0.5, 0.8, 0.95}) {
+    const double c = damping_factor(DampingLaw::kHuntCrossleyExact, e);
+    CHECK(hunt_crossley_restitution(c) == doctest::Approx(e).epsilon(1e-9));
+  }
+  CHECK(damping_factor(DampingLaw::kHuntCrossleyExact, 0.0) ==
+        damping_factor(DampingLaw::kHuntCrossleyExact, nsb::integrators::kMinLawRestitution));
+  CHECK(damping_factor(DampingLaw::kHertzDamp, 0.0) == doctest::Approx(0.75));
+  CHECK(damping_factor(DampingLaw::kFlores, 0.5) == doctest::Approx(1.6));  // 8 * 0.5 / 2.5
+  CHECK_THROWS_AS(damping_factor(DampingLaw::kHertzDamp, 1.5), std::invalid_argument);
+  CHECK_THROWS_AS(hunt_crossley_restitution(-1.0), std::invalid_argument);
+}
+
+TEST_CASE("compliance: damping law names and option validation") {
+  using nsb::integrators::parse_damping_law;
+  for (const auto& name : nsb::integrators::damping_law_names()) {
+    CHECK(nsb::integrators::to_string(parse_damping_law(name)) == name);
+  }
+  CHECK_THROWS_WITH_AS(parse_damping_law("kelvin"), doctest::Contains("hertzdamp"),
+                       std::invalid_argument);
+  ComplianceOptions o;
+  CHECK_NOTHROW(o.validate());
+  auto bad = [](auto mutate, const char* field) {
+    ComplianceOptions b;
+    mutate(b);
+    CHECK_THROWS_WITH_AS(b.validate(), doctest::Contains(field), std::invalid_argument);
+  };
+  bad([](ComplianceOptions& b) { b.tolerance = 0.0; }, "tolerance");
+  bad([](ComplianceOptions& b) { b.stiffness = -1.0; }, "stiffness");
+  bad([](ComplianceOptions& b) { b.stiffness = std::nan(""); }, "stiffness");
+  bad([](ComplianceOptions& b) { b.stick_slip_velocity = 0.0; }, "stick_slip_velocity");
+  bad([](ComplianceOptions& b) { b.max_step = 0.0; }, "max_step");
+  bad([](ComplianceOptions& b) { b.min_impact_velocity = -1.0; }, "min_impact_velocity");
+  bad([](ComplianceOptions& b) { b.law = static_cast<DampingLaw>(99); }, "law");
+  Line s({1.0});
+  Recorder rec(s, 0.0);
+  o.end_time = 0.0;  // not after the initial time
+  CHECK_THROWS_AS(compliance(s, o, rec), std::invalid_argument);
+}
+
+TEST_CASE("compliance: effective restitution of a wall impact equals the closed form") {
+  // Each law's chi(e) gives e_effective = hunt_crossley_restitution(chi) exactly (the
+  // closed form of the single impact, independent of k, m, v0): docs/compliance.md.
+  for (DampingLaw law : {DampingLaw::kHertzDamp, DampingLaw::kFlores,
+                         DampingLaw::kHuntCrossleyExact}) {
+    for (double e : {0.0, 0.5, 0.95}) {
+      CAPTURE(nsb::integrators::to_string(law));
+      CAPTURE(e);
+      const double expected =
+          nsb::integrators::hunt_crossley_restitution(nsb::integrators::damping_factor(law, e));
+      CHECK(wall_restitution(law, e, 1e6) == doctest::Approx(expected).epsilon(
+                                                 kRestitutionTolerance).scale(1.0));
+    }
+  }
+  // The exact law reproduces e_set, down to its floor at e = 0.
+  CHECK(wall_restitution(DampingLaw::kHuntCrossleyExact, 0.2, 1e6) ==
+        doctest::Approx(0.2).epsilon(kRestitutionTolerance));
+  CHECK(wall_restitution(DampingLaw::kHuntCrossleyExact, 0.0, 1e6) <=
+        nsb::integrators::kMinLawRestitution + kRestitutionTolerance);
+}
+
+TEST_CASE("compliance: a free-body impact gives the same restitution for every k, m, v0") {
+  // Scaling delta = D s, t = T tau with D = (m v0^2 / k)^(2/5), T = D / v0 removes k, m and
+  // v0 from m deltaddot = -k delta^1.5 (1 + chi deltadot / v0).
+  const double ref = wall_restitution(DampingLaw::kHertzDamp, 0.5, 1e6);
+  for (double k : {1e4, 1e8, 1e10}) {
+    CAPTURE(k);
+    CHECK(wall_restitution(DampingLaw::kHertzDamp, 0.5, k) ==
+          doctest::Approx(ref).epsilon(kRestitutionTolerance));
+  }
+  CHECK(wall_restitution(DampingLaw::kHertzDamp, 0.5, 1e6, 140.5, 0.3) ==
+        doctest::Approx(ref).epsilon(kRestitutionTolerance));
+}
+
+TEST_CASE("compliance: undamped Hertz impact duration and peak force (Goldsmith 1960)") {
+  // m deltaddot = -k delta^1.5 conserves m v0^2 / 2 = (2/5) k delta^2.5, so
+  // delta_max = (5 m v0^2 / (4 k))^(2/5), F_max = k delta_max^1.5, and
+  // t_c = 2 int_0^dmax ddelta / (v0 sqrt(1 - (delta/dmax)^2.5)) = 2.94328 delta_max / v0
+  // (the integral is (2/5) B(2/5, 1/2) = 1.47164).
+  const double m = 2.0, k = 1e7, v0 = 0.8;
+  const double dmax = std::pow(5.0 * m * v0 * v0 / (4.0 * k), 0.4);
+  const double tc = 2.0 * 0.4 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9) * dmax / v0;
+  Line s({m});
+  s.q0_[0] = 1e-3;
+  s.u0_[0] = -v0;
+  s.restitution = 1.0;  // chi = 0 for every law
+  ComplianceOptions o;
+  o.stiffness = k;
+  o.tolerance = kTightTolerance;
+  o.max_step = tc / 400.0;  // resolves the force peak in the recorded samples
+  o.end_time = 1e-3 / v0 + 1.5 * tc;
+  Recorder rec(s, 0.0);
+  const RunStats st = compliance(s, o, rec);
+  REQUIRE(st.completed);
+  REQUIRE(rec.count(EventKind::kClose) == 1);
+  REQUIRE(rec.count(EventKind::kOpen) == 1);
+  double t_close = 0, t_open = 0;
+  for (const auto& ev : rec.events()) {
+    (ev.kind == EventKind::kClose ? t_close : t_open) = ev.t;
+  }
+  // Event times are located on the step interpolant to ~1e-12 of a step.
+  CHECK(t_close == doctest::Approx(1e-3 / v0).epsilon(1e-9));
+  CHECK(t_open - t_close == doctest::Approx(tc).epsilon(1e-6));
+  double peak = 0.0;
+  for (double f : rec.series("lambdaN1")) peak = std::max(peak, f);
+  // Sampling at tc/400 misses the peak by at most ~ (pi/400)^2 / 2 relative.
+  CHECK(peak == doctest::Approx(k * std::pow(dmax, 1.5)).epsilon(1e-4));
+  CHECK(-rec.series("v0").back() == doctest::Approx(-v0).epsilon(1e-7));
+  // Elastic contact: the energy balance closes (kinetic <-> contact potential).
+  CHECK(st.energy.error < 1e-7);
+  CHECK(std::abs(st.energy.impacts) < 1e-9);
+}
+
+TEST_CASE("compliance: two free bodies follow the reduced-mass wall result") {
+  // Central impact of m1 = 2 (v = +1) on m2 = 1 (v = -0.5), gap 0.01: with
+  // e = hunt_crossley_restitution(chi) the post-impact velocities are
+  // v1' = v1 - (1 + e) m2 / (m1 + m2) (v1 - v2), v2' = v2 + (1 + e) m1 / (m1 + m2) (v1 - v2).
+  Line s({2.0, 1.0});
+  s.q0_ << 0.0, 0.01;
+  s.u0_ << 1.0, -0.5;
+  s.restitution = 0.3;
+  ComplianceOptions o;
+  o.law = DampingLaw::kFlores;
+  o.stiffness = 1e7;
+  o.tolerance = kTightTolerance;
+  o.max_step = 1.0;
+  o.end_time = 0.5;
+  Recorder rec(s, 0.0);
+  REQUIRE(compliance(s, o, rec).completed);
+  const double e = nsb::integrators::hunt_crossley_restitution(
+      nsb::integrators::damping_factor(DampingLaw::kFlores, 0.3));
+  const double vrel = 1.5;
+  CHECK(rec.series("v0").back() ==
+        doctest::Approx(1.0 - (1 + e) * 1.0 / 3.0 * vrel).epsilon(kRestitutionTolerance));
+  CHECK(rec.series("v1").back() ==
+        doctest::Approx(-0.5 + (1 + e) * 2.0 / 3.0 * vrel).epsilon(kRestitutionTolerance));
+}
+
+TEST_CASE("compliance: a closure is never stepped over, however large max_step") {
+  // Free flight from x = 1 at -1 m/s: with nothing acting, the error estimate is zero and
+  // the controller would step straight through the wall at x = 0.
+  Line s({1.0});
+  s.q0_[0] = 1.0;
+  s.u0_[0] = -1.0;
+  s.restitution = 0.5;
+  ComplianceOptions o;
+  o.law = DampingLaw::kHuntCrossleyExact;
+  o.stiffness = 1e8;
+  o.max_step = 100.0;
+  o.end_time = 3.0;
+  Recorder rec(s, 0.0);
+  const RunStats st = compliance(s, o, rec);
+  REQUIRE(st.completed);
+  CHECK(rec.count(EventKind::kClose) == 1);
+  CHECK(rec.count(EventKind::kOpen) == 1);
+  CHECK(rec.events().front().t == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK(rec.series("v0").back() == doctest::Approx(0.5).epsilon(1e-4));
+  // One commit at the start and one per accepted step.
+  CHECK(s.commits == st.steps + 1);
+  CHECK(st.factorizations == st.steps + st.rejected_steps);
+}
+
+TEST_CASE("compliance: contact-free harmonic oscillator matches the closed form") {
+  // m = 2, spring 8 kN/m: omega = 2 rad/s, x(t) = 0.1 cos(2 t); a second body 10 m away
+  // keeps the gap open, so the run is the smooth integrator alone (with its Jacobian K).
+  ComplianceOptions o;
+  o.tolerance = 1e-10;
+  o.end_time = 2.0;
+  o.max_step = 0.05;
+  Line two({2.0, 1.0});
+  two.springs_ << 8.0, 0.0;
+  two.q0_ << 0.1, 10.0;
+  Recorder rec(two, 0.0);
+  const RunStats st = compliance(two, o, rec);
+  REQUIRE(st.completed);
+  CHECK(rec.series("x0").back() == doctest::Approx(0.1 * std::cos(4.0)).epsilon(1e-7));
+  CHECK(st.energy.error < 1e-8);
+  CHECK(rec.count(EventKind::kClose) == 0);
+}
+
+TEST_CASE("compliance: a block sliding on a compliant floor stops where Coulomb says") {
+  // Block of mass 1 resting on the floor (g_N = y) at its static penetration
+  // (m g / k)^(2/3), so that lambda_N = m g from the start, pushed along x at
+  // v0 = 1 m/s, mu = 0.4: it decelerates at mu g and stops
+  // after t = v0 / (mu g), x = v0^2 / (2 mu g). Below eps_v the regularised law creeps on
+  // for ~eps_v / (mu g) s, adding at most eps_v^2 / (mu g) to x.
+  Line s({1.0, 1.0});
+  s.block = true;
+  s.friction = 0.4;
+  s.restitution = 0.5;
+  s.u0_ << 1.0, 0.0;
+  ComplianceOptions o;
+  o.stiffness = 1e6;
+  s.q0_ << 0.0, -std::pow(9.81 / o.stiffness, 2.0 / 3.0);
+  o.tolerance = 1e-9;
+  o.end_time = 0.5;
+  Recorder rec(s, 0.0);
+  const RunStats st = compliance(s, o, rec);
+  REQUIRE(st.completed);
+  const double g = 9.81, stop = 1.0 / (0.4 * g), dist = 1.0 / (2 * 0.4 * g);
+  const auto t = rec.series("t");
+  const auto x = rec.series("x0");
+  const auto v = rec.series("v0");
+  // Time at which |v| first falls below eps_v: the sliding phase ends within eps_v/(mu g).
+  double t_stop = -1.0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (v[i] < o.stick_slip_velocity) {
+      t_stop = t[i];
+      break;
+    }
+  }
+  const double creep = o.stick_slip_velocity / (0.4 * g);
+  CHECK(t_stop == doctest::Approx(stop).epsilon(2 * creep / stop));
+  CHECK(x.back() == doctest::Approx(dist).epsilon(creep * o.stick_slip_velocity / dist + 1e-6));
+  CHECK(std::abs(v.back()) < 1e-3 * o.stick_slip_velocity);
+  // Friction did the work that removed the sliding kinetic energy.
+  CHECK(-st.energy.friction == doctest::Approx(0.5).epsilon(1e-3));
+  CHECK(st.energy.error < 1e-4);
+}

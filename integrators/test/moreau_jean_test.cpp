@@ -1,0 +1,457 @@
+// Unit tests of the Moreau–Jean scheme on small systems defined here, with the expected values
+// from closed forms derived in the comments and from Siconos's reference output.
+#include "integrators/moreau_jean.hpp"
+
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <new>
+#include <sstream>
+#include <string>
+#include <vector>
+
+// Counts every heap allocation of this test executable, to check that a step allocates
+// nothing: a run of 2N steps must allocate exactly as often as a run of N steps.
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return operator new(n); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace nsb::integrators {
+namespace {
+
+// A point mass m under gravity g above a platform moving upward at constant speed V:
+// q = (y), gap g_N = y - V t, so gdot_N = u - V (W_N = 1, what_N = -V). Stored energy m g y.
+class Ball final : public System {
+ public:
+  Ball(double y0, double v0, double e, double platform_speed = 0.0, double m = 1.0,
+       double g = 9.81)
+      : y0_(y0), v0_(v0), e_(e), speed_(platform_speed), m_(m), g_(g),
+        mass_(Matrix::Constant(1, 1, m)) {}
+  int dofs() const override { return 1; }
+  std::vector<std::string> coordinate_names() const override { return {"y"}; }
+  std::vector<std::string> velocity_names() const override { return {"vy"}; }
+  const Matrix& mass() const override { return mass_; }
+  Vector initial_position() const override { return Vector::Constant(1, y0_); }
+  Vector initial_velocity() const override { return Vector::Constant(1, v0_); }
+  void forces(double, const Vector&, const Vector&, Vector& f) override { f[0] = -m_ * g_; }
+  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
+    K.setZero();
+    C.setZero();
+  }
+  int contacts() const override { return 1; }
+  void contact_data(double t, const Vector& q, const Vector&,
+                    std::vector<ContactData>& out) const override {
+    out[0].gap_normal = q[0] - speed_ * t;
+    out[0].w_normal[0] = 1.0;
+    out[0].w_tangent[0] = 0.0;
+    out[0].what_normal = -speed_;
+    out[0].restitution = e_;
+    out[0].friction = 0.0;
+  }
+  PowerTerms power(double, const Vector&, const Vector& u) const override {
+    return {0.0, 0.0, -m_ * g_ * u[0]};
+  }
+  EnergyState energy(double, const Vector&) const override { return {0.0, 0.0}; }
+
+ private:
+  double y0_, v0_, e_, speed_, m_, g_;
+  Matrix mass_;
+};
+
+// m x'' + c x' + k x = F0 sin(w t), no contact. Stored energy k x^2 / 2.
+class Oscillator final : public System {
+ public:
+  Oscillator(double m, double k, double c, double x0, double v0, double f0 = 0.0, double w = 0.0)
+      : m_(m), k_(k), c_(c), x0_(x0), v0_(v0), f0_(f0), w_(w), mass_(Matrix::Constant(1, 1, m)) {}
+  int dofs() const override { return 1; }
+  std::vector<std::string> coordinate_names() const override { return {"x"}; }
+  std::vector<std::string> velocity_names() const override { return {"vx"}; }
+  const Matrix& mass() const override { return mass_; }
+  Vector initial_position() const override { return Vector::Constant(1, x0_); }
+  Vector initial_velocity() const override { return Vector::Constant(1, v0_); }
+  void forces(double t, const Vector& q, const Vector& u, Vector& f) override {
+    f[0] = -k_ * q[0] - c_ * u[0] + f0_ * std::sin(w_ * t);
+  }
+  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
+    K(0, 0) = k_;
+    C(0, 0) = c_;
+  }
+  int contacts() const override { return 0; }
+  void contact_data(double, const Vector&, const Vector&,
+                    std::vector<ContactData>&) const override {}
+  PowerTerms power(double t, const Vector&, const Vector& u) const override {
+    return {c_ * u[0] * u[0], 0.0, f0_ * std::sin(w_ * t) * u[0]};
+  }
+  EnergyState energy(double, const Vector& q) const override {
+    return {0.5 * k_ * q[0] * q[0], 0.0};
+  }
+
+ private:
+  double m_, k_, c_, x0_, v0_, f0_, w_;
+  Matrix mass_;
+};
+
+// An elastic-perfectly-plastic spring (stiffness k, yield force fy) with trial and commit
+// state, driven by F0 sin(w t): its tangent switches between k and 0 as it yields and
+// unloads, so the scheme re-factorizes inside the run.
+class PlasticOscillator final : public System {
+ public:
+  PlasticOscillator(double k, double fy, double f0, double w)
+      : k_(k), fy_(fy), f0_(f0), w_(w), mass_(Matrix::Constant(1, 1, 1.0)) {}
+  int dofs() const override { return 1; }
+  std::vector<std::string> coordinate_names() const override { return {"x"}; }
+  std::vector<std::string> velocity_names() const override { return {"vx"}; }
+  const Matrix& mass() const override { return mass_; }
+  Vector initial_position() const override { return Vector::Zero(1); }
+  Vector initial_velocity() const override { return Vector::Zero(1); }
+  void forces(double t, const Vector& q, const Vector&, Vector& f) override {
+    double s = k_ * (q[0] - plastic_);
+    trial_plastic_ = plastic_;
+    trial_yielding_ = false;
+    if (std::abs(s) > fy_) {
+      const double sign = s > 0.0 ? 1.0 : -1.0;
+      trial_plastic_ = q[0] - sign * fy_ / k_;
+      s = sign * fy_;
+      trial_yielding_ = true;
+    }
+    trial_force_ = s;
+    f[0] = -s + f0_ * std::sin(w_ * t);
+  }
+  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
+    K(0, 0) = trial_yielding_ ? 0.0 : k_;
+    C(0, 0) = 0.0;
+  }
+  bool tangent_changed() const override { return trial_yielding_ != yielding_; }
+  void commit() override {
+    plastic_ = trial_plastic_;
+    yielding_ = trial_yielding_;
+    ++commits;
+  }
+  int contacts() const override { return 0; }
+  void contact_data(double, const Vector&, const Vector&,
+                    std::vector<ContactData>&) const override {}
+  PowerTerms power(double t, const Vector&, const Vector& u) const override {
+    return {0.0, 0.0, f0_ * std::sin(w_ * t) * u[0]};
+  }
+  EnergyState energy(double, const Vector&) const override {
+    return {0.5 * trial_force_ * trial_force_ / k_, 0.0};
+  }
+  long commits = 0;
+
+ private:
+  double k_, fy_, f0_, w_;
+  double plastic_ = 0.0, trial_plastic_ = 0.0, trial_force_ = 0.0;
+  bool yielding_ = false, trial_yielding_ = false;
+  Matrix mass_;
+};
+
+// A block of mass m on the ground y = 0 with Coulomb friction mu, sliding at v0 along x.
+// q = (x, y); contact g_N = y, W_N = (0, 1), W_T = (1, 0); gravity -m g along y.
+class Block final : public System {
+ public:
+  Block(double v0, double mu, double m = 2.0, double g = 9.81)
+      : v0_(v0), mu_(mu), m_(m), g_(g), mass_(Matrix::Identity(2, 2) * m) {}
+  int dofs() const override { return 2; }
+  std::vector<std::string> coordinate_names() const override { return {"x", "y"}; }
+  std::vector<std::string> velocity_names() const override { return {"vx", "vy"}; }
+  const Matrix& mass() const override { return mass_; }
+  Vector initial_position() const override { return Vector::Zero(2); }
+  Vector initial_velocity() const override { return Vector::Unit(2, 0) * v0_; }
+  void forces(double, const Vector&, const Vector&, Vector& f) override {
+    f[0] = 0.0;
+    f[1] = -m_ * g_;
+  }
+  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
+    K.setZero();
+    C.setZero();
+  }
+  int contacts() const override { return 1; }
+  void contact_data(double, const Vector& q, const Vector&,
+                    std::vector<ContactData>& out) const override {
+    out[0].gap_normal = q[1];
+    out[0].w_normal << 0.0, 1.0;
+    out[0].w_tangent << 1.0, 0.0;
+    out[0].restitution = 0.0;
+    out[0].friction = mu_;
+  }
+  PowerTerms power(double, const Vector&, const Vector& u) const override {
+    return {0.0, 0.0, -m_ * g_ * u[1]};
+  }
+  EnergyState energy(double, const Vector&) const override { return {0.0, 0.0}; }
+
+ private:
+  double v0_, mu_, m_, g_;
+  Matrix mass_;
+};
+
+// Reads data/siconos-bouncing-ball/result.ref: a "rows cols" line, then rows of t q v p lambda.
+std::vector<std::vector<double>> read_siconos_reference() {
+  std::ifstream f(std::string(NSB_DATA_DIR) + "/siconos-bouncing-ball/result.ref");
+  REQUIRE(f.good());
+  int rows = 0, cols = 0;
+  f >> rows >> cols;
+  std::vector<std::vector<double>> data(static_cast<std::size_t>(rows),
+                                        std::vector<double>(static_cast<std::size_t>(cols)));
+  for (auto& r : data) {
+    for (auto& v : r) f >> v;
+  }
+  REQUIRE(f.good());
+  return data;
+}
+
+long allocations_of(auto&& run) {
+  const long before = g_allocations.load();
+  run();
+  return g_allocations.load() - before;
+}
+
+}  // namespace
+
+TEST_CASE("options are validated, naming the field") {
+  MoreauJeanOptions o;
+  CHECK_NOTHROW(o.validate());
+  o.theta = 0.3;
+  CHECK_THROWS_WITH_AS(o.validate(), doctest::Contains("theta"), std::invalid_argument);
+  o = {};
+  o.step = 0.0;
+  CHECK_THROWS_WITH_AS(o.validate(), doctest::Contains("step"), std::invalid_argument);
+  o = {};
+  o.step = NAN;
+  CHECK_THROWS_AS(o.validate(), std::invalid_argument);
+  o = {};
+  o.lcp_tolerance = -1.0;
+  CHECK_THROWS_WITH_AS(o.validate(), doctest::Contains("lcp_tolerance"), std::invalid_argument);
+
+  Oscillator s(1.0, 1.0, 0.0, 1.0, 0.0);
+  Recorder rec(s, 0.0);
+  MoreauJeanOptions bad;
+  bad.end_time = 0.0;  // not after the initial time 0
+  CHECK_THROWS_WITH_AS(moreau_jean(s, bad, rec), doctest::Contains("end_time"),
+                       std::invalid_argument);
+}
+
+TEST_CASE("Siconos's bouncing-ball reference output is reproduced to 1e-10") {
+  // Siconos 4.4 BouncingBallTS: m = 1, g = 9.81, e = 0.9, theta = 0.5, h = 0.005, 2000 steps
+  // from y = 1 at rest; columns t, q, v, impulse p and lambda (= p in that output).
+  constexpr double kTolerance = 1e-10;  // the brief's bound; both compute the same arithmetic
+  const auto ref = read_siconos_reference();
+  REQUIRE(ref.size() == 2001);
+  Ball ball(1.0, 0.0, 0.9);
+  Recorder rec(ball, 0.0);
+  MoreauJeanOptions o;
+  o.step = 0.005;
+  o.end_time = 10.0;
+  o.theta = 0.5;
+  const RunStats stats = moreau_jean(ball, o, rec);
+  CHECK(stats.completed);
+  CHECK(stats.steps == 2000);
+  REQUIRE(rec.rows() == ref.size());
+  const auto t = rec.series("t"), y = rec.series("y"), v = rec.series("vy"),
+             lambda = rec.series("lambdaN1");
+  double worst = 0.0;
+  std::size_t worst_row = 0;
+  for (std::size_t r = 0; r < ref.size(); ++r) {
+    const double impulse = lambda[r] * o.step;
+    const double err = std::max({std::abs(t[r] - ref[r][0]), std::abs(y[r] - ref[r][1]),
+                                 std::abs(v[r] - ref[r][2]), std::abs(impulse - ref[r][3]),
+                                 std::abs(impulse - ref[r][4])});
+    if (err > worst) worst = err, worst_row = r;
+  }
+  INFO("largest difference at row ", worst_row, " (t = ", ref[worst_row][0], ")");
+  CHECK(worst <= kTolerance);
+  // 345 steps carry an impulse in the reference.
+  std::size_t impulses = 0;
+  for (double l : lambda) impulses += (l > 0.0);
+  CHECK(impulses == 345);
+}
+
+TEST_CASE("theta = 1/2 conserves the energy of an undamped linear oscillator") {
+  // For a linear system the linearisation is exact and theta = 1/2 is the trapezoidal rule,
+  // which conserves (1/2) m u^2 + (1/2) k q^2 exactly (up to round-off).
+  constexpr double kRoundOff = 1e-12;  // relative, 10^4 steps of O(1e-16) each
+  Oscillator s(2.0, 50.0, 0.0, 0.1, 0.3);
+  Recorder rec(s, 0.0);
+  MoreauJeanOptions o;
+  o.step = 1e-3;
+  o.end_time = 10.0;
+  const RunStats stats = moreau_jean(s, o, rec);
+  const double e0 = 0.5 * 2.0 * 0.3 * 0.3 + 0.5 * 50.0 * 0.1 * 0.1;
+  const auto x = rec.series("x"), v = rec.series("vx");
+  for (std::size_t r = 0; r < rec.rows(); r += 97) {
+    CHECK(std::abs(0.5 * 2.0 * v[r] * v[r] + 0.5 * 50.0 * x[r] * x[r] - e0) <= kRoundOff * e0);
+  }
+  CHECK(stats.energy.error <= kRoundOff);
+  CHECK(stats.factorizations == 1);  // linear: factorized once
+  CHECK(stats.steps_with_lcp == 0);  // no contact: no LCP
+}
+
+TEST_CASE("the damped oscillator converges at order 2 for theta = 1/2 and 1 for theta = 1") {
+  // Exact solution of m x'' + c x' + k x = 0 (underdamped): with w = sqrt(k/m),
+  // zeta = c / (2 m w), wd = w sqrt(1 - zeta^2):
+  //   x(t) = exp(-zeta w t) (x0 cos(wd t) + (v0 + zeta w x0) / wd sin(wd t)).
+  const double m = 1.0, k = 40.0, c = 0.8, x0 = 0.05, v0 = -0.2, T = 2.0;
+  const double w = std::sqrt(k / m), zeta = c / (2.0 * m * w), wd = w * std::sqrt(1 - zeta * zeta);
+  const double exact = std::exp(-zeta * w * T) *
+                       (x0 * std::cos(wd * T) + (v0 + zeta * w * x0) / wd * std::sin(wd * T));
+  auto error = [&](double h, double theta) {
+    Oscillator s(m, k, c, x0, v0);
+    Recorder rec(s, 1e9);
+    MoreauJeanOptions o;
+    o.step = h;
+    o.end_time = T;
+    o.theta = theta;
+    moreau_jean(s, o, rec);
+    return std::abs(rec.series("x").back() - exact);
+  };
+  const double order_half = std::log2(error(2e-3, 0.5) / error(1e-3, 0.5));
+  const double order_one = std::log2(error(2e-3, 1.0) / error(1e-3, 1.0));
+  constexpr double kOrderSlack = 0.15;  // asymptotic regime reached at these h (w h < 0.02)
+  CHECK(order_half == doctest::Approx(2.0).epsilon(kOrderSlack / 2.0));
+  CHECK(order_one == doctest::Approx(1.0).epsilon(kOrderSlack));
+}
+
+TEST_CASE("a shortened last step is taken with its own factorization") {
+  Oscillator s(1.0, 1.0, 0.1, 1.0, 0.0);
+  Recorder rec(s, 0.0);
+  MoreauJeanOptions o;
+  o.step = 0.03;
+  o.end_time = 1.0;  // 33 full steps and one of 0.01
+  const RunStats stats = moreau_jean(s, o, rec);
+  CHECK(stats.steps == 34);
+  CHECK(stats.factorizations == 2);
+  CHECK(rec.series("t").back() == 1.0);
+}
+
+TEST_CASE("an inelastic ball comes to rest on the ground with no drift") {
+  // e = 0, dropped from 0.5 m: impact at t* = sqrt(2 * 0.5 / 9.81) = 0.3193 s; after it the
+  // ball rests: the velocity is zero and the height constant (no drift through the ground).
+  Ball ball(0.5, 0.0, 0.0);
+  Recorder rec(ball, 0.0);
+  MoreauJeanOptions o;
+  o.step = 1e-3;
+  o.end_time = 3.0;
+  const RunStats stats = moreau_jean(ball, o, rec);
+  CHECK(stats.completed);
+  REQUIRE(rec.count(EventKind::kImpact) == 1);
+  CHECK(rec.count(EventKind::kClose) == 1);
+  CHECK(rec.count(EventKind::kOpen) == 0);
+  const double t_impact = rec.events().front().t;
+  CHECK(std::abs(t_impact - std::sqrt(1.0 / 9.81)) <= 2 * o.step);
+  const auto y = rec.series("y"), v = rec.series("vy"), lambda = rec.series("lambdaN1");
+  // The ball enters the index set once y + (h/2) v <= 0 and its position moves by (h/2) v in
+  // the impact step: it rests at or below the ground by at most (h/2) |v_impact|.
+  const double v_impact = std::sqrt(2.0 * 9.81 * 0.5);
+  const double y_rest = y[1000];
+  CHECK(y_rest <= 0.0);
+  CHECK(y_rest >= -0.5 * o.step * v_impact);
+  for (std::size_t r = 1000; r < rec.rows(); ++r) {
+    CHECK(y[r] == y_rest);
+    CHECK(v[r] == 0.0);
+    CHECK(lambda[r] == doctest::Approx(9.81));  // resting: lambda_N = m g
+  }
+  // Energy: the impact removes the kinetic energy m g h0; the balance closes.
+  CHECK(stats.energy.impacts == doctest::Approx(-9.81 * 0.5).epsilon(0.02));
+  CHECK(stats.energy.error <= 1e-12);
+}
+
+TEST_CASE("a ball on a rising platform moves with it (rheonomic contact)") {
+  // Platform y_p(t) = V t, V = 0.5 m/s; ball starts on it at rest, e = 0: Newton's law on
+  // gdot_N = u - V gives u = V after the first step, and the gap stays at zero.
+  Ball ball(0.0, 0.0, 0.0, 0.5);
+  Recorder rec(ball, 0.0);
+  MoreauJeanOptions o;
+  o.step = 1e-3;
+  o.end_time = 1.0;
+  moreau_jean(ball, o, rec);
+  const auto v = rec.series("vy"), g = rec.series("gN1"), l = rec.series("lambdaN1");
+  // The first step moves the ball by (h/2)(0 + V) while the platform moves by h V: the gap
+  // settles at -(h/2) V and stays there (no drift).
+  for (std::size_t r = 1; r < rec.rows(); ++r) {
+    CHECK(v[r] == doctest::Approx(0.5).epsilon(1e-12));
+    CHECK(g[r] == doctest::Approx(-0.5 * o.step * 0.5).epsilon(1e-6));
+  }
+  for (std::size_t r = 2; r < rec.rows(); ++r) CHECK(l[r] == doctest::Approx(9.81));
+}
+
+TEST_CASE("a sliding block stops at v0 / (mu g) after v0^2 / (2 mu g)") {
+  // While it slides each step's friction impulse is -mu m g h, so the velocity falls by
+  // mu g h per step: the stop is within one step of t_s = v0 / (mu g) and the distance within
+  // v0 h of v0^2 / (2 mu g).
+  const double v0 = 2.0, mu = 0.4, g = 9.81, h = 1e-3;
+  Block block(v0, mu);
+  Recorder rec(block, 0.0);
+  MoreauJeanOptions o;
+  o.step = h;
+  o.end_time = 1.0;
+  const RunStats stats = moreau_jean(block, o, rec);
+  CHECK(stats.completed);
+  CHECK(stats.steps_with_lcp == stats.steps);
+  CHECK(stats.lcp_status.at("solved") == stats.lcp_solves);
+  const auto t = rec.series("t"), x = rec.series("x"), vx = rec.series("vx"),
+             y = rec.series("y"), lt = rec.series("lambdaT1");
+  std::size_t stop = 0;
+  while (stop < rec.rows() && vx[stop] > 0.0) ++stop;
+  REQUIRE(stop < rec.rows());
+  CHECK(std::abs(t[stop] - v0 / (mu * g)) <= h);
+  CHECK(std::abs(x.back() - v0 * v0 / (2 * mu * g)) <= v0 * h);
+  CHECK(lt[stop / 2] == doctest::Approx(-mu * 2.0 * g));  // sliding: lambda_T = -mu m g
+  for (std::size_t r = stop; r < rec.rows(); ++r) CHECK(vx[r] == doctest::Approx(0.0));
+  for (double yi : y) CHECK(std::abs(yi) <= 1e-12);
+  // Friction dissipates the initial kinetic energy (1/2) m v0^2.
+  CHECK(stats.energy.friction == doctest::Approx(-0.5 * 2.0 * v0 * v0).epsilon(1e-9));
+  CHECK(stats.energy.error <= 1e-9);
+  CHECK(rec.count(EventKind::kSlip) == 1);
+  CHECK(rec.count(EventKind::kStick) == 1);
+}
+
+TEST_CASE("hysteresis is committed once per accepted step and the tangent is refactorized") {
+  PlasticOscillator s(100.0, 1.0, 2.0, 3.0);
+  Recorder rec(s, 0.0);
+  MoreauJeanOptions o;
+  o.step = 1e-3;
+  o.end_time = 6.0;
+  const RunStats stats = moreau_jean(s, o, rec);
+  CHECK(s.commits == stats.steps + 1);  // + the initial state
+  CHECK(stats.factorizations > 2);      // it yielded and unloaded
+  CHECK(stats.factorizations < stats.steps / 10);  // but only when the tangent changed
+}
+
+TEST_CASE("a step allocates nothing") {
+  MoreauJeanOptions o;
+  o.step = 1e-3;
+  auto run = [&](System& s, double end_time) {
+    Recorder rec(s, 1e9);  // records the first and the last state only
+    o.end_time = end_time;
+    return allocations_of([&] { moreau_jean(s, o, rec); });
+  };
+  SUBCASE("no contact") {
+    Oscillator a(1.0, 10.0, 0.1, 0.1, 0.0, 1.0, 2.0), b(1.0, 10.0, 0.1, 0.1, 0.0, 1.0, 2.0);
+    const long short_run = run(a, 1.0);
+    CHECK(short_run > 0);  // the counter sees the workspace being set up
+    CHECK(short_run == run(b, 2.0));
+  }
+  SUBCASE("refactorizations") {
+    PlasticOscillator a(100.0, 1.0, 2.0, 3.0), b(100.0, 1.0, 2.0, 3.0);
+    CHECK(run(a, 3.0) == run(b, 6.0));
+  }
+  SUBCASE("a resting contact") {
+    Ball a(0.1, 0.0, 0.0), b(0.1, 0.0, 0.0);
+    CHECK(run(a, 1.0) == run(b, 2.0));
+  }
+}
+
+}  // namespace nsb::integrators

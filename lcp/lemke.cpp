@@ -1,0 +1,283 @@
+#include "lcp/lemke.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace nsb::lcp {
+
+namespace {
+// Two ratios closer than this (relative to their size) are a tie for the lexicographic rule.
+// Round-off in the tableau is a few ulps per pivot; 1e-11 leaves room for ~100 pivots of
+// accumulated error while still separating genuinely different ratios of well-scaled data.
+constexpr double kTieTolerance = 1e-11;
+}  // namespace
+
+int LemkeOptions::default_max_pivots(Eigen::Index n) {
+  // A nondegenerate P-matrix problem rarely needs more than a few n pivots; Murty's example
+  // needs 2^n (4096 at n = 12, the largest eq. 6 problem of the bridge). The cap keeps a
+  // pathological problem from running unbounded.
+  return static_cast<int>(std::max<Eigen::Index>(5000, 50 * (n + 1)));
+}
+
+void LemkeOptions::validate() const {
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    throw std::invalid_argument("LemkeOptions::tolerance must be finite and > 0");
+  if (max_pivots < 0) throw std::invalid_argument("LemkeOptions::max_pivots must be >= 0");
+  if (!(pivot_tolerance > 0.0) || !(pivot_tolerance <= 1e-3))
+    throw std::invalid_argument("LemkeOptions::pivot_tolerance must be in (0, 1e-3]");
+  for (Eigen::Index i = 0; i < covering.size(); ++i) {
+    if (!(covering(i) > 0.0) || !std::isfinite(covering(i))) {
+      std::ostringstream s;
+      s << "LemkeOptions::covering(" << i << ") = " << covering(i) << "; must be finite and > 0";
+      throw std::invalid_argument(s.str());
+    }
+  }
+}
+
+Lemke::Lemke(Eigen::Index capacity) { reserve(capacity); }
+
+void Lemke::reserve(Eigen::Index n) {
+  if (n <= capacity_) return;
+  capacity_ = n;
+  const auto un = static_cast<std::size_t>(n);
+  tableau_.assign(un * (2 * un + 2), 0.0);
+  column_.assign(un, 0.0);
+  lu_.assign(un * un, 0.0);
+  rhs_.assign(un, 0.0);
+  basis_.assign(un, 0);
+  position_.assign(2 * un + 1, -1);
+  candidates_.assign(un, 0);
+  index_.assign(un, 0);
+}
+
+// Selects the leaving row for the entering variable. For the first pivot (z0 entering, its
+// column is -d) rows are ranked by (q_i, e_i^T) / d_i and the lexicographic minimum leaves:
+// it is the most negative q_i / d_i. Afterwards only rows with a positive entry u_i of the
+// entering column can block, ranked by (B^-1 q, B^-1)_i / u_i.
+Eigen::Index Lemke::ratio_test(Eigen::Index entering, bool initial) {
+  const Eigen::Index n = n_;
+  const double* T = tableau_.data();
+  const double* u = T + entering * n;
+  const double* qcol = T + (2 * n + 1) * n;
+  const double sign = initial ? -1.0 : 1.0;
+  double unorm = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) unorm = std::max(unorm, std::abs(u[i]));
+  const double threshold = pivot_tolerance_ * unorm;
+
+  double best = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double s = sign * u[i];
+    if (s > threshold) best = std::min(best, qcol[i] / s);
+  }
+  if (!std::isfinite(best)) return -1;
+  Eigen::Index count = 0;
+  const double tie = kTieTolerance * (1.0 + std::abs(best));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double s = sign * u[i];
+    if (s > threshold && qcol[i] / s <= best + tie) candidates_[count++] = i;
+  }
+  if (count == 1) return candidates_[0];
+  // Prefer z0 leaving among tied rows: it ends the method at a solution.
+  const Eigen::Index z0 = 2 * n;
+  if (!initial) {
+    for (Eigen::Index k = 0; k < count; ++k)
+      if (basis_[candidates_[k]] == z0) return candidates_[k];
+  }
+  // Lexicographic tie-break on the columns of B^-1 (the tableau's w columns).
+  for (Eigen::Index j = 0; j < n && count > 1; ++j) {
+    const double* b = T + j * n;
+    double lo = std::numeric_limits<double>::infinity();
+    for (Eigen::Index k = 0; k < count; ++k) {
+      const Eigen::Index i = candidates_[k];
+      lo = std::min(lo, b[i] / (sign * u[i]));
+    }
+    const double t = kTieTolerance * (1.0 + std::abs(lo));
+    Eigen::Index kept = 0;
+    for (Eigen::Index k = 0; k < count; ++k) {
+      const Eigen::Index i = candidates_[k];
+      if (b[i] / (sign * u[i]) <= lo + t) candidates_[kept++] = i;
+    }
+    count = kept;
+  }
+  return candidates_[0];
+}
+
+// Gauss–Jordan pivot on (row, entering). Basic columns are unit vectors and stay so; only
+// the non-basic columns, the column of the leaving variable and q are updated.
+void Lemke::pivot(Eigen::Index row, Eigen::Index entering) {
+  const Eigen::Index n = n_;
+  double* T = tableau_.data();
+  double* u = column_.data();
+  std::copy(T + entering * n, T + entering * n + n, u);
+  const double inv = 1.0 / u[row];
+  const Eigen::Index leaving = basis_[row];
+  position_[leaving] = -1;
+  position_[entering] = row;
+  basis_[row] = entering;
+  const Eigen::Index columns = 2 * n + 2;
+  for (Eigen::Index v = 0; v < columns; ++v) {
+    if (v == entering || (v <= 2 * n && position_[v] >= 0)) continue;
+    double* c = T + v * n;
+    const double a = c[row] * inv;
+    if (a == 0.0) continue;
+    for (Eigen::Index i = 0; i < n; ++i) c[i] -= a * u[i];
+    c[row] = a;
+  }
+  double* e = T + entering * n;
+  std::fill(e, e + n, 0.0);
+  e[row] = 1.0;
+}
+
+// Re-solves M_BB z_B = -q_B (B = basic z variables) by Gaussian elimination with partial
+// pivoting on the original data, which removes the round-off the tableau accumulated.
+// Returns false (z unchanged) if the block is numerically singular or the result leaves R+.
+bool Lemke::refine(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+                   Eigen::Ref<Vector> z) {
+  const Eigen::Index n = n_;
+  Eigen::Index k = 0;
+  for (Eigen::Index j = 0; j < n; ++j)
+    if (position_[n + j] >= 0) index_[k++] = j;
+  if (k == 0) return false;
+  double* A = lu_.data();
+  double* b = rhs_.data();
+  for (Eigen::Index c = 0; c < k; ++c)
+    for (Eigen::Index r = 0; r < k; ++r) A[r + c * k] = M(index_[r], index_[c]);
+  for (Eigen::Index r = 0; r < k; ++r) b[r] = -q(index_[r]);
+  for (Eigen::Index c = 0; c < k; ++c) {
+    Eigen::Index p = c;
+    for (Eigen::Index r = c + 1; r < k; ++r)
+      if (std::abs(A[r + c * k]) > std::abs(A[p + c * k])) p = r;
+    if (!(std::abs(A[p + c * k]) > 0.0)) return false;
+    if (p != c) {
+      for (Eigen::Index cc = 0; cc < k; ++cc) std::swap(A[p + cc * k], A[c + cc * k]);
+      std::swap(b[p], b[c]);
+    }
+    for (Eigen::Index r = c + 1; r < k; ++r) {
+      const double f = A[r + c * k] / A[c + c * k];
+      if (f == 0.0) continue;
+      for (Eigen::Index cc = c; cc < k; ++cc) A[r + cc * k] -= f * A[c + cc * k];
+      b[r] -= f * b[c];
+    }
+  }
+  for (Eigen::Index r = k - 1; r >= 0; --r) {
+    double s = b[r];
+    for (Eigen::Index cc = r + 1; cc < k; ++cc) s -= A[r + cc * k] * b[cc];
+    b[r] = s / A[r + r * k];
+    if (!std::isfinite(b[r]) || b[r] < 0.0) return false;
+  }
+  for (Eigen::Index r = 0; r < k; ++r) z(index_[r]) = b[r];
+  return true;
+}
+
+Status Lemke::run(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+                  const LemkeOptions& options, Eigen::Ref<Vector> z) {
+  const Eigen::Index n = q.size();
+  reserve(n);
+  n_ = n;
+  pivots_ = 0;
+  residual_ = 0.0;
+  pivot_tolerance_ = options.pivot_tolerance;
+  z.setZero();
+  if (n == 0) return Status::kSolved;
+  if (q.minCoeff() >= 0.0) return Status::kSolved;  // z = 0, w = q >= 0
+
+  // Tableau B^-1 [I, -M, -d, q] with B = I.
+  double* T = tableau_.data();
+  std::fill(T, T + n * (2 * n + 2), 0.0);
+  for (Eigen::Index i = 0; i < n; ++i) T[i + i * n] = 1.0;
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::Index i = 0; i < n; ++i) T[i + (n + j) * n] = -M(i, j);
+  const bool covered = options.covering.size() == n;
+  for (Eigen::Index i = 0; i < n; ++i) T[i + 2 * n * n] = covered ? -options.covering(i) : -1.0;
+  for (Eigen::Index i = 0; i < n; ++i) T[i + (2 * n + 1) * n] = q(i);
+  for (Eigen::Index i = 0; i < n; ++i) basis_[i] = i;
+  for (Eigen::Index v = 0; v <= 2 * n; ++v) position_[v] = v < n ? v : -1;
+
+  const int limit =
+      options.max_pivots > 0 ? options.max_pivots : LemkeOptions::default_max_pivots(n);
+  const Eigen::Index z0 = 2 * n;
+  Eigen::Index entering = z0;
+  Status status = Status::kMaxIterations;
+  bool initial = true;
+  while (true) {
+    if (pivots_ >= limit) {
+      status = Status::kMaxIterations;
+      break;
+    }
+    const Eigen::Index row = ratio_test(entering, initial);
+    if (row < 0) {
+      status = Status::kRayTermination;
+      break;
+    }
+    const Eigen::Index leaving = basis_[row];
+    pivot(row, entering);
+    ++pivots_;
+    initial = false;
+    if (leaving == z0) {
+      status = Status::kSolved;
+      break;
+    }
+    entering = leaving < n ? leaving + n : leaving - n;  // the complement of the leaving one
+  }
+
+  const double* qcol = T + (2 * n + 1) * n;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Eigen::Index r = position_[n + j];
+    z(j) = r >= 0 ? std::max(0.0, qcol[r]) : 0.0;
+  }
+  residual_ = residual(M, q, z);
+  if (status == Status::kSolved && residual_ > options.tolerance) {
+    // Keep the tableau answer unless the re-solve on the original data is better.
+    for (Eigen::Index j = 0; j < n; ++j) column_[j] = z(j);
+    if (refine(M, q, z)) {
+      const double r2 = residual(M, q, z);
+      if (r2 < residual_) {
+        residual_ = r2;
+      } else {
+        for (Eigen::Index j = 0; j < n; ++j) z(j) = column_[j];
+      }
+    }
+    if (residual_ > options.tolerance) status = Status::kMaxIterations;
+  }
+  return status;
+}
+
+Result Lemke::solve(const Problem& p, const LemkeOptions& options) {
+  p.validate();
+  options.validate();
+  if (options.covering.size() != 0 && options.covering.size() != p.size())
+    throw std::invalid_argument("LemkeOptions::covering must be empty or of size n");
+  Result r;
+  r.z.resize(p.size());
+  const auto start = std::chrono::steady_clock::now();
+  r.status = run(p.M, p.q, options, r.z);
+  r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.iterations = pivots_;
+  evaluate(p, r);
+  switch (r.status) {
+    case Status::kSolved: r.message = "z0 left the basis: complementary solution"; break;
+    case Status::kRayTermination:
+      r.message = "secondary ray: no solution found (none exists, or M is not in a class "
+                  "Lemke's method processes)";
+      break;
+    case Status::kMaxIterations:
+      r.message = r.iterations >= (options.max_pivots > 0
+                                       ? options.max_pivots
+                                       : LemkeOptions::default_max_pivots(p.size()))
+                      ? "pivot limit reached"
+                      : "terminated, but round-off leaves the residual above the tolerance";
+      break;
+    default: break;
+  }
+  return r;
+}
+
+Result lemke(const Problem& p, const LemkeOptions& options) {
+  Lemke solver(p.size());
+  return solver.solve(p, options);
+}
+
+}  // namespace nsb::lcp

@@ -1,0 +1,79 @@
+// Lemke's complementary pivoting method with a covering vector and a lexicographic ratio test.
+//
+// The scheme (Cottle, Pang & Stone 1992, §4.4; Murty 1988, ch. 2): augment the LCP with an
+// artificial variable z0 and a covering vector d > 0,
+//
+//   w = M z + d z0 + q,   w, z, z0 >= 0,   w^T z = 0,
+//
+// start from the almost-complementary basis {w} with z0 = max_i(-q_i / d_i), and pivot in the
+// complement of the variable that just left, until z0 leaves (a solution) or the entering
+// column has no positive entry (a secondary ray: no solution found).
+//
+// Degeneracy: ties in the ratio test are broken lexicographically on the rows of
+// [B^-1 q, B^-1] divided by the pivot column (Cottle, Pang & Stone §4.9). This is the
+// perturbation q + (eps, eps^2, ..., eps^n), so no basis repeats and the method cannot cycle.
+//
+// The tableau B^-1 [I, -M, -d, q] lives in a workspace sized once: a pivot does no heap
+// allocation. A final refinement re-solves M_BB z_B = -q_B on the original data when the
+// tableau's round-off leaves the residual above the tolerance.
+#pragma once
+
+#include "lcp/lcp.hpp"
+
+#include <vector>
+
+namespace nsb::lcp {
+
+struct LemkeOptions {
+  double tolerance = 1e-12;        // kSolved when lcp::residual <= tolerance; > 0
+  int max_pivots = 0;              // pivot limit; 0 selects default_max_pivots(n); >= 0
+  double pivot_tolerance = 1e-12;  // an entry of the entering column counts as positive if it
+                                   // exceeds pivot_tolerance * ||column||_inf; in (0, 1e-3]
+  Vector covering;                 // d > 0, size n; empty selects d = (1, ..., 1)
+  void validate() const;           // throws std::invalid_argument naming the field
+  static int default_max_pivots(Eigen::Index n);
+};
+
+// A reusable Lemke solver. After reserve(n) (or a first solve of size n), solving problems of
+// size <= n allocates nothing except what a returned Result itself holds.
+class Lemke {
+ public:
+  explicit Lemke(Eigen::Index capacity = 0);
+  void reserve(Eigen::Index n);
+  Eigen::Index capacity() const { return capacity_; }
+
+  // The allocation-free core: writes the solution (or last iterate) into z (size n) and
+  // returns the status; pivots() and residual() describe the run.
+  Status run(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+             const LemkeOptions& options, Eigen::Ref<Vector> z);
+  int pivots() const { return pivots_; }
+  double last_residual() const { return residual_; }
+
+  // The same, with the shared result type (z, w, both residuals, wall time, message).
+  Result solve(const Problem& p, const LemkeOptions& options = {});
+
+ private:
+  void pivot(Eigen::Index row, Eigen::Index entering);
+  Eigen::Index ratio_test(Eigen::Index entering, bool initial);
+  bool refine(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+              Eigen::Ref<Vector> z);
+
+  Eigen::Index capacity_ = 0;
+  Eigen::Index n_ = 0;
+  std::vector<double> tableau_;   // n x (2n + 2), column-major: w | z | z0 | q
+  std::vector<double> column_;    // copy of the entering column
+  std::vector<double> lu_;        // k x k for the refinement
+  std::vector<double> rhs_;
+  std::vector<Eigen::Index> basis_;     // basic variable of each row
+  std::vector<Eigen::Index> position_;  // row of each variable, -1 when non-basic
+  std::vector<Eigen::Index> candidates_;
+  std::vector<Eigen::Index> index_;
+  int pivots_ = 0;
+  double residual_ = 0.0;
+  double pivot_tolerance_ = 1e-12;
+};
+
+// Free-function form for one-off solves.
+Result lemke(const Problem& p, const LemkeOptions& options = {});
+
+}  // namespace nsb::lcp

@@ -1,0 +1,144 @@
+#include "lcp/newton_fb.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace nsb::lcp {
+
+namespace {
+// A Jacobian whose reciprocal condition estimate is below this is treated as singular: the
+// Newton direction would carry no correct digits.
+constexpr double kSingularRcond = 1e-14;
+}  // namespace
+
+void NewtonFbOptions::validate() const {
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    throw std::invalid_argument("NewtonFbOptions::tolerance must be finite and > 0");
+  if (max_iterations < 1)
+    throw std::invalid_argument("NewtonFbOptions::max_iterations must be >= 1");
+  if (!(armijo > 0.0 && armijo < 0.5))
+    throw std::invalid_argument("NewtonFbOptions::armijo must be in (0, 0.5)");
+  if (!(backtrack > 0.0 && backtrack < 1.0))
+    throw std::invalid_argument("NewtonFbOptions::backtrack must be in (0, 1)");
+  if (max_backtracks < 1)
+    throw std::invalid_argument("NewtonFbOptions::max_backtracks must be >= 1");
+  if (!(descent_angle > 0.0 && descent_angle < 1.0))
+    throw std::invalid_argument("NewtonFbOptions::descent_angle must be in (0, 1)");
+}
+
+void fischer_burmeister(const Problem& p, const Vector& z, Vector& phi, Matrix& H) {
+  const Eigen::Index n = p.size();
+  const Vector w = p.M * z + p.q;
+  phi.resize(n);
+  H.resize(n, n);
+  Vector c = Vector::Zero(n);
+  bool degenerate = false;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double r = std::hypot(z(i), w(i));
+    phi(i) = r - z(i) - w(i);
+    if (r == 0.0) {
+      c(i) = 1.0;
+      degenerate = true;
+    }
+  }
+  const Vector Mc = degenerate ? Vector(p.M * c) : Vector::Zero(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double da = 0.0;
+    double db = 0.0;
+    const double r = std::hypot(z(i), w(i));
+    if (r > 0.0) {
+      da = z(i) / r - 1.0;
+      db = w(i) / r - 1.0;
+    } else {
+      // (0, 0): the limit along z + t c. If (M c)_i = c_i = 1 gives s = sqrt(1 + (Mc)_i^2).
+      const double s = std::hypot(c(i), Mc(i));
+      da = c(i) / s - 1.0;
+      db = Mc(i) / s - 1.0;
+    }
+    H.row(i) = db * p.M.row(i);
+    H(i, i) += da;
+  }
+}
+
+Result newton_fb(const Problem& p, const NewtonFbOptions& options, const Vector& warm_start) {
+  p.validate();
+  options.validate();
+  const Eigen::Index n = p.size();
+  Result r;
+  const auto start = std::chrono::steady_clock::now();
+  const auto finish = [&](Status s, std::string message) {
+    r.status = s;
+    r.message = std::move(message);
+    r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    evaluate(p, r);
+    return r;
+  };
+  r.z = warm_start.size() == n ? warm_start : Vector::Zero(n);
+  Vector phi(n);
+  Matrix H(n, n);
+  Vector d(n);
+  Vector trial(n);
+  Vector phi_trial(n);
+  Eigen::PartialPivLU<Matrix> lu(n);
+  const auto merit = [&](const Vector& z, Vector& out) {
+    const Vector w = p.M * z + p.q;
+    for (Eigen::Index i = 0; i < n; ++i) out(i) = std::hypot(z(i), w(i)) - z(i) - w(i);
+    return 0.5 * out.squaredNorm();
+  };
+
+  double res = residual(p.M, p.q, r.z);
+  if (options.record_history) r.history.push_back(res);
+  if (res <= options.tolerance) return finish(Status::kSolved, "the start point solves it");
+  for (int k = 1; k <= options.max_iterations; ++k) {
+    fischer_burmeister(p, r.z, phi, H);
+    const double psi = 0.5 * phi.squaredNorm();
+    const Vector grad = H.transpose() * phi;
+    bool newton = false;
+    lu.compute(H);
+    if (lu.rcond() > kSingularRcond) {
+      d = lu.solve(-phi);
+      newton = d.allFinite() &&
+               grad.dot(d) <= -options.descent_angle * grad.norm() * d.norm();
+    }
+    if (!newton) d = -grad;
+    if (!(d.norm() > 0.0)) {
+      r.iterations = k;
+      return finish(Status::kSingularJacobian,
+                    "stationary point of the merit function with Phi != 0: H^T Phi = 0");
+    }
+    // Armijo backtracking on Psi; the gradient step is tried when the Newton step fails.
+    bool accepted = false;
+    for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
+      const double slope = grad.dot(d);
+      double t = 1.0;
+      for (int b = 0; b < options.max_backtracks; ++b) {
+        trial = r.z + t * d;
+        if (merit(trial, phi_trial) <= psi + options.armijo * t * slope) {
+          accepted = true;
+          break;
+        }
+        t *= options.backtrack;
+      }
+      if (!accepted && newton) {
+        d = -grad;
+        newton = false;
+      } else {
+        break;
+      }
+    }
+    r.iterations = k;
+    if (!accepted) {
+      return finish(lu.rcond() > kSingularRcond ? Status::kLineSearchFailed
+                                                : Status::kSingularJacobian,
+                    "no step length gives sufficient decrease of 1/2 ||Phi||^2");
+    }
+    r.z = trial;
+    res = residual(p.M, p.q, r.z);
+    if (options.record_history) r.history.push_back(res);
+    if (res <= options.tolerance) return finish(Status::kSolved, "converged");
+  }
+  return finish(Status::kMaxIterations, "Newton step limit reached");
+}
+
+}  // namespace nsb::lcp

@@ -1,0 +1,27 @@
+// Projected Gauss–Seidel with successive over-relaxation (Cottle, Pang & Stone 1992, §5.2).
+//
+// One sweep updates, for i = 1..n in order and with the newest values of z,
+//
+//   z_i <- max(0, z_i - omega (M_i. z + q_i) / M_ii),
+//
+// which is the exact minimiser of the i-th coordinate problem when omega = 1. It converges
+// for symmetric positive definite M with 0 < omega < 2, and in general needs M_ii > 0: a
+// zero or negative diagonal entry is reported as kZeroDiagonal before any sweep.
+#pragma once
+
+#include "lcp/lcp.hpp"
+
+namespace nsb::lcp {
+
+struct PgsOptions {
+  double tolerance = 1e-12;     // kSolved when lcp::residual <= tolerance; > 0
+  int max_iterations = 10000;   // sweep limit; >= 1
+  double relaxation = 1.0;      // SOR factor omega; in (0, 2)
+  bool record_history = false;  // lcp::residual after every sweep into Result::history
+  void validate() const;        // throws std::invalid_argument naming the field
+};
+
+// Solves p starting from warm_start (if its size is n; otherwise from z = 0).
+Result pgs(const Problem& p, const PgsOptions& options = {}, const Vector& warm_start = {});
+
+}  // namespace nsb::lcp

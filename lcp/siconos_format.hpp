@@ -1,0 +1,35 @@
+// Reader for LCPs in Siconos Numerics' text format (the files of data/siconos-lcp).
+//
+// Dense storage, as written by Siconos 4.4:
+//   line 1..: n, the storage type (0 = dense), then the matrix sizes n n, and n n again
+//             (six integers, on one or more lines);
+//   next n lines: M, one COLUMN per line (n numbers each): line j holds M(0..n-1, j);
+//   next line: q (n numbers);
+//   anything after q is a comment.
+// Blank lines between these parts are skipped. Storage type 1 (sparse block, the *_block.dat
+// files) is rejected with a message naming it: the same problems are in the dense files.
+#pragma once
+
+#include "lcp/lcp.hpp"
+
+#include <filesystem>
+#include <istream>
+#include <stdexcept>
+#include <string>
+
+namespace nsb::lcp {
+
+// A malformed file: what() is "<file>:<line>: <what was found>; expected <what is allowed>".
+struct FormatError : std::invalid_argument {
+  FormatError(const std::string& file, int line, const std::string& what);
+  std::string file;
+  int line = 0;
+};
+
+// Throws FormatError for a malformed file (also: size mismatch, NaN or Inf, an empty file),
+// and FormatError with line 0 if the file cannot be opened.
+Problem read_siconos_lcp(const std::filesystem::path& file);
+// The same from a stream; `name` is used in messages.
+Problem parse_siconos_lcp(std::istream& in, const std::string& name);
+
+}  // namespace nsb::lcp

@@ -1,0 +1,180 @@
+// Lemke's method: hand-solved problems, degeneracy, ray termination, Murty's exponential
+// example, the pivot limit, workspace reuse and the edges.
+#include "lcp/enumeration.hpp"
+#include "lcp/lemke.hpp"
+#include "lcp/test/problems.hpp"
+
+#include <doctest/doctest.h>
+
+#include <limits>
+#include <random>
+#include <stdexcept>
+
+using namespace nsb::lcp;
+using nsb::lcp::testing::lcp_violations;
+using nsb::lcp::testing::relative_distance;
+
+namespace {
+// Hand solutions are rationals; a handful of pivots loses at most a few ulps.
+constexpr double kHand = 1e-14;
+
+Problem make(const Matrix& M, const Vector& q) {
+  Problem p;
+  p.M = M;
+  p.q = q;
+  return p;
+}
+
+// Murty (1988), ch. 6: M upper triangular with ones on the diagonal and 2 above it,
+// q_i = -(2^(n+1) - 2^i), i = 1..n. These are the data of data/siconos-lcp/lcp_exp_murty2.dat
+// for n = 6.
+Problem murty(int n) {
+  Problem p;
+  p.M = Matrix::Identity(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) p.M(i, j) = 2.0;
+  p.q.resize(n);
+  for (int i = 1; i <= n; ++i) p.q(i - 1) = -(std::ldexp(1.0, n + 1) - std::ldexp(1.0, i));
+  return p;
+}
+}  // namespace
+
+TEST_CASE("hand-solved: 2 x 2 with both components positive") {
+  // M = [2 1; 1 2], q = (-5, -6). Guess w = 0: 2 z1 + z2 = 5, z1 + 2 z2 = 6
+  // => z1 = 4/3, z2 = 7/3, both > 0, so z = (4/3, 7/3), w = 0 is the (unique, M is P) solution.
+  const Problem p = make((Matrix(2, 2) << 2, 1, 1, 2).finished(), (Vector(2) << -5, -6).finished());
+  const Result r = lemke(p);
+  REQUIRE(r.status == Status::kSolved);
+  CHECK(r.z(0) == doctest::Approx(4.0 / 3.0).epsilon(kHand));
+  CHECK(r.z(1) == doctest::Approx(7.0 / 3.0).epsilon(kHand));
+  CHECK(r.w.lpNorm<Eigen::Infinity>() < kHand * 10);
+  CHECK(r.residual <= LemkeOptions{}.tolerance);
+}
+
+TEST_CASE("hand-solved: mixed support") {
+  // M = I, q = (-1, 2): w = z + q, so z1 = 1 (w1 = 0) and z2 = 0 (w2 = 2).
+  const Problem p = make(Matrix::Identity(2, 2), (Vector(2) << -1, 2).finished());
+  const Result r = lemke(p);
+  REQUIRE(r.ok());
+  CHECK(r.z(0) == doctest::Approx(1.0).epsilon(kHand));
+  CHECK(r.z(1) == 0.0);
+  CHECK(r.w(1) == doctest::Approx(2.0).epsilon(kHand));
+}
+
+TEST_CASE("degenerate ties: the lexicographic rule terminates at the solution") {
+  // M = [1 2 0; 0 1 2; 2 0 1], q = -e. Every ratio of the first pivot ties. M is a P-matrix
+  // (principal minors 1, 1, 1, 1 and det M = 1 + 2*4 = 9), so the solution is unique; by the
+  // cyclic symmetry it is z = e/3 with M z = (1 + 2)/3 e = e, w = 0.
+  const Problem p =
+      make((Matrix(3, 3) << 1, 2, 0, 0, 1, 2, 2, 0, 1).finished(), -Vector::Ones(3));
+  const Result r = lemke(p);
+  REQUIRE(r.ok());
+  CHECK(relative_distance(r.z, Vector::Constant(3, 1.0 / 3.0)) < kHand);
+
+  // Fully degenerate manufactured problems: half the indices have z_i = w_i = 0.
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 200; ++trial) {
+    const auto m = testing::manufacture(rng, testing::p_matrix(rng, 2 + trial % 9), 0.5);
+    const Result s = lemke(m.problem);
+    INFO("trial " << trial);
+    REQUIRE(s.ok());
+    CHECK(relative_distance(s.z, m.z) < 1e-10);
+  }
+}
+
+TEST_CASE("no solution: M = -I, q = -e ends in ray termination") {
+  // w = -z - e < 0 for every z >= 0: infeasible, so no method can succeed.
+  const Problem p = make(-Matrix::Identity(3, 3), -Vector::Ones(3));
+  const Result r = lemke(p);
+  CHECK(r.status == Status::kRayTermination);
+  CHECK_FALSE(r.ok());
+  CHECK(enumerate(p).status == Status::kNoSolution);
+}
+
+TEST_CASE("Murty's example needs 2^n pivots") {
+  // Murty (1988), ch. 6: the complementary pivot method with covering vector e visits 2^n
+  // almost-complementary bases on this family (counting the first pivot, which brings z0
+  // in: 2^n - 1 pivots after it). The solution is unique (triangular, unit diagonal: P).
+  for (int n = 1; n <= 10; ++n) {
+    const Problem p = murty(n);
+    const Result r = lemke(p);
+    INFO("n = " << n);
+    REQUIRE(r.ok());
+    CHECK(r.iterations == (1 << n));
+    if (n <= 8) {
+      const Result e = enumerate(p);
+      CHECK(relative_distance(r.z, e.z) < kHand);
+    }
+  }
+}
+
+TEST_CASE("pivot limit: max_pivots = 1 gives kMaxIterations") {
+  const Problem p = make((Matrix(2, 2) << 2, 1, 1, 2).finished(), (Vector(2) << -5, -6).finished());
+  LemkeOptions o;
+  o.max_pivots = 1;
+  const Result r = lemke(p, o);
+  CHECK(r.status == Status::kMaxIterations);
+  CHECK(r.iterations == 1);
+}
+
+TEST_CASE("edges: n = 0, q >= 0, NaN input, bad options") {
+  Problem empty;
+  const Result r0 = lemke(empty);
+  CHECK(r0.ok());
+  CHECK(r0.z.size() == 0);
+
+  // q >= 0: z = 0, w = q solves it without a pivot.
+  const Problem pos = make(-Matrix::Identity(2, 2), (Vector(2) << 0, 3).finished());
+  const Result r1 = lemke(pos);
+  CHECK(r1.ok());
+  CHECK(r1.iterations == 0);
+  CHECK(r1.z.isZero(0.0));
+
+  Problem nan = pos;
+  nan.M(0, 1) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS(lemke(nan), std::invalid_argument);
+
+  LemkeOptions bad;
+  bad.tolerance = 0.0;
+  CHECK_THROWS_WITH_AS(lemke(pos, bad), doctest::Contains("tolerance"), std::invalid_argument);
+  LemkeOptions cover;
+  cover.covering = (Vector(2) << 1.0, -1.0).finished();
+  CHECK_THROWS_WITH_AS(lemke(pos, cover), doctest::Contains("covering(1)"), std::invalid_argument);
+}
+
+TEST_CASE("another covering vector gives the same unique solution") {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 50; ++trial) {
+    const int n = 1 + trial % 12;
+    const auto m = testing::manufacture(rng, testing::p_matrix(rng, n));
+    LemkeOptions o;
+    o.covering = testing::random_vector(rng, n, 0.1, 3.0);
+    const Result r = lemke(m.problem, o);
+    REQUIRE(r.ok());
+    CHECK(relative_distance(r.z, m.z) < 1e-10);
+  }
+}
+
+TEST_CASE("workspace reuse: one solver, varying sizes, same answers as fresh solvers") {
+  std::mt19937 rng(3);
+  Lemke solver(12);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int n = 1 + (trial * 5) % 12;
+    const auto m = testing::manufacture(rng, testing::spd(rng, n, 100.0));
+    const Result reused = solver.solve(m.problem);
+    const Result fresh = lemke(m.problem);
+    REQUIRE(reused.ok());
+    CHECK(reused.iterations == fresh.iterations);
+    CHECK((reused.z - fresh.z).lpNorm<Eigen::Infinity>() == 0.0);
+    CHECK(lcp_violations(m.problem, reused.z, 1e-12).empty());
+  }
+  CHECK(solver.capacity() == 12);  // never grew: the workspace was reused
+
+  // The allocation-free core writes into caller storage.
+  const auto m = testing::manufacture(rng, testing::p_matrix(rng, 5));
+  Vector z(5);
+  const Status s = solver.run(m.problem.M, m.problem.q, LemkeOptions{}, z);
+  CHECK(s == Status::kSolved);
+  CHECK(relative_distance(z, m.z) < 1e-12);
+  CHECK(solver.last_residual() <= LemkeOptions{}.tolerance);
+}

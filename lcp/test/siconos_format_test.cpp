@@ -1,0 +1,91 @@
+// The Siconos .dat reader: column-major M, every malformed case reported with file:line.
+#include "lcp/siconos_format.hpp"
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <sstream>
+
+using namespace nsb::lcp;
+
+namespace {
+Problem parse(const std::string& text) {
+  std::istringstream in(text);
+  return parse_siconos_lcp(in, "t.dat");
+}
+}  // namespace
+
+TEST_CASE("M is stored one column per line") {
+  // Columns (1, 3) and (2, 4): M = [1 2; 3 4].
+  const Problem p = parse("2\n0\n2\n2\n2 2\n1 3\n2 4\n-1 -2\n\ncomment text 5 6\n");
+  REQUIRE(p.size() == 2);
+  CHECK(p.M(0, 0) == 1.0);
+  CHECK(p.M(1, 0) == 3.0);
+  CHECK(p.M(0, 1) == 2.0);
+  CHECK(p.M(1, 1) == 4.0);
+  CHECK(p.q(0) == -1.0);
+  CHECK(p.q(1) == -2.0);
+}
+
+TEST_CASE("the files of data/siconos-lcp read as documented") {
+  // lcp_exp_murty.dat: Murty's matrix, upper triangular with 2 above the unit diagonal.
+  const Problem p = read_siconos_lcp(std::filesystem::path(NSB_DATA_DIR) / "siconos-lcp" /
+                                     "lcp_exp_murty.dat");
+  REQUIRE(p.size() == 6);
+  CHECK(p.M(0, 5) == 2.0);
+  CHECK(p.M(5, 0) == 0.0);
+  CHECK(p.M.diagonal().isOnes(0.0));
+  CHECK(p.q.isConstant(-1.0, 0.0));
+  int dense = 0;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::filesystem::path(NSB_DATA_DIR) / "siconos-lcp")) {
+    const std::string name = e.path().filename().string();
+    INFO(name);
+    if (name.find("_block") != std::string::npos) {
+      // Sparse-block storage is rejected on line 2 (the storage type), by name.
+      CHECK_THROWS_WITH_AS(read_siconos_lcp(e.path()), doctest::Contains(":2: storage type 1"),
+                           FormatError);
+    } else {
+      CHECK_NOTHROW(read_siconos_lcp(e.path()).validate());
+      ++dense;
+    }
+  }
+  CHECK(dense == 17);
+}
+
+TEST_CASE("malformed files name the line and what was expected") {
+  struct Case {
+    const char* text;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"", "t.dat:1: the file is empty; expected the problem size n"},
+      {"\n\n   \n", "t.dat:1: the file is empty"},
+      {"x\n", "t.dat:1: found 'x'; expected the problem size n"},
+      {"-2\n", "t.dat:1: n = -2; expected a size >= 0"},
+      {"2\n3\n", "t.dat:2: storage type 3; expected 0 (dense)"},
+      {"2\n0\n3\n", "t.dat:3: matrix size 3 differs from n = 2"},
+      {"2\n0\n2\n2\n2 2 7\n", "t.dat:5: found '7' after the six header integers"},
+      {"2\n0\n2\n2\n2 2\n1 3\n", "t.dat:6: unexpected end of file; expected column 2 of M"},
+      {"2\n0\n2\n2\n2 2\n1 3 5\n2 4\n-1 -2\n", "t.dat:6: column 1 of M has 3 entries; expected n = 2"},
+      {"2\n0\n2\n2\n2 2\n1 3\n2 4\n", "t.dat:7: unexpected end of file; expected q"},
+      {"2\n0\n2\n2\n2 2\n1 3\n2 4\n-1\n", "t.dat:8: q has 1 entries; expected n = 2"},
+      {"2\n0\n2\n2\n2 2\n1 nan\n2 4\n-1 -2\n", "t.dat:6: M(2, 1) is 'nan'; expected a finite number"},
+      {"2\n0\n2\n2\n2 2\n1 3\n2 4\n-1 inf\n", "t.dat:8: q(2) is 'inf'; expected a finite number"},
+      {"2\n0\n2\n2\n2 2\n1 3\n2 4x\n-1 -2\n", "t.dat:7: found '4x'; expected M(2, 2) (a number)"},
+  };
+  for (const Case& c : cases) {
+    INFO("input: " << c.text);
+    CHECK_THROWS_WITH_AS(parse(c.text), doctest::Contains(c.message), FormatError);
+  }
+  try {
+    parse("2\n0\n2\n2\n2 2\n1 3\n2 4\n-1\n");
+  } catch (const FormatError& e) {
+    CHECK(e.file == "t.dat");
+    CHECK(e.line == 8);
+  }
+  CHECK_THROWS_WITH_AS(read_siconos_lcp("/nonexistent/x.dat"),
+                       doctest::Contains("/nonexistent/x.dat:0: cannot open"), FormatError);
+  // n = 0 is a valid, empty problem.
+  CHECK(parse("0\n0\n0 0 0 0\n").size() == 0);
+}

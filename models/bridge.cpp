@@ -1,0 +1,277 @@
+#include "models/bridge.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+namespace nsb::models {
+
+namespace {
+
+void require(bool ok, const std::string& field, const std::string& what) {
+  if (!ok) throw std::invalid_argument(field + ": " + what);
+}
+
+bool finite_positive(double v) { return std::isfinite(v) && v > 0; }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// BentDesign
+
+void BentDesign::validate(const std::string& prefix) const {
+  require(finite_positive(height), prefix + "height", "must be > 0 [m]");
+  require(finite_positive(column_diameter), prefix + "column_diameter", "must be > 0 [m]");
+  require(columns >= 1, prefix + "columns", "must be >= 1");
+  require(finite_positive(elastic_modulus), prefix + "elastic_modulus", "must be > 0 [kPa]");
+  require(finite_positive(cracked_ratio) && cracked_ratio <= 1, prefix + "cracked_ratio",
+          "must be in (0, 1]");
+  require(finite_positive(yield_strain), prefix + "yield_strain", "must be > 0");
+  require(std::isfinite(post_yield_ratio) && post_yield_ratio >= 0 && post_yield_ratio < 1,
+          prefix + "post_yield_ratio", "must be in [0, 1)");
+  require(std::isfinite(unloading_exponent) && unloading_exponent >= 0 && unloading_exponent <= 1,
+          prefix + "unloading_exponent", "must be in [0, 1]");
+}
+
+double BentDesign::column_stiffness() const {
+  const double d2 = column_diameter * column_diameter;
+  const double ei = cracked_ratio * elastic_modulus * std::numbers::pi * d2 * d2 / 64.0;
+  return 12.0 * ei / (height * height * height);  // fixed-fixed column
+}
+
+double BentDesign::stiffness() const { return columns * column_stiffness(); }
+
+double BentDesign::yield_displacement() const {
+  const double phi_y = 2.25 * yield_strain / column_diameter;  // Priestley's yield curvature
+  return phi_y * height * height / 6.0;
+}
+
+double BentDesign::yield_force() const { return stiffness() * yield_displacement(); }
+
+takeda::Parameters BentDesign::takeda() const {
+  return takeda::Parameters::bilinear(yield_force(), yield_displacement(), post_yield_ratio,
+                                      unloading_exponent);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parameters
+
+Bridge::Parameters Bridge::Parameters::benchmark() {
+  Parameters p;
+  const double positions[3] = {-8.34, 0.0, 8.34};  // four equal spans of L / 4
+  const double heights[3] = {1.83, 2.44, 1.52};    // assumed, docs/bridge.md
+  for (int j = 0; j < 3; ++j) {
+    BentDesign d;
+    d.height = heights[j];
+    Bent b;
+    b.position = positions[j];
+    b.longitudinal = d.takeda();
+    b.transverse = d.takeda();
+    p.bents.push_back(b);
+  }
+  return p;
+}
+
+void Bridge::Parameters::validate() const {
+  require(finite_positive(mass), "mass", "must be > 0 [t]");
+  require(finite_positive(inertia), "inertia", "must be > 0 [t m^2]");
+  deck.validate();
+  require(std::isfinite(restitution) && restitution >= 0 && restitution <= 1, "restitution",
+          "must be in [0, 1]");
+  require(std::isfinite(friction) && friction >= 0, "friction", "must be >= 0");
+  require(std::isfinite(damping_ratio_i) && damping_ratio_i >= 0 && damping_ratio_i < 1,
+          "damping_ratio_i", "must be in [0, 1)");
+  require(std::isfinite(damping_ratio_j) && damping_ratio_j >= 0 && damping_ratio_j < 1,
+          "damping_ratio_j", "must be in [0, 1)");
+  require(damping_mode_i >= 1 && damping_mode_i <= 3, "damping_mode_i", "must be in 1..3");
+  require(damping_mode_j >= 1 && damping_mode_j <= 3, "damping_mode_j", "must be in 1..3");
+  require(damping_mode_i != damping_mode_j, "damping_mode_j", "must differ from damping_mode_i");
+  require(bents.size() >= 2, "bents", "at least 2 bents are needed (torsional stiffness)");
+  bool distinct = false;
+  for (std::size_t j = 0; j < bents.size(); ++j) {
+    const std::string prefix = "bents[" + std::to_string(j) + "].";
+    require(std::isfinite(bents[j].position), prefix + "position", "must be finite [m]");
+    require(std::abs(bents[j].position) <= 0.5 * deck.length, prefix + "position",
+            "must lie on the deck, |s| <= L/2 [m]");
+    if (bents[j].position != bents[0].position) distinct = true;
+    try {
+      bents[j].longitudinal.validate();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(prefix + "longitudinal." + e.what());
+    }
+    try {
+      bents[j].transverse.validate();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(prefix + "transverse." + e.what());
+    }
+  }
+  require(distinct, "bents", "need at least 2 distinct positions (torsional stiffness)");
+  require(initial_position.allFinite(), "initial_position", "must be finite [m, m, rad]");
+  require(initial_velocity.allFinite(), "initial_velocity", "must be finite [m/s, m/s, rad/s]");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bridge
+
+Bridge::Bridge(const Parameters& p, Excitation excitation)
+    : p_(p), excitation_(std::move(excitation)) {
+  p_.validate();
+  const std::size_t nb = p_.bents.size();
+  if (!excitation_.bents.empty() && excitation_.bents.size() != nb) {
+    std::ostringstream s;
+    s << "excitation.bents: " << excitation_.bents.size() << " motions for " << nb
+      << " bents; give none or one per bent";
+    throw std::invalid_argument(s.str());
+  }
+  mass_ = integrators::Matrix::Zero(3, 3);
+  mass_(0, 0) = mass_(1, 1) = p_.mass;
+  mass_(2, 2) = p_.inertia;
+
+  for (const auto& b : p_.bents) {
+    springs_x_.emplace_back(b.longitudinal);
+    springs_y_.emplace_back(b.transverse);
+    const Eigen::Vector3d by(0.0, 1.0, b.position);
+    k0_(0, 0) += b.longitudinal.k0;
+    k0_ += b.transverse.k0 * by * by.transpose();
+  }
+  const Eigen::LDLT<Eigen::Matrix3d> k0_ldlt(k0_);
+  for (const auto& b : p_.bents) {
+    qs_x_.push_back(k0_ldlt.solve(Eigen::Vector3d(b.longitudinal.k0, 0.0, 0.0)));
+    qs_y_.push_back(k0_ldlt.solve(b.transverse.k0 * Eigen::Vector3d(0.0, 1.0, b.position)));
+  }
+  rayleigh_ = rayleigh(mass_, integrators::Matrix(k0_), p_.damping_mode_i, p_.damping_ratio_i,
+                       p_.damping_mode_j, p_.damping_ratio_j);
+  c_ = rayleigh_.a0 * mass_ + rayleigh_.a1 * k0_;
+
+  corners_ = p_.deck.corner_faces();
+  faces_ = p_.deck.face_points();
+
+  // Initial penetration at t0 = 0 with the seats at their initial pose.
+  for (int i = 0; i < 4; ++i) {
+    const auto k = corner_contact(corners_[static_cast<std::size_t>(i)], p_.initial_position,
+                                  p_.initial_velocity,
+                                  seat_motion(DeckGeometry::abutment_of(i), initial_time()));
+    if (k.gap_normal < -kPenetrationTolerance) {
+      std::ostringstream s;
+      s << "initial_position: initial penetration at contact " << i + 1
+        << " (g_N = " << k.gap_normal << " m); the initial gaps must be >= 0";
+      throw std::invalid_argument(s.str());
+    }
+  }
+}
+
+const Bridge::SupportMotion& Bridge::bent_motion(std::size_t j) const {
+  return excitation_.bents.empty() ? no_motion_ : excitation_.bents[j];
+}
+
+PlanarMotion Bridge::seat_motion(int seat, double t) const {
+  const auto& s = excitation_.seats[static_cast<std::size_t>(seat)];
+  PlanarMotion m;
+  m.position << faces_[static_cast<std::size_t>(seat)].x() + disp(s.longitudinal, t),
+      faces_[static_cast<std::size_t>(seat)].y() + disp(s.transverse, t), disp(s.rotation, t);
+  m.velocity << vel(s.longitudinal, t), vel(s.transverse, t), vel(s.rotation, t);
+  m.acceleration << acc(s.longitudinal, t), acc(s.transverse, t), acc(s.rotation, t);
+  return m;
+}
+
+Eigen::Vector3d Bridge::quasi_static_velocity(double t) const {
+  Eigen::Vector3d us = Eigen::Vector3d::Zero();
+  for (std::size_t j = 0; j < p_.bents.size(); ++j) {
+    const auto& m = bent_motion(j);
+    us += qs_x_[j] * vel(m.longitudinal, t) + qs_y_[j] * vel(m.transverse, t);
+  }
+  return us;
+}
+
+void Bridge::forces(double t, const integrators::Vector& q, const integrators::Vector& u,
+                    integrators::Vector& f) {
+  Eigen::Vector3d fs = Eigen::Vector3d::Zero();
+  for (std::size_t j = 0; j < p_.bents.size(); ++j) {
+    const auto& m = bent_motion(j);
+    const double s = p_.bents[j].position;
+    // Deck displacement at the bent relative to the bent's own ground (small rotations).
+    const double dx = q(0) - disp(m.longitudinal, t);
+    const double dy = q(1) + s * q(2) - disp(m.transverse, t);
+    const double fx = springs_x_[j].set_trial(dx);
+    const double fy = springs_y_[j].set_trial(dy);
+    fs(0) -= fx;
+    fs(1) -= fy;
+    fs(2) -= s * fy;  // torque of the transverse bent force about the deck centre
+  }
+  const Eigen::Vector3d vr = u.head<3>() - quasi_static_velocity(t);
+  f.head<3>() = fs - c_ * vr;
+}
+
+void Bridge::tangent(double, const integrators::Vector&, const integrators::Vector&,
+                     integrators::Matrix& K, integrators::Matrix& C) {
+  K.setZero(3, 3);
+  for (std::size_t j = 0; j < p_.bents.size(); ++j) {
+    const double s = p_.bents[j].position;
+    const double kx = springs_x_[j].tangent(), ky = springs_y_[j].tangent();
+    K(0, 0) += kx;
+    K(1, 1) += ky;
+    K(1, 2) += ky * s;
+    K(2, 1) += ky * s;
+    K(2, 2) += ky * s * s;
+  }
+  C = c_;
+}
+
+bool Bridge::tangent_changed() const {
+  for (std::size_t j = 0; j < springs_x_.size(); ++j) {
+    if (springs_x_[j].tangent_changed() || springs_y_[j].tangent_changed()) return true;
+  }
+  return false;
+}
+
+void Bridge::commit() {
+  for (auto& s : springs_x_) s.commit();
+  for (auto& s : springs_y_) s.commit();
+}
+
+void Bridge::revert() {
+  for (auto& s : springs_x_) s.revert();
+  for (auto& s : springs_y_) s.revert();
+}
+
+void Bridge::contact_data(double t, const integrators::Vector& q, const integrators::Vector& u,
+                          std::vector<integrators::ContactData>& out) const {
+  if (out.size() != 4) out.resize(4);
+  const Eigen::Vector3d q3 = q.head<3>(), u3 = u.head<3>();
+  const std::array<PlanarMotion, 2> seats{seat_motion(0, t), seat_motion(1, t)};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto k = corner_contact(
+        corners_[i], q3, u3,
+        seats[static_cast<std::size_t>(DeckGeometry::abutment_of(static_cast<int>(i)))]);
+    copy_contact(k, p_.restitution, p_.friction, out[i]);
+  }
+}
+
+integrators::PowerTerms Bridge::power(double t, const integrators::Vector&,
+                                      const integrators::Vector& u) const {
+  integrators::PowerTerms pw;
+  const Eigen::Vector3d us = quasi_static_velocity(t);
+  const Eigen::Vector3d vr = u.head<3>() - us;
+  pw.damping = vr.dot(c_ * vr);
+  double ground = -us.dot(c_ * vr);
+  for (std::size_t j = 0; j < p_.bents.size(); ++j) {
+    const auto& m = bent_motion(j);
+    ground -= springs_x_[j].force() * vel(m.longitudinal, t) +
+              springs_y_[j].force() * vel(m.transverse, t);
+  }
+  pw.ground = ground;
+  return pw;
+}
+
+integrators::EnergyState Bridge::energy(double, const integrators::Vector&) const {
+  integrators::EnergyState e;
+  for (std::size_t j = 0; j < springs_x_.size(); ++j) {
+    e.stored += springs_x_[j].stored_energy() + springs_y_[j].stored_energy();
+    e.hysteretic += springs_x_[j].dissipated_energy() + springs_y_[j].dissipated_energy();
+  }
+  return e;
+}
+
+}  // namespace nsb::models

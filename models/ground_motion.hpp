@@ -1,0 +1,67 @@
+// Ground-motion records and the smooth support motion built from them.
+//
+// A Record is the raw sampled acceleration. A GroundMotion turns it into a C2 motion:
+// the acceleration is the natural cubic spline (GSL) through the samples, the velocity and
+// displacement are its exact integrals (piecewise quartic and quintic), optionally corrected
+// by a least-squares polynomial baseline so that the motion ends at rest. Several supports
+// are several GroundMotion objects, each with its own record or delay (wave passage).
+// Formats, units, scaling, the baseline method and the time compression: docs/ground-motions.md.
+//
+// Units: m, s, m/s^2.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace nsb::models {
+
+struct Record {
+  std::vector<double> t;  // sample times [s], strictly increasing
+  std::vector<double> a;  // ground acceleration [m/s^2]
+  std::string source;     // file it was read from (or a description)
+};
+
+// Readers. Errors throw std::invalid_argument "<file>:<line>: <what>" (missing file,
+// non-numeric token, NPTS mismatch, non-increasing time, NaN or infinite value).
+Record read_at2(const std::filesystem::path&, double g = 9.81);          // PEER NGA .AT2 (units of g)
+Record read_two_column(const std::filesystem::path&, double unit = 1.0); // "t a" per line; a*unit -> m/s^2
+Record read_csv(const std::filesystem::path&, double unit = 1.0);        // header line, columns t,a
+
+// Checks a record built in code: equal sizes, at least 3 samples, finite values, strictly
+// increasing time. Throws std::invalid_argument naming the record's source and the sample.
+void validate_record(const Record&);
+
+struct GroundMotionOptions {
+  double target_pga = 0.0;     // [m/s^2], >= 0; 0 keeps the record's amplitude
+  double scale = 1.0;          // factor applied after target_pga scaling, finite
+  double time_scale = 1.0;     // similitude: t -> time_scale * t (0.5 for 1/4 length scale), > 0
+  bool baseline_correction = true;  // remove drift so that final velocity and displacement ~ 0
+  double delay = 0.0;          // wave-passage delay [s], >= 0: motion(t) = motion(t - delay)
+  void validate() const;       // throws std::invalid_argument naming the field
+};
+
+class GroundMotion {  // smooth (GSL cubic spline) displacement, velocity, acceleration at any t
+ public:
+  GroundMotion() = default;    // zero motion
+  GroundMotion(const Record& r, const GroundMotionOptions& o = {});
+  double displacement(double t) const;  // [m]; 0 before start; held after end
+  double velocity(double t) const;      // [m/s]; 0 before start and after end
+  double acceleration(double t) const;  // [m/s^2]; 0 before start and after end
+  double duration() const;              // [s], after time scaling
+  double pga() const;                   // [m/s^2], max |a| over the samples after scaling
+
+  // Additions beyond the agreed interface.
+  double start_time() const;            // first sample time, after time scaling and delay [s]
+  double end_time() const;              // last sample time, after time scaling and delay [s]
+  const std::string& source() const;    // the record's source
+  bool empty() const { return data_ == nullptr; }
+
+  struct Data;  // immutable, shared between copies (defined in ground_motion.cpp)
+
+ private:
+  std::shared_ptr<const Data> data_;
+};
+
+}  // namespace nsb::models

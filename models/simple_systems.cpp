@@ -1,0 +1,231 @@
+// Simple benchmark systems behind the integrators::System interface. See simple_systems.hpp.
+//
+// Energy convention: gravity is conservative and appears in EnergyState::stored as its
+// potential, so PowerTerms::external holds only the work rate of the driving forces; the
+// balance kinetic + stored = initial + external - damping + (impacts, friction) then counts
+// gravity once.
+#include "models/simple_systems.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace nsb::models {
+namespace {
+
+using integrators::ContactData;
+using integrators::EnergyState;
+using integrators::Matrix;
+using integrators::PowerTerms;
+using integrators::Vector;
+
+void require(bool ok, const std::string& field, const std::string& allowed, double value) {
+  if (!ok) {
+    throw std::invalid_argument(field + ": " + allowed + " (got " + std::to_string(value) + ")");
+  }
+}
+void require_finite(const std::string& field, double value) {
+  require(std::isfinite(value), field, "must be finite", value);
+}
+
+void fill_contact(ContactData& c, double gap, const Vector& w_n, const Vector& w_t,
+                  double restitution, double friction) {
+  c.gap_normal = gap;
+  c.w_normal = w_n;
+  c.w_tangent = w_t;
+  c.what_normal = 0.0;  // fixed obstacle: no rheonomic terms
+  c.what_tangent = 0.0;
+  c.wbar_normal = 0.0;  // W constant in q and t: gddot = W^T udot exactly
+  c.wbar_tangent = 0.0;
+  c.restitution = restitution;
+  c.friction = friction;
+  c.far = false;
+}
+
+// Harmonic forcing F0 sin(2 pi f t); f = 0 gives sin(0) = 0, i.e. no force.
+double harmonic(double amplitude, double frequency_hz, double t) {
+  return amplitude * std::sin(2.0 * std::numbers::pi * frequency_hz * t);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// BouncingBall: m y'' = -m g + Lambda_N, g_N = y.
+
+void BouncingBall::Parameters::validate() const {
+  require(std::isfinite(mass) && mass > 0.0, "mass", "must be > 0 [t]", mass);
+  require(std::isfinite(height) && height >= 0.0, "height",
+          "must be >= 0 [m] (the initial gap; negative is an initial penetration)", height);
+  require_finite("velocity", velocity);
+  require(restitution >= 0.0 && restitution <= 1.0, "restitution", "must be in [0, 1]",
+          restitution);
+  require(std::isfinite(gravity) && gravity >= 0.0, "gravity", "must be >= 0 [m/s^2]", gravity);
+}
+
+BouncingBall::BouncingBall(const Parameters& p) : p_(p) {
+  p_.validate();
+  mass_ = Matrix::Constant(1, 1, p_.mass);
+}
+
+Vector BouncingBall::initial_position() const { return Vector::Constant(1, p_.height); }
+Vector BouncingBall::initial_velocity() const { return Vector::Constant(1, p_.velocity); }
+
+void BouncingBall::forces(double, const Vector&, const Vector&, Vector& f) {
+  f(0) = -p_.mass * p_.gravity;
+}
+
+void BouncingBall::tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) {
+  K.setZero(1, 1);
+  C.setZero(1, 1);
+}
+
+void BouncingBall::contact_data(double, const Vector& q, const Vector&,
+                                std::vector<ContactData>& out) const {
+  static const Vector kWn = Vector::Constant(1, 1.0);
+  static const Vector kWt = Vector::Zero(1);
+  fill_contact(out.at(0), q(0), kWn, kWt, p_.restitution, 0.0);
+}
+
+PowerTerms BouncingBall::power(double, const Vector&, const Vector&) const { return {}; }
+
+EnergyState BouncingBall::energy(double, const Vector& q) const {
+  EnergyState e;
+  e.stored = p_.mass * p_.gravity * q(0);
+  return e;
+}
+
+// ---------------------------------------------------------------------------------------
+// ImpactOscillator: m x'' + c x' + k x = F0 sin(2 pi f t) - Lambda_N, g_N = gap - x.
+
+void ImpactOscillator::Parameters::validate() const {
+  require(std::isfinite(mass) && mass > 0.0, "mass", "must be > 0 [t]", mass);
+  require(std::isfinite(stiffness) && stiffness >= 0.0, "stiffness", "must be >= 0 [kN/m]",
+          stiffness);
+  require(std::isfinite(damping_ratio) && damping_ratio >= 0.0, "damping_ratio",
+          "must be >= 0", damping_ratio);
+  require_finite("gap", gap);
+  require(restitution >= 0.0 && restitution <= 1.0, "restitution", "must be in [0, 1]",
+          restitution);
+  require_finite("initial_position", initial_position);
+  require(initial_position <= gap, "initial_position",
+          "must be <= gap (an initial position beyond the stop is a penetration)",
+          initial_position);
+  require_finite("initial_velocity", initial_velocity);
+  require_finite("force_amplitude", force_amplitude);
+  require(std::isfinite(force_frequency) && force_frequency >= 0.0, "force_frequency",
+          "must be >= 0 [Hz]", force_frequency);
+}
+
+ImpactOscillator::ImpactOscillator(const Parameters& p) : p_(p) {
+  p_.validate();
+  c_ = 2.0 * p_.damping_ratio * std::sqrt(p_.stiffness * p_.mass);
+  mass_ = Matrix::Constant(1, 1, p_.mass);
+}
+
+Vector ImpactOscillator::initial_position() const {
+  return Vector::Constant(1, p_.initial_position);
+}
+Vector ImpactOscillator::initial_velocity() const {
+  return Vector::Constant(1, p_.initial_velocity);
+}
+
+double ImpactOscillator::external_force(double t) const {
+  return harmonic(p_.force_amplitude, p_.force_frequency, t);
+}
+
+void ImpactOscillator::forces(double t, const Vector& q, const Vector& u, Vector& f) {
+  f(0) = -p_.stiffness * q(0) - c_ * u(0) + external_force(t);
+}
+
+void ImpactOscillator::tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) {
+  K.setConstant(1, 1, p_.stiffness);
+  C.setConstant(1, 1, c_);
+}
+
+void ImpactOscillator::contact_data(double, const Vector& q, const Vector&,
+                                    std::vector<ContactData>& out) const {
+  static const Vector kWn = Vector::Constant(1, -1.0);  // d(gap - x)/dx
+  static const Vector kWt = Vector::Zero(1);
+  fill_contact(out.at(0), p_.gap - q(0), kWn, kWt, p_.restitution, 0.0);
+}
+
+PowerTerms ImpactOscillator::power(double t, const Vector&, const Vector& u) const {
+  PowerTerms pw;
+  pw.damping = c_ * u(0) * u(0);
+  pw.external = external_force(t) * u(0);
+  return pw;
+}
+
+EnergyState ImpactOscillator::energy(double, const Vector& q) const {
+  EnergyState e;
+  e.stored = 0.5 * p_.stiffness * q(0) * q(0);
+  return e;
+}
+
+// ---------------------------------------------------------------------------------------
+// SlidingBlock: m x'' = F(t) + m g_x + Lambda_T, m y'' = m g_y + Lambda_N, g_N = y.
+
+void SlidingBlock::Parameters::validate() const {
+  require(std::isfinite(mass) && mass > 0.0, "mass", "must be > 0 [t]", mass);
+  require(std::isfinite(friction) && friction >= 0.0, "friction", "must be >= 0", friction);
+  require(std::isfinite(gravity) && gravity >= 0.0, "gravity", "must be >= 0 [m/s^2]", gravity);
+  require_finite("initial_velocity", initial_velocity);
+  require_finite("force", force);
+  require_finite("force_amplitude", force_amplitude);
+  require(std::isfinite(force_frequency) && force_frequency >= 0.0, "force_frequency",
+          "must be >= 0 [Hz]", force_frequency);
+  require(std::isfinite(incline_deg) && std::abs(incline_deg) < 90.0, "incline_deg",
+          "must be in (-90, 90) [deg]", incline_deg);
+}
+
+SlidingBlock::SlidingBlock(const Parameters& p) : p_(p) {
+  p_.validate();
+  const double beta = p_.incline_deg * std::numbers::pi / 180.0;
+  gx_ = -p_.mass * p_.gravity * std::sin(beta);
+  gy_ = -p_.mass * p_.gravity * std::cos(beta);
+  mass_ = Matrix::Identity(2, 2) * p_.mass;
+}
+
+Vector SlidingBlock::initial_position() const { return Vector::Zero(2); }
+Vector SlidingBlock::initial_velocity() const {
+  Vector u = Vector::Zero(2);
+  u(0) = p_.initial_velocity;
+  return u;
+}
+
+double SlidingBlock::driving_force(double t) const {
+  return p_.force + harmonic(p_.force_amplitude, p_.force_frequency, t);
+}
+
+void SlidingBlock::forces(double t, const Vector&, const Vector&, Vector& f) {
+  f(0) = driving_force(t) + gx_;
+  f(1) = gy_;
+}
+
+void SlidingBlock::tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) {
+  K.setZero(2, 2);
+  C.setZero(2, 2);
+}
+
+void SlidingBlock::contact_data(double, const Vector& q, const Vector&,
+                                std::vector<ContactData>& out) const {
+  static const Vector kWn = (Vector(2) << 0.0, 1.0).finished();
+  static const Vector kWt = (Vector(2) << 1.0, 0.0).finished();
+  // Restitution 0: the block rests on the ground; the contact is persistent.
+  fill_contact(out.at(0), q(1), kWn, kWt, 0.0, p_.friction);
+}
+
+PowerTerms SlidingBlock::power(double t, const Vector&, const Vector& u) const {
+  PowerTerms pw;
+  pw.external = driving_force(t) * u(0);
+  return pw;
+}
+
+EnergyState SlidingBlock::energy(double, const Vector& q) const {
+  EnergyState e;
+  e.stored = -(gx_ * q(0) + gy_ * q(1));  // potential of the constant gravity force
+  return e;
+}
+
+}  // namespace nsb::models

@@ -1,0 +1,180 @@
+// Elastic SDOF peaks under the 1940 El Centro N-S record against Chopra, Dynamics of
+// Structures (4th ed.), §6.4 (Figure 6.4.1 and Example 6.4): the reference numbers come
+// from the piecewise-linear excitation (exact recurrence of §5.2), without baseline correction.
+//
+// Two independent routes reach them: (1) the exact piecewise-linear recurrence of Chopra §5.2
+// (Nigam & Jennings 1969) on the record samples; (2) classical RK4 with a fine fixed step on
+// the cubic-spline acceleration of models::GroundMotion. Both must agree with Chopra within 1 %.
+// The same record in PEER NGA processing (RSN6, PGA 0.281 g) does not reproduce them: a
+// documented property of that file (docs/ground-motions.md), checked here as such.
+#include "models/ground_motion.hpp"
+
+#include <doctest/doctest.h>
+
+#include <boost/numeric/odeint.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nsb::models::GroundMotion;
+using nsb::models::GroundMotionOptions;
+using nsb::models::read_at2;
+
+// Chopra quotes peaks to 3 significant figures; the task is agreement within 1 %.
+constexpr double kChopraTolerance = 0.01;
+// The PEER NGA version of the record must miss the T = 1 s peak by more than this.
+constexpr double kDifferentRecordMargin = 0.05;
+// Chopra's numbers are in inches with g = 386 in/s^2; the record is read with g = 9.81 m/s^2
+// and the peaks converted with 1 in = 0.0254 m (g differs from 386 in/s^2 by 0.06 %).
+constexpr double kMetresPerInch = 0.0254;
+// RK4 substeps per record step: RK4's error scales with (omega h)^4 ~ 1e-8 here.
+constexpr int kRk4Substeps = 20;
+// Chopra Table 5.2.1 coefficients reproduce closed-form responses to round-off.
+constexpr double kRecurrenceTolerance = 1e-9;
+
+const fs::path kElCentro = fs::path(NSB_DATA_DIR) / "ground-motions/elCentro_NS_1940_Peknold.AT2";
+const fs::path kPeerElc = fs::path(NSB_DATA_DIR) / "ground-motions/RSN6_IMPVALL.I_I-ELC180.AT2";
+
+struct Case {
+  double period, zeta, peak_in;
+};
+// Chopra §6.4 (Figure 6.4.1 and the spectrum of Figure 6.6.4): peak deformations [in].
+constexpr std::array<Case, 5> kCases{{{0.5, 0.02, 2.67},
+                                      {1.0, 0.02, 5.97},
+                                      {2.0, 0.02, 7.47},
+                                      {2.0, 0.00, 9.91},
+                                      {2.0, 0.05, 5.37}}};
+
+// Chopra §5.2, Table 5.2.1: exact update of u, v over a step dt for
+// u'' + 2 zeta w u' + w^2 u = p(t)/m with p linear within the step (unit mass, k = w^2).
+struct Recurrence {
+  double A, B, C, D, Ap, Bp, Cp, Dp;
+  Recurrence(double w, double zeta, double dt) {
+    const double k = w * w;
+    const double s1 = std::sqrt(1.0 - zeta * zeta);
+    const double wd = w * s1;
+    const double e = std::exp(-zeta * w * dt);
+    const double s = std::sin(wd * dt), c = std::cos(wd * dt);
+    A = e * (zeta / s1 * s + c);
+    B = e * (s / wd);
+    C = (2.0 * zeta / (w * dt) +
+         e * (((1.0 - 2.0 * zeta * zeta) / (wd * dt) - zeta / s1) * s -
+              (1.0 + 2.0 * zeta / (w * dt)) * c)) /
+        k;
+    D = (1.0 - 2.0 * zeta / (w * dt) +
+         e * ((2.0 * zeta * zeta - 1.0) / (wd * dt) * s + 2.0 * zeta / (w * dt) * c)) /
+        k;
+    Ap = -e * (w / s1 * s);
+    Bp = e * (c - zeta / s1 * s);
+    Cp = (-1.0 / dt + e * ((w / s1 + zeta / (dt * s1)) * s + c / dt)) / k;
+    Dp = (1.0 - e * (zeta / s1 * s + c)) / (k * dt);
+  }
+};
+
+// Peak |u| for the ground acceleration samples ag (p = -ag per unit mass), linear between
+// samples, starting at rest.
+double peak_piecewise_linear(const std::vector<double>& ag, double dt, double period,
+                             double zeta) {
+  const double w = 2.0 * M_PI / period;
+  const Recurrence r(w, zeta, dt);
+  double u = 0.0, v = 0.0, peak = 0.0;
+  for (std::size_t i = 0; i + 1 < ag.size(); ++i) {
+    const double p0 = -ag[i], p1 = -ag[i + 1];
+    const double un = r.A * u + r.B * v + r.C * p0 + r.D * p1;
+    const double vn = r.Ap * u + r.Bp * v + r.Cp * p0 + r.Dp * p1;
+    u = un;
+    v = vn;
+    peak = std::max(peak, std::abs(u));
+  }
+  return peak;
+}
+
+// Peak |u| by RK4 with a fixed step dt/substeps on the spline acceleration of gm.
+double peak_rk4_spline(const GroundMotion& gm, double dt, double period, double zeta) {
+  namespace odeint = boost::numeric::odeint;
+  using State = std::array<double, 2>;
+  const double w = 2.0 * M_PI / period;
+  auto rhs = [&](const State& x, State& dxdt, double t) {
+    dxdt[0] = x[1];
+    dxdt[1] = -gm.acceleration(t) - 2.0 * zeta * w * x[1] - w * w * x[0];
+  };
+  odeint::runge_kutta4<State> stepper;
+  State x{0.0, 0.0};
+  const double h = dt / kRk4Substeps;
+  const auto steps = static_cast<long>(std::llround((gm.end_time() - gm.start_time()) / h));
+  double peak = 0.0;
+  for (long i = 0; i < steps; ++i) {
+    stepper.do_step(rhs, x, gm.start_time() + static_cast<double>(i) * h, h);
+    peak = std::max(peak, std::abs(x[0]));
+  }
+  return peak;
+}
+
+}  // namespace
+
+TEST_CASE("chopra: the section 5.2 recurrence is exact for a linearly varying load") {
+  // p(t) = t (per unit mass) from rest: u = (t - sin(w t)/w)/w^2 for zeta = 0, and the
+  // recurrence must reproduce it at every step, whatever the step.
+  const double w = 2.0 * M_PI, dt = 0.37;
+  const Recurrence r(w, 0.0 + 1e-300, dt);
+  double u = 0.0, v = 0.0;
+  for (int i = 0; i < 20; ++i) {
+    const double t0 = i * dt, t1 = t0 + dt;
+    const double un = r.A * u + r.B * v + r.C * t0 + r.D * t1;
+    const double vn = r.Ap * u + r.Bp * v + r.Cp * t0 + r.Dp * t1;
+    u = un;
+    v = vn;
+    const double exact_u = (t1 - std::sin(w * t1) / w) / (w * w);
+    const double exact_v = (1.0 - std::cos(w * t1)) / (w * w);
+    CHECK(u == doctest::Approx(exact_u).epsilon(kRecurrenceTolerance).scale(1.0 / (w * w)));
+    CHECK(v == doctest::Approx(exact_v).epsilon(kRecurrenceTolerance).scale(1.0 / (w * w)));
+  }
+  // Damped: a constant load settles at the static deflection p/k.
+  const Recurrence rd(w, 0.05, 0.01);
+  u = v = 0.0;
+  for (int i = 0; i < 20000; ++i) {
+    const double un = rd.A * u + rd.B * v + (rd.C + rd.D) * 1.0;
+    v = rd.Ap * u + rd.Bp * v + (rd.Cp + rd.Dp) * 1.0;
+    u = un;
+  }
+  CHECK(u == doctest::Approx(1.0 / (w * w)).epsilon(kRecurrenceTolerance));
+}
+
+TEST_CASE("chopra: El Centro 1940 N-S (Peknold) SDOF peaks within 1 %") {
+  const auto rec = read_at2(kElCentro);
+  const double dt = rec.t[1] - rec.t[0];
+  GroundMotionOptions o;
+  o.baseline_correction = false;  // Chopra integrates the record as it is
+  const GroundMotion gm(rec, o);
+  CHECK(gm.pga() / 9.81 == doctest::Approx(0.319).epsilon(0.002));
+  for (const auto& c : kCases) {
+    const double exact = peak_piecewise_linear(rec.a, dt, c.period, c.zeta) / kMetresPerInch;
+    const double spline = peak_rk4_spline(gm, dt, c.period, c.zeta) / kMetresPerInch;
+    std::printf("T = %.1f s, zeta = %.2f: Chopra %.2f in, piecewise-linear %.3f in (%+.2f %%), "
+                "spline + RK4 %.3f in (%+.2f %%)\n",
+                c.period, c.zeta, c.peak_in, exact, 100.0 * (exact / c.peak_in - 1.0), spline,
+                100.0 * (spline / c.peak_in - 1.0));
+    INFO("T = " << c.period << " s, zeta = " << c.zeta);
+    CHECK(exact == doctest::Approx(c.peak_in).epsilon(kChopraTolerance));
+    CHECK(spline == doctest::Approx(c.peak_in).epsilon(kChopraTolerance));
+  }
+}
+
+TEST_CASE("chopra: the PEER NGA version of the record does not give Chopra's peaks") {
+  const auto rec = read_at2(kPeerElc);
+  const double dt = rec.t[1] - rec.t[0];
+  GroundMotionOptions o;
+  o.baseline_correction = false;
+  const GroundMotion gm(rec, o);
+  CHECK(gm.pga() / 9.81 == doctest::Approx(0.281).epsilon(0.005));
+  const double peak_1s = peak_piecewise_linear(rec.a, dt, 1.0, 0.02) / kMetresPerInch;
+  std::printf("RSN6 (PEER NGA): T = 1 s, zeta = 2 %%: %.3f in against Chopra's 5.97 in (%+.1f %%)\n",
+              peak_1s, 100.0 * (peak_1s / 5.97 - 1.0));
+  CHECK(std::abs(peak_1s / 5.97 - 1.0) > kDifferentRecordMargin);
+}
