@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -82,7 +83,9 @@ struct Pounding {
 Pounding first_pounding(const Recorder& rec) {
   Pounding p;
   for (const auto& ev : rec.events()) {
-    if (p.contact == 0 && ev.kind == nsb::integrators::EventKind::kClose && ev.contact > 0) {
+    const bool closing = ev.kind == nsb::integrators::EventKind::kClose ||
+                         ev.kind == nsb::integrators::EventKind::kImpact;
+    if (p.contact == 0 && closing && ev.contact > 0) {
       p.contact = ev.contact;
       p.t_close = ev.t;
     } else if (p.contact != 0 && ev.contact == p.contact &&
@@ -102,6 +105,10 @@ Pounding first_pounding(const Recorder& rec) {
   }
   return p;
 }
+
+// Processor time of this process [s]: the machine is shared, so wall time alone overstates
+// the cost when other jobs run; both are recorded.
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -167,14 +174,15 @@ int main(int argc, char** argv) {
   }
 
   std::ofstream out(csv);
-  out << "method,law,e_set,e_effective,factor,stiffness,wall_time_median,steps,rejected_steps,"
+  out << "method,law,e_set,e_effective,factor,stiffness,wall_time_median,cpu_time_median,steps,rejected_steps,"
          "completed,theta_rms_error,theta_max_error,peak_theta,peak_theta_error,"
          "first_contact,first_close,first_duration,first_penetration,first_peak_force\n";
   const auto row = [&](const std::string& method, double factor, double k,
-                       const std::vector<double>& walls, const RunStats& st,
+                       const std::vector<double>& walls, const std::vector<double>& cpus,
+                       const RunStats& st,
                        const ThetaError& err, double peak, const Pounding& p) {
     out << method << ',' << law_name << ',' << restitution << ',' << e_eff << ',' << factor
-        << ',' << k << ',' << median(walls) << ',' << st.steps << ',' << st.rejected_steps
+        << ',' << k << ',' << median(walls) << ',' << median(cpus) << ',' << st.steps << ',' << st.rejected_steps
         << ',' << (st.completed ? 1 : 0) << ',' << err.rms << ',' << err.max << ',' << peak
         << ',' << err.peak << ',' << p.contact << ',' << p.t_close << ',' << p.duration << ','
         << p.penetration << ',' << p.peak_force << '\n';
@@ -184,7 +192,7 @@ int main(int argc, char** argv) {
   // The nonsmooth reference: Moreau–Jean with eps = e_effective.
   History ref;
   {
-    std::vector<double> walls;
+    std::vector<double> walls, cpus;
     RunStats st;
     Recorder keep(*nsb::models::load_scene(scene, reference_overrides).system, 0.0);
     for (int r = 0; r < repeat; ++r) {
@@ -194,17 +202,19 @@ int main(int argc, char** argv) {
       o.step = reference_step;
       o.theta = sc.solver.theta;
       Recorder rec(*sc.system, sc.output.sample_dt);
+      const double c0 = cpu_seconds();
       st = nsb::integrators::moreau_jean(*sc.system, o, rec);
+      cpus.push_back(cpu_seconds() - c0);
       walls.push_back(st.wall_time);
       if (r == 0) keep = rec;
     }
     ref = history(keep);
     const Pounding p = first_pounding(keep);
-    std::printf("%-14s h = %.1e: wall %.3f s (median of %d), steps %lld, peak |theta| %.4e rad, "
-                "first contact %d at %.4f s\n",
-                "moreau", reference_step, median(walls), repeat,
+    std::printf("%-14s h = %.1e: wall %.3f s, cpu %.3f s (medians of %d), steps %lld, peak "
+                "|theta| %.4e rad, first contact %d at %.4f s\n",
+                "moreau", reference_step, median(walls), median(cpus), repeat,
                 static_cast<long long>(st.steps), peak_abs(ref), p.contact, p.t_close);
-    row("moreau", 0.0, 0.0, walls, st, ThetaError{}, peak_abs(ref), p);
+    row("moreau", 0.0, 0.0, walls, cpus, st, ThetaError{}, peak_abs(ref), p);
     if (!history_dir.empty()) write_history(history_dir + "/moreau.csv", ref);
   }
   // Coarser Moreau–Jean runs, for the work-precision comparison.
@@ -215,12 +225,14 @@ int main(int argc, char** argv) {
     o.step = h;
     o.theta = sc.solver.theta;
     Recorder rec(*sc.system, sc.output.sample_dt);
+    const double c0 = cpu_seconds();
     const RunStats st = nsb::integrators::moreau_jean(*sc.system, o, rec);
+    const double cpu = cpu_seconds() - c0;
     const History hh = history(rec);
     const ThetaError err = theta_error(hh, ref);
-    std::printf("%-14s h = %.1e: wall %.3f s, steps %lld, theta rms error %.3e\n", "moreau", h,
-                st.wall_time, static_cast<long long>(st.steps), err.rms);
-    row("moreau_h" + number(h), 0.0, 0.0, {st.wall_time}, st, err, peak_abs(hh),
+    std::printf("%-14s h = %.1e: wall %.3f s, cpu %.3f s, steps %lld, theta rms error %.3e\n",
+                "moreau", h, st.wall_time, cpu, static_cast<long long>(st.steps), err.rms);
+    row("moreau_h" + number(h), 0.0, 0.0, {st.wall_time}, {cpu}, st, err, peak_abs(hh),
         first_pounding(rec));
   }
   if (event_driven) {
@@ -229,17 +241,21 @@ int main(int argc, char** argv) {
     o.end_time = sc.solver.end_time;
     o.tolerance = sc.solver.tolerance;
     Recorder rec(*sc.system, sc.output.sample_dt);
+    const double c0 = cpu_seconds();
     const RunStats st = nsb::integrators::event_driven(*sc.system, o, rec);
+    const double cpu = cpu_seconds() - c0;
     const History hh = history(rec);
     const ThetaError err = theta_error(hh, ref);
-    std::printf("%-14s: wall %.3f s, steps %lld, completed %d, theta rms error %.3e %s\n",
-                "event_driven", st.wall_time, static_cast<long long>(st.steps),
+    std::printf("%-14s: wall %.3f s, cpu %.3f s, steps %lld, completed %d, theta rms error "
+                "%.3e %s\n",
+                "event_driven", st.wall_time, cpu, static_cast<long long>(st.steps),
                 st.completed ? 1 : 0, err.rms, st.message.c_str());
-    row("event_driven", 0.0, 0.0, {st.wall_time}, st, err, peak_abs(hh), first_pounding(rec));
+    row("event_driven", 0.0, 0.0, {st.wall_time}, {cpu}, st, err, peak_abs(hh),
+        first_pounding(rec));
   }
 
   for (double factor : factors) {
-    std::vector<double> walls;
+    std::vector<double> walls, cpus;
     RunStats st;
     History hh;
     Pounding p;
@@ -253,7 +269,9 @@ int main(int argc, char** argv) {
       o.stick_slip_velocity = sc.solver.stick_slip_velocity;
       o.law = law;
       Recorder rec(*sc.system, 0.0);
+      const double c0 = cpu_seconds();
       st = nsb::integrators::compliance(*sc.system, o, rec);
+      cpus.push_back(cpu_seconds() - c0);
       walls.push_back(st.wall_time);
       if (r == 0) {
         hh = history(rec);
@@ -261,13 +279,13 @@ int main(int argc, char** argv) {
       }
     }
     const ThetaError err = theta_error(hh, ref);
-    std::printf("compliance %6.0e k0: wall %7.3f s, steps %8lld (+%lld rejected), theta rms "
+    std::printf("compliance %6.0e k0: wall %7.3f s, cpu %7.3f s, steps %8lld (+%lld rejected), theta rms "
                 "error %.3e, peak error %+.3e, first pounding: contact %d at %.4f s, "
                 "penetration %.3e m, duration %.4e s%s\n",
-                factor, median(walls), static_cast<long long>(st.steps),
+                factor, median(walls), median(cpus), static_cast<long long>(st.steps),
                 static_cast<long long>(st.rejected_steps), err.rms, err.peak, p.contact,
                 p.t_close, p.penetration, p.duration, st.completed ? "" : " (NOT COMPLETED)");
-    row("compliance", factor, k, walls, st, err, peak_abs(hh), p);
+    row("compliance", factor, k, walls, cpus, st, err, peak_abs(hh), p);
     if (!history_dir.empty()) {
       write_history(history_dir + "/compliance_" + number(factor) + ".csv", hh);
     }

@@ -143,22 +143,25 @@ class Core {
     dxdt.tail(n_) = acc_;
   }
 
-  // J = [0, I; -M^-1 (K + Jq), -M^-1 (C + Ju)], dfdt by a forward difference in t.
-  void jacobian(const State& x, JacobianMatrix& J, double t, State& dfdt) {
-    rhs(x, dfdt, t);  // dfdt holds f(t) until the difference below
-    const double ht = kTimeDifferenceStep * std::max(1.0, std::abs(t));
-    rhs(x, dxdt_plus_, t + ht);
-    dfdt = (dxdt_plus_ - dfdt) / ht;
+  // At the start of a step: dxdt = f(t, x) and the Jacobian
+  // J = [0, I; -M^-1 (K + Jq), -M^-1 (C + Ju)], with dfdt by a forward difference in t. One
+  // evaluation of the system serves both f and the contact derivatives.
+  void rhs_and_jacobian(const State& x, double t, State& dxdt, JacobianMatrix& J,
+                        State& dfdt) {
     evaluate(t, x, true);
+    acc_.noalias() = minv_ * f_;
+    dxdt.head(n_) = u_;
+    dxdt.tail(n_) = acc_;
     sys_.tangent(t, q_, u_, K_, C_);
     K_ += Jq_;
     C_ += Ju_;
-    Jq_.noalias() = -minv_ * K_;
-    Ju_.noalias() = -minv_ * C_;
     J.topLeftCorner(n_, n_).setZero();
     J.topRightCorner(n_, n_).setIdentity();
-    J.bottomLeftCorner(n_, n_) = Jq_;
-    J.bottomRightCorner(n_, n_) = Ju_;
+    J.bottomLeftCorner(n_, n_).noalias() = -minv_ * K_;
+    J.bottomRightCorner(n_, n_).noalias() = -minv_ * C_;
+    const double ht = kTimeDifferenceStep * std::max(1.0, std::abs(t));
+    rhs(x, dfdt, t + ht);
+    dfdt = (dfdt - dxdt) / ht;
   }
 
   // Gaps at the cubic Hermite interpolant of q (and the linear one of u) at t0 + s h.
@@ -246,8 +249,7 @@ class Rodas {
 
   void do_step(const State& x, double t, State& xout, double dt) {
     const auto& c = coef_;
-    core_.rhs(x, dxdt_, t);
-    core_.jacobian(x, jac_, t, dfdt_);
+    core_.rhs_and_jacobian(x, t, dxdt_, jac_, dfdt_);
     jac_ *= -1.0;
     jac_.diagonal().array() += 1.0 / (c.gamma * dt);
     lu_.compute(jac_);
@@ -592,6 +594,7 @@ RunStats compliance(System& system, const ComplianceOptions& options, Recorder& 
     ++stats.steps;
     core.evaluate(t, x, false);
     system.commit();
+    bool closed_now = false;
     for (int i = 0; i < m; ++i) {
       const auto ii = static_cast<std::size_t>(i);
       const ContactData& c = core.contacts_[ii];
@@ -602,13 +605,14 @@ RunStats compliance(System& system, const ComplianceOptions& options, Recorder& 
       if (c.gap_normal < 0.0 || (pending[ii] && (landed || close_at_start))) {
         close_contact(i, t);
         pending[ii] = 0;
+        closed_now = true;
       }
     }
     if (landed) {
       target = std::numeric_limits<double>::infinity();
       std::fill(pending.begin(), pending.end(), 0);
     }
-    core.evaluate(t, x, false);  // forces with the new contact states, for the record
+    if (closed_now) core.evaluate(t, x, false);  // forces with the new v_minus, for the record
 
     const Powers p_new = powers();
     energy.external += 0.5 * h * (p_old.external + p_new.external);

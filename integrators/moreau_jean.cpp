@@ -20,6 +20,9 @@ namespace {
 constexpr double kTimeSlack = 1e-9;
 // Largest number of steps a run may take: beyond it the step is certainly a unit mistake.
 constexpr double kMaxSteps = 1e10;
+// Unsolved contact problems reported one by one (events and RunStats::warnings); more are
+// only counted, so a persistently failing solver cannot flood the outputs.
+constexpr std::int64_t kMaxWarnings = 100;
 // Number of lcp::Status values (kNotRun .. kTooLarge), for allocation-free counting.
 constexpr int kStatusCount = static_cast<int>(lcp::Status::kTooLarge) + 1;
 
@@ -81,6 +84,7 @@ class MoreauJean {
 
   RunStats stats_;
   std::array<std::int64_t, kStatusCount> status_count_{};
+  std::int64_t unsolved_ = 0;  // contact problems that ended without kSolved
   double last_sample_t_ = -1e300;
 };
 
@@ -176,7 +180,7 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   stats_.method = "moreau";
 }
 
-// A = M + h theta C + h^2 theta^2 K (Acary & Brogliato 2008, eq. 10.11), and its inverse,
+// A = M + h theta C + h^2 theta^2 K (Acary & Brogliato 2008, ch. 10), and its inverse,
 // kept explicitly: the systems are small, and A^-1 W then costs one product per step.
 void MoreauJean::factorize(double h) {
   const double ht = h * theta_;
@@ -214,6 +218,7 @@ RunStats MoreauJean::run() {
       options_.progress(t_);
     }
   }
+  if (options_.progress) options_.progress(t_);
   if (stats_.completed) {
     stats_.message = "reached end_time";
   } else if (last_sample_t_ != t_) {
@@ -253,7 +258,7 @@ bool MoreauJean::step(double h, double t1) {
   u_free_.noalias() += A_inv_ * rhs_;
 
   // Index set: contacts closed or closing within the step, g_N + (h/2) gdot_N <= 0, with
-  // g_N and gdot_N at t_k (Acary & Brogliato 2008, §10.2.1; Siconos uses the same rule).
+  // g_N and gdot_N at t_k (Acary & Brogliato 2008, ch. 10; Siconos uses the same rule).
   active_.clear();
   active_friction_ = false;
   for (int i = 0; i < m_; ++i) {
@@ -284,7 +289,7 @@ bool MoreauJean::step(double h, double t1) {
   }
 
   // Work of the contact impulses on the system over the step: Lambda . W^T (u_k + u_k+1)/2,
-  // the exact change of kinetic energy they cause (Acary & Brogliato 2008, §10.4).
+  // the exact change of kinetic energy they cause (Acary & Brogliato 2008, ch. 10).
   for (int i : active_) {
     const ContactData& c = contacts_[static_cast<std::size_t>(i)];
     const double ln = lambda_n_[i];
@@ -372,8 +377,11 @@ void MoreauJean::solve_contacts(double h) {
                                std::string(lcp::to_string(r.status)) + ", residual " +
                                std::to_string(r.residual) + ")" +
                                (usable ? "" : "; impulses set to zero");
-      recorder_.event(t_ + h, 0, EventKind::kWarning, note);
-      if (stats_.warnings.size() < 100) stats_.warnings.push_back(note);
+      // Reported in full up to kMaxWarnings times; afterwards only counted in lcp_status.
+      if (++unsolved_ <= kMaxWarnings) {
+        recorder_.event(t_ + h, 0, EventKind::kWarning, note);
+        stats_.warnings.push_back(note);
+      }
     }
   }
   u_new_.noalias() += a_inv_w * impulse;

@@ -2,7 +2,7 @@
 // Numerical Methods for Nonsmooth Dynamical Systems, ch. 10).
 //
 // On a step [t_k, t_k+1] of size h, with f_k = f(t_k, q_k, u_k) and the tangent K, C of the
-// committed state, the smooth force is linearised about (q_k, u_k) (Acary & Brogliato §10.1):
+// committed state, the smooth force is linearised about (q_k, u_k) (Acary & Brogliato, ch. 10):
 //
 //   A (u_k+1 - u_k) = h [(1 - theta) f_k + theta f(t_k+1, q_k, u_k)] - h^2 theta K u_k
 //                     + W_N Lambda_N + W_T Lambda_T,          A = M + h theta C + h^2 theta^2 K

@@ -43,22 +43,22 @@ void fischer_burmeister(const Problem& p, const Vector& z, Vector& phi, Matrix& 
     }
   }
   const Vector Mc = degenerate ? Vector(p.M * c) : Vector::Zero(n);
+  Vector da(n);
+  Vector db(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    double da = 0.0;
-    double db = 0.0;
     const double r = std::hypot(z(i), w(i));
     if (r > 0.0) {
-      da = z(i) / r - 1.0;
-      db = w(i) / r - 1.0;
+      da(i) = z(i) / r - 1.0;
+      db(i) = w(i) / r - 1.0;
     } else {
-      // (0, 0): the limit along z + t c. If (M c)_i = c_i = 1 gives s = sqrt(1 + (Mc)_i^2).
+      // (0, 0): the limit along z + t c, with c_i = 1: s = sqrt(1 + (M c)_i^2).
       const double s = std::hypot(c(i), Mc(i));
-      da = c(i) / s - 1.0;
-      db = Mc(i) / s - 1.0;
+      da(i) = c(i) / s - 1.0;
+      db(i) = Mc(i) / s - 1.0;
     }
-    H.row(i) = db * p.M.row(i);
-    H(i, i) += da;
   }
+  H.noalias() = db.asDiagonal() * p.M;
+  H.diagonal() += da;
 }
 
 Result newton_fb(const Problem& p, const NewtonFbOptions& options, const Vector& warm_start) {
@@ -81,8 +81,11 @@ Result newton_fb(const Problem& p, const NewtonFbOptions& options, const Vector&
   Vector trial(n);
   Vector phi_trial(n);
   Eigen::PartialPivLU<Matrix> lu(n);
+  Vector w_trial(n);
   const auto merit = [&](const Vector& z, Vector& out) {
-    const Vector w = p.M * z + p.q;
+    Vector& w = w_trial;
+    w.noalias() = p.M * z;
+    w += p.q;
     for (Eigen::Index i = 0; i < n; ++i) out(i) = std::hypot(z(i), w(i)) - z(i) - w(i);
     return 0.5 * out.squaredNorm();
   };

@@ -10,7 +10,9 @@
 namespace nsb::lcp {
 
 FormatError::FormatError(const std::string& f, int l, const std::string& what)
-    : std::invalid_argument(f + ":" + std::to_string(l) + ": " + what), file(f), line(l) {}
+    : std::invalid_argument(l > 0 ? f + ":" + std::to_string(l) + ": " + what : f + ": " + what),
+      file(f),
+      line(l) {}
 
 namespace {
 

@@ -19,7 +19,8 @@
 
 namespace nsb::lcp {
 
-// A malformed file: what() is "<file>:<line>: <what was found>; expected <what is allowed>".
+// A malformed file: what() is "<file>:<line>: <what was found>; expected <what is allowed>"
+// ("<file>: ..." with line = 0 when the file cannot be opened).
 struct FormatError : std::invalid_argument {
   FormatError(const std::string& file, int line, const std::string& what);
   std::string file;

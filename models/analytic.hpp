@@ -119,7 +119,7 @@ State1 friction_oscillator_state(const FrictionOscillator& p, double t);
 
 // ---------------------------------------------------------------------------------------
 // Frictional impact of a free rigid planar deck (3 DOF: x, y, theta; M = diag(m, m, I))
-// against its rigid abutments, with the deck geometry of the project (CONTRACTS.md):
+// against its rigid abutments, with the deck geometry of models/rigid_deck.hpp:
 // parallelogram of length L along the axis and width W, skew alpha; corners
 // (+-L/2 +- (W/2) tan(alpha), +-W/2), numbered 1 (left, +W/2), 2 (left, -W/2),
 // 3 (right, +W/2), 4 (right, -W/2). At the right abutment n = (-cos a, sin a), at the left

@@ -291,13 +291,17 @@ struct GroundMotion::Data {
     const double T = t1 - t0;
     const double tau = (t_rel - t0) / T;
     p = dp = ddp = 0.0;
+    double pw = 1.0;  // tau^(n - 2)
     for (int k = 0; k < kPowers; ++k) {
       const int n = k + kFirstPower;
       const double c = baseline[k];
-      p += c * std::pow(tau, n);
-      dp += c * n * std::pow(tau, n - 1) / T;
-      ddp += c * n * (n - 1) * std::pow(tau, n - 2) / (T * T);
+      ddp += c * n * (n - 1) * pw;
+      dp += c * n * pw * tau;
+      p += c * pw * tau * tau;
+      pw *= tau;
     }
+    dp /= T;
+    ddp /= T * T;
   }
   std::size_t interval(double t_rel) const {
     const auto it = std::upper_bound(t.begin(), t.end(), t_rel);

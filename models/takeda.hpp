@@ -4,8 +4,9 @@
 // Backbone: trilinear (cracking, yield, post-yield; Takeda, Sozen & Nielsen 1970) or, when
 // f_crack = 0, bilinear (the modified Takeda model of Otani 1974 and Emori & Schnobrich 1978).
 // Unloading stiffness after yield k_u = k_y (D_y / D_max)^alpha; reloading aims at the
-// previous extreme point of the other side, or its yield point while that side has not
-// yielded. The full rule set, its sources and where it departs from them: docs/takeda.md.
+// previous extreme (peak) point of the other side: its yield point while that side has not
+// yielded (bilinear), or its furthest cracked-branch point (trilinear, as Takeda et al.).
+// The full rule set, its sources and where it departs from them: docs/takeda.md.
 //
 // Units: kN, m; energies in kJ = kN m.
 #pragma once

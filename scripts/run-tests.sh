@@ -14,6 +14,6 @@ ctest --test-dir build --output-on-failure -j "$jobs"
 if [[ "${NSB_SKIP_SANITIZERS:-0}" != "1" ]]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DNSB_SANITIZE=ON -DNSB_WARNINGS_AS_ERRORS=ON \
     -DNSB_BUILD_BENCHMARKS=OFF >/dev/null
-  cmake --build build-asan -j "$jobs"
+  cmake --build build-asan -j "$jobs" --target nsb_unit_tests
   ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
 fi

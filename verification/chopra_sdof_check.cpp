@@ -1,6 +1,7 @@
 // Elastic SDOF peaks under the 1940 El Centro N-S record against Chopra, Dynamics of
-// Structures (4th ed.), §6.4 (Figure 6.4.1 and Example 6.4): the reference numbers come
-// from the piecewise-linear excitation (exact recurrence of §5.2), without baseline correction.
+// Structures, §6.4 (deformation response of SDF systems to the El Centro ground motion): the
+// reference numbers come from the piecewise-linear excitation (the exact recurrence of §5.2),
+// without baseline correction.
 //
 // Two independent routes reach them: (1) the exact piecewise-linear recurrence of Chopra §5.2
 // (Nigam & Jennings 1969) on the record samples; (2) classical RK4 with a fine fixed step on
@@ -15,6 +16,7 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 #include <filesystem>
 #include <vector>
@@ -28,7 +30,7 @@ using nsb::models::read_at2;
 
 // Chopra quotes peaks to 3 significant figures; the task is agreement within 1 %.
 constexpr double kChopraTolerance = 0.01;
-// The PEER NGA version of the record must miss the T = 1 s peak by more than this.
+// A peak of the PEER NGA version counts as different from Chopra's beyond this deviation.
 constexpr double kDifferentRecordMargin = 0.05;
 // Chopra's numbers are in inches with g = 386 in/s^2; the record is read with g = 9.81 m/s^2
 // and the peaks converted with 1 in = 0.0254 m (g differs from 386 in/s^2 by 0.06 %).
@@ -44,7 +46,7 @@ const fs::path kPeerElc = fs::path(NSB_DATA_DIR) / "ground-motions/RSN6_IMPVALL.
 struct Case {
   double period, zeta, peak_in;
 };
-// Chopra §6.4 (Figure 6.4.1 and the spectrum of Figure 6.6.4): peak deformations [in].
+// Chopra §6.4: peak deformations [in] for (T_n, zeta).
 constexpr std::array<Case, 5> kCases{{{0.5, 0.02, 2.67},
                                       {1.0, 0.02, 5.97},
                                       {2.0, 0.02, 7.47},
@@ -81,7 +83,7 @@ struct Recurrence {
 // samples, starting at rest.
 double peak_piecewise_linear(const std::vector<double>& ag, double dt, double period,
                              double zeta) {
-  const double w = 2.0 * M_PI / period;
+  const double w = 2.0 * std::numbers::pi / period;
   const Recurrence r(w, zeta, dt);
   double u = 0.0, v = 0.0, peak = 0.0;
   for (std::size_t i = 0; i + 1 < ag.size(); ++i) {
@@ -95,11 +97,13 @@ double peak_piecewise_linear(const std::vector<double>& ag, double dt, double pe
   return peak;
 }
 
-// Peak |u| by RK4 with a fixed step dt/substeps on the spline acceleration of gm.
+// Peak |u| by RK4 with a fixed step dt/substeps on the spline acceleration of gm. Like
+// Chopra's, the peak is taken over the record's sample times: the continuous peak between
+// samples is up to 0.7 % higher at T = 0.5 s, which is not what the reference numbers measure.
 double peak_rk4_spline(const GroundMotion& gm, double dt, double period, double zeta) {
   namespace odeint = boost::numeric::odeint;
   using State = std::array<double, 2>;
-  const double w = 2.0 * M_PI / period;
+  const double w = 2.0 * std::numbers::pi / period;
   auto rhs = [&](const State& x, State& dxdt, double t) {
     dxdt[0] = x[1];
     dxdt[1] = -gm.acceleration(t) - 2.0 * zeta * w * x[1] - w * w * x[0];
@@ -111,7 +115,7 @@ double peak_rk4_spline(const GroundMotion& gm, double dt, double period, double 
   double peak = 0.0;
   for (long i = 0; i < steps; ++i) {
     stepper.do_step(rhs, x, gm.start_time() + static_cast<double>(i) * h, h);
-    peak = std::max(peak, std::abs(x[0]));
+    if ((i + 1) % kRk4Substeps == 0) peak = std::max(peak, std::abs(x[0]));
   }
   return peak;
 }
@@ -121,8 +125,8 @@ double peak_rk4_spline(const GroundMotion& gm, double dt, double period, double 
 TEST_CASE("chopra: the section 5.2 recurrence is exact for a linearly varying load") {
   // p(t) = t (per unit mass) from rest: u = (t - sin(w t)/w)/w^2 for zeta = 0, and the
   // recurrence must reproduce it at every step, whatever the step.
-  const double w = 2.0 * M_PI, dt = 0.37;
-  const Recurrence r(w, 0.0 + 1e-300, dt);
+  const double w = 2.0 * std::numbers::pi, dt = 0.37;
+  const Recurrence r(w, 0.0, dt);
   double u = 0.0, v = 0.0;
   for (int i = 0; i < 20; ++i) {
     const double t0 = i * dt, t1 = t0 + dt;
@@ -167,14 +171,27 @@ TEST_CASE("chopra: El Centro 1940 N-S (Peknold) SDOF peaks within 1 %") {
 }
 
 TEST_CASE("chopra: the PEER NGA version of the record does not give Chopra's peaks") {
+  // RSN6 is the same accelerogram after PEER NGA processing (re-digitized, filtered, 0.01 s):
+  // its PGA is 0.281 g instead of 0.319 g and its spectrum differs, so Chopra's numbers are
+  // not a check of it. Measured (piecewise-linear recurrence): T = 0.5 s -29 %, T = 1 s -1.4 %,
+  // T = 2 s +25 % (2 %), +58 % (0 %), +44 % (5 %). The T = 1 s ordinate happens to agree;
+  // the other four miss by more than 20 %.
   const auto rec = read_at2(kPeerElc);
   const double dt = rec.t[1] - rec.t[0];
   GroundMotionOptions o;
   o.baseline_correction = false;
   const GroundMotion gm(rec, o);
   CHECK(gm.pga() / 9.81 == doctest::Approx(0.281).epsilon(0.005));
-  const double peak_1s = peak_piecewise_linear(rec.a, dt, 1.0, 0.02) / kMetresPerInch;
-  std::printf("RSN6 (PEER NGA): T = 1 s, zeta = 2 %%: %.3f in against Chopra's 5.97 in (%+.1f %%)\n",
-              peak_1s, 100.0 * (peak_1s / 5.97 - 1.0));
-  CHECK(std::abs(peak_1s / 5.97 - 1.0) > kDifferentRecordMargin);
+  int missed = 0;
+  double worst = 0.0;
+  for (const auto& c : kCases) {
+    const double peak = peak_piecewise_linear(rec.a, dt, c.period, c.zeta) / kMetresPerInch;
+    const double dev = peak / c.peak_in - 1.0;
+    std::printf("RSN6 (PEER NGA): T = %.1f s, zeta = %.2f: %.3f in against Chopra's %.2f in (%+.1f %%)\n",
+                c.period, c.zeta, peak, c.peak_in, 100.0 * dev);
+    if (std::abs(dev) > kDifferentRecordMargin) ++missed;
+    worst = std::max(worst, std::abs(dev));
+  }
+  CHECK(missed >= 4);
+  CHECK(worst > 4.0 * kDifferentRecordMargin);
 }

@@ -2,12 +2,15 @@
 // shared simple systems and the free rigid deck, and its stress cases.
 #include "integrators/event_driven.hpp"
 #include "models/analytic.hpp"
+#include "models/bridge.hpp"
+#include "models/ground_motion.hpp"
 #include "models/rigid_deck.hpp"
 #include "models/simple_systems.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -282,5 +285,39 @@ TEST_CASE("stress cases end with a result, no NaN, no hang") {
         CHECK_MESSAGE(g > -1e-6, c.name, " contact ", i);
       }
     }
+  }
+}
+
+TEST_CASE("stress: a deck pressed against a seat that moves away") {
+  // The benchmark bridge with its deck touching the right seat (x = gap_right). The seat
+  // acceleration is first one sine cycle -A1 sin(2 pi t), A1 = 0.1 m/s^2: the seat moves
+  // towards the deck by A1 / (2 pi) = 0.016 m for good (less than the two gaps, so the deck
+  // is never squeezed against the left abutment) and the deck comes to rest against it,
+  // held by the bents (closed contacts 3 and 4, rheonomic terms of the moving seat). From
+  // t = 1.5 s a cycle A2 sin(2 pi t), A2 = 3 m/s^2, pulls the seat away faster than the
+  // bents (about 1 m/s^2 on the deck) let the deck follow, so the contacts must open.
+  auto p = nm::Bridge::Parameters::benchmark();
+  p.initial_position = {p.deck.gap_right, 0.0, 0.0};
+  nm::Record pulse;
+  for (int i = 0; i <= 400; ++i) {
+    const double t = 0.01 * i;
+    pulse.t.push_back(t);
+    pulse.a.push_back(t < 1.0 ? -0.1 * std::sin(2.0 * M_PI * t)
+                               : (t >= 1.5 && t < 2.5 ? 3.0 * std::sin(2.0 * M_PI * (t - 1.5)) : 0.0));
+  }
+  pulse.source = "one-cycle sine pulse";
+  nm::GroundMotionOptions go;
+  go.baseline_correction = false;
+  nm::Bridge::Excitation ex;
+  ex.seats[1].longitudinal = std::make_shared<const nm::GroundMotion>(pulse, go);
+  nm::Bridge bridge(p, ex);
+  ni::Recorder rec(bridge, 0.001);
+  const auto stats = ni::event_driven(bridge, options(3.0, 1e-8), rec);
+  CHECK(stats.completed);
+  CHECK(all_finite(rec));
+  CHECK(!events_of(rec, ni::EventKind::kClose, 3).empty());
+  CHECK(!events_of(rec, ni::EventKind::kOpen, 3).empty());
+  for (int i = 1; i <= 4; ++i) {
+    for (double g : rec.series("gN" + std::to_string(i))) CHECK(g > -1e-6);
   }
 }

@@ -36,6 +36,7 @@ class Line final : public nsb::integrators::System {
   double restitution = 0.5;
   double friction = 0.0;
   double gap0 = 0.0;     // two bodies: g_N = x_1 - x_0 - gap0
+  double wall_velocity = 0.0;  // one body: the wall moves, g_N = x_0 - V t (rheonomic)
   bool block = false;    // 2 DOF (x, y): floor contact g_N = y, slip along x, gravity on y
   double gravity = 9.81;
   int commits = 0;
@@ -64,7 +65,7 @@ class Line final : public nsb::integrators::System {
   }
   void commit() override { ++commits; }
   int contacts() const override { return 1; }
-  void contact_data(double, const Vector& q, const Vector&,
+  void contact_data(double t, const Vector& q, const Vector&,
                     std::vector<ContactData>& out) const override {
     ContactData& c = out[0];
     c.w_normal.setZero();
@@ -74,8 +75,9 @@ class Line final : public nsb::integrators::System {
       c.w_normal[1] = 1.0;
       c.w_tangent[0] = 1.0;
     } else if (dofs() == 1) {
-      c.gap_normal = q[0];
+      c.gap_normal = q[0] - wall_velocity * t;
       c.w_normal[0] = 1.0;
+      c.what_normal = -wall_velocity;
     } else {
       c.gap_normal = q[1] - q[0] - gap0;
       c.w_normal[0] = -1.0;
@@ -404,4 +406,33 @@ TEST_CASE("compliance: a block sliding on a compliant floor stops where Coulomb 
   // Friction did the work that removed the sliding kinetic energy.
   CHECK(-st.energy.friction == doctest::Approx(0.5).epsilon(1e-3));
   CHECK(st.energy.error < 1e-4);
+}
+
+TEST_CASE("compliance: a moving wall (rheonomic contact) strikes a body at rest") {
+  // The wall x_w = V t reaches the body (at rest at x = 0.01) at t = 0.01 / V. In the wall's
+  // frame the body approaches at V and leaves at e V, so afterwards u = V (1 + e). The
+  // exact law makes e_effective = e_set. The moving wall's work is `ground`.
+  const double V = 1.0, e = 0.5, m = 2.0;
+  Line s({m});
+  s.wall_velocity = V;
+  s.q0_[0] = 0.01;
+  s.restitution = e;
+  ComplianceOptions o;
+  o.law = DampingLaw::kHuntCrossleyExact;
+  o.stiffness = 1e7;
+  o.tolerance = kTightTolerance;
+  o.max_step = 1e-3;
+  o.end_time = 0.2;
+  Recorder rec(s, 0.0);
+  const RunStats st = compliance(s, o, rec);
+  REQUIRE(st.completed);
+  REQUIRE(rec.count(EventKind::kClose) == 1);
+  CHECK(rec.events().front().t == doctest::Approx(0.01 / V).epsilon(1e-9));
+  const double u_after = V * (1 + e);
+  CHECK(rec.series("v0").back() == doctest::Approx(u_after).epsilon(kRestitutionTolerance));
+  // Energy: kinetic gain = work of the wall - dashpot loss; the balance closes.
+  CHECK(st.energy.kinetic == doctest::Approx(0.5 * m * u_after * u_after).epsilon(1e-5));
+  CHECK(st.energy.ground > st.energy.kinetic);
+  CHECK(st.energy.impacts < 0.0);
+  CHECK(st.energy.error < 1e-5);
 }

@@ -9,10 +9,25 @@
 
 #include <doctest/doctest.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <new>
 #include <random>
 #include <stdexcept>
+
+// Counts heap allocations, to check that the time-stepping path allocates nothing.
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 using namespace nsb::lcp;
 
@@ -318,4 +333,25 @@ TEST_CASE("validation names the field; read_eq6 checks the size") {
   const FrictionalResult r = solve_frictional(none, Solver::kLemke);
   CHECK(r.ok());
   CHECK(r.lambda_n.size() == 0);
+}
+
+TEST_CASE("FrictionalSolver: no heap allocation per call once sized (Lemke and PGS)") {
+  std::mt19937 rng(71);
+  std::vector<FrictionalProblem> problems;
+  for (int k = 0; k < 50; ++k) problems.push_back(testing::rigid_body_impact(rng, 3, 0.0, 0.5).problem);
+  FrictionalSolver solver(4);
+  FrictionalResult result;
+  solver.solve(problems[0], Solver::kLemke, {}, true, result);  // sizes the result vectors
+  for (Solver s : {Solver::kLemke, Solver::kPgs}) {
+    const long before = g_allocations.load();
+    int solved = 0;
+    for (const auto& fp : problems) {
+      solver.solve(fp, s, {}, true, result);
+      solved += result.ok();
+    }
+    const long allocations = g_allocations.load() - before;
+    INFO("solver " << to_string(s));
+    CHECK(allocations == 0);
+    CHECK(solved == 50);
+  }
 }

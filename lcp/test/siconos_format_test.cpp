@@ -85,7 +85,7 @@ TEST_CASE("malformed files name the line and what was expected") {
     CHECK(e.line == 8);
   }
   CHECK_THROWS_WITH_AS(read_siconos_lcp("/nonexistent/x.dat"),
-                       doctest::Contains("/nonexistent/x.dat:0: cannot open"), FormatError);
+                       doctest::Contains("/nonexistent/x.dat: cannot open"), FormatError);
   // n = 0 is a valid, empty problem.
   CHECK(parse("0\n0\n0 0 0 0\n").size() == 0);
 }

@@ -76,6 +76,8 @@ TEST_CASE("bouncing ball with initial velocity and the limiting restitutions") {
   CHECK(an::ball_accumulation_time(dead) == doctest::Approx(std::sqrt(2.0 / 9.81)));
   CHECK(an::ball_impacts(dead, 5).size() == 1);
   CHECK_THROWS_AS(an::ball_impacts(dead, -1), std::invalid_argument);
+  CHECK_THROWS_AS(an::ball_first_impact_time({.velocity = -1.0, .gravity = 0.0}),
+                  std::invalid_argument);
   CHECK_THROWS_AS(an::ball_state(dead, -1.0), std::invalid_argument);
 }
 
@@ -352,6 +354,23 @@ TEST_CASE("deck impact: one corner with friction, stick and slide by hand") {
     CHECK(r.contact.lambda_n(0) == doctest::Approx(60.0 / 33.0).epsilon(kSolve));
     CHECK(r.contact.lambda_t(0) == doctest::Approx(6.0 / 33.0).epsilon(kSolve));
     CHECK(r.contact.gdot_t_plus(0) == doctest::Approx(-9.0 / 33.0).epsilon(kSolve));
+    check_impact_conditions(r.problem, r.contact);
+  }
+  SUBCASE("slide the other way: corner 4, the mirror image") {
+    // Corner 4 at r = (2, -0.5): W_N = (-1, 0, -0.5), W_T = (0, -1, -2); G_NT = +1/3.
+    // The sticking impulse ratio is -24/132; with mu = 0.1 it slides with LT = -mu LN:
+    // LN = 1/(7/12 - 1/30) = 60/33, gdot_T+ = (1/3 - 11/60)(60/33) = +9/33 > 0.
+    const auto r = an::deck_impact(g, {4}, Eigen::Vector3d(1.0, 0.0, 0.0), 0.0, 0.1);
+    REQUIRE(r.solutions == 1);
+    CHECK(r.contact.states[0] == an::ContactState::kSlidePositive);
+    CHECK(r.contact.lambda_n(0) == doctest::Approx(60.0 / 33.0).epsilon(kSolve));
+    CHECK(r.contact.lambda_t(0) == doctest::Approx(-6.0 / 33.0).epsilon(kSolve));
+    CHECK(r.contact.gdot_t_plus(0) == doctest::Approx(9.0 / 33.0).epsilon(kSolve));
+    // Mirror symmetry y -> -y: vy and omega change sign, vx is the same as for corner 3.
+    const auto r3 = an::deck_impact(g, {3}, Eigen::Vector3d(1.0, 0.0, 0.0), 0.0, 0.1);
+    CHECK(r.velocity_after(0) == doctest::Approx(r3.velocity_after(0)).epsilon(kSolve));
+    CHECK(r.velocity_after(1) == doctest::Approx(-r3.velocity_after(1)).epsilon(kSolve));
+    CHECK(r.velocity_after(2) == doctest::Approx(-r3.velocity_after(2)).epsilon(kSolve));
     check_impact_conditions(r.problem, r.contact);
   }
 }

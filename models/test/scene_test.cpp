@@ -322,3 +322,47 @@ stiffness_transverse = 3000.0
   // No excitation: the default end time stays.
   CHECK(scene.solver.end_time == 1.0);
 }
+
+TEST_CASE("per-support delays and a prescribed seat rotation") {
+  // Angular acceleration 1e-3 rad/s^2 for 1 s, then zero: a two-column record in rad/s^2.
+  scratch().write("rot.txt", "0.0 0.001\n0.5 0.001\n1.0 0.001\n1.01 0.0\n2.0 0.0\n");
+  const std::string text = R"([model]
+kind = "bridge"
+[[model.bents]]
+position = -8.34
+height = 1.83
+delay = 0.2
+[[model.bents]]
+position = 8.34
+height = 1.52
+[model.seats]
+delay_right = 0.3
+transverse = true
+rotation_record_right = "rot.txt"
+[model.excitation]
+transverse_record = "ground-motions/RSN1084_NORTHR_SCS142.AT2"
+longitudinal_record = "ground-motions/RSN1084_NORTHR_SCS052.AT2"
+target_pga = 0.2
+time_scale = 0.5
+)";
+  // The scene sits in the scratch folder: the records are found through ./data/ only if the
+  // working directory is the project root, so give the absolute data path instead.
+  std::string t = text;
+  const std::string data = std::string(NSB_DATA_DIR) + "/";
+  for (const char* rec : {"ground-motions/RSN1084_NORTHR_SCS142.AT2", "ground-motions/RSN1084_NORTHR_SCS052.AT2"}) {
+    t.replace(t.find(rec), std::string(rec).size(), data + rec);
+  }
+  const fs::path p = scratch().write("delays.toml", t);
+  const auto scene = load_scene(p);
+  const auto& b = dynamic_cast<const nsb::models::Bridge&>(*scene.system);
+  const auto& e = b.excitation();
+  // Delayed supports start later by their delay; undelayed ones share the same motion.
+  CHECK(e.bents[0].transverse->start_time() == doctest::Approx(e.bents[1].transverse->start_time() + 0.2));
+  CHECK(e.seats[0].longitudinal == e.bents[1].longitudinal);
+  CHECK(e.seats[1].longitudinal->start_time() == doctest::Approx(e.seats[0].longitudinal->start_time() + 0.3));
+  CHECK(e.seats[1].transverse != nullptr);
+  REQUIRE(e.seats[1].rotation != nullptr);
+  CHECK(e.seats[0].rotation == nullptr);
+  // End time: the longest support motion, including its delay.
+  CHECK(scene.solver.end_time == doctest::Approx(e.bents[0].transverse->end_time()));
+}

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -409,5 +410,39 @@ TEST_CASE("takeda: tangent agrees with central finite differences away from kink
       }
     }
     CHECK(checked > 400);  // most random points are away from kinks
+  }
+}
+
+TEST_CASE("takeda: rule 7 after very large excursions (hand values)") {
+  // Bilinear f_y = 100 kN, d_y = 0.01 m, k_p = 500 kN/m, alpha = 0.4; cycles of +-40 d_y.
+  // Peaks: F_p = 100 + 500 * 0.39 = 295 kN. k_u = 1e4 * 40^-0.4 = 2286.5 kN/m. Unloading from
+  // (-0.4, -295) reaches zero force at D_0 = -0.4 + 295/2286.5 = -0.27098 m. The line to the
+  // positive peak would have slope 295/0.67098 = 439.7 kN/m < k_p = 500: rule 7 aims at the
+  // yield point (0.01, 100) instead, slope 100/0.28098 = 355.9 kN/m, so F(0) = 96.44 kN; from
+  // the yield point on, the post-yield backbone up to the old peak and beyond.
+  Spring s(bilinear_example());
+  for (double d : {0.4, -0.4}) {
+    s.set_trial(d);
+    s.commit();
+  }
+  const double ku = 1e4 * std::pow(40.0, -0.4);
+  const double d0 = -0.4 + 295.0 / ku;
+  CHECK(d0 == doctest::Approx(-0.27098).epsilon(kQuotedDigitsTolerance));
+  const double f0 = 100.0 / (0.01 - d0) * (0.0 - d0);
+  CHECK(f0 == doctest::Approx(96.44).epsilon(kQuotedDigitsTolerance));
+  CHECK(s.set_trial(0.0) == doctest::Approx(f0).epsilon(kHandTolerance));
+  CHECK(s.set_trial(0.2) == doctest::Approx(100.0 + 500.0 * 0.19).epsilon(kHandTolerance));
+  CHECK(s.set_trial(0.5) == doctest::Approx(100.0 + 500.0 * 0.49).epsilon(kHandTolerance));
+  // Along the whole large cycle the bound and the energy balance hold.
+  Spring t(bilinear_example());
+  double prev = 0.0;
+  for (int i = 0; i < 4000; ++i) {
+    const double d = 0.4 * std::sin(2.0 * std::numbers::pi * i / 1000.0) * (1.0 + 0.3 * std::sin(0.01 * i));
+    const double f = t.set_trial(d);
+    CHECK(f <= upper_envelope(t, d) + kRoundOff * 100.0);
+    CHECK(f >= lower_envelope(t, d) - kRoundOff * 100.0);
+    CHECK(t.dissipated_energy() >= prev - kRoundOff * 100.0 * 0.01);
+    prev = t.dissipated_energy();
+    t.commit();
   }
 }

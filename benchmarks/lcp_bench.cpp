@@ -1,0 +1,366 @@
+// Run time and final residual of each LCP solver on
+//   1. eq. (6) problems of a planar rigid body with 1 to 4 contacts (n = 3 to 12), the
+//      problems the bridge solves every step (eps = 0, mu = 0.5 as in the paper);
+//   2. dense symmetric positive definite problems, n = 50, 200, 500;
+//   3. Siconos's LCP test collection (data/siconos-lcp).
+// With Siconos Numerics, its lcp_lexicolemke, lcp_pgs and lcp_newton_FB run on the same
+// problems with the same tolerance, and the ratio ours / theirs of the median times is printed.
+//
+// Usage: lcp_bench [--quick] [--csv FILE]   (CSV default: lcp_bench.csv in the working dir)
+#include "lcp/frictional.hpp"
+#include "lcp/lemke.hpp"
+#include "lcp/newton_fb.hpp"
+#include "lcp/pgs.hpp"
+#include "lcp/siconos_format.hpp"
+#include "lcp/test/problems.hpp"
+
+#ifdef NSB_HAVE_SICONOS
+#include <siconos/numerics/LCP_Solvers.h>
+#include <siconos/numerics/LinearComplementarityProblem.h>
+#include <siconos/numerics/NumericsMatrix.h>
+#include <siconos/numerics/SolverOptions.h>
+#include <siconos/numerics/lcp_cst.h>
+#endif
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace nsb::lcp;
+
+namespace {
+
+constexpr double kTolerance = 1e-12;
+// Siconos stops on its own error measure; an answer within 1e3 times our tolerance on our
+// residual is counted as solved.
+constexpr double kAcceptSiconos = 1e-9;
+
+struct Row {
+  std::string set;      // eq6 | spd | siconos
+  std::string problem;  // name
+  int n = 0;
+  std::string solver;   // e.g. lemke, siconos_lexicolemke
+  double median_us = 0.0;
+  std::string status;
+  int iterations = 0;
+  double residual = 0.0;
+  double siconos_error = 0.0;
+};
+
+std::vector<Row> rows;
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// Median over `batches` of the mean time of one call, each batch long enough (>= min_time)
+// for the clock's resolution not to matter.
+double median_time(const std::function<void()>& f, int batches, double min_time) {
+  f();  // warm up (page in code and data)
+  int reps = 1;
+  for (double t = 0.0; reps < (1 << 24);) {
+    const double t0 = now();
+    for (int i = 0; i < reps; ++i) f();
+    t = now() - t0;
+    if (t >= min_time) break;
+    reps *= 2;
+  }
+  std::vector<double> times;
+  for (int b = 0; b < batches; ++b) {
+    const double t0 = now();
+    for (int i = 0; i < reps; ++i) f();
+    times.push_back((now() - t0) / reps);
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+#ifdef NSB_HAVE_SICONOS
+// One Siconos problem and solver options, owning their memory.
+struct SiconosRun {
+  LinearComplementarityProblem problem{};
+  SolverOptions* options = nullptr;
+  std::vector<double> z, w;
+  int info = 0;
+  int solver_id = 0;
+
+  SiconosRun(const Problem& p, int id) : solver_id(id) {
+    const int n = static_cast<int>(p.size());
+    problem.size = n;
+    problem.M = NM_create(NM_DENSE, n, n);
+    std::memcpy(problem.M->matrix0, p.M.data(), sizeof(double) * static_cast<std::size_t>(n * n));
+    problem.q = static_cast<double*>(std::malloc(sizeof(double) * static_cast<std::size_t>(n)));
+    std::memcpy(problem.q, p.q.data(), sizeof(double) * static_cast<std::size_t>(n));
+    options = solver_options_create(id);
+    options->dparam[SICONOS_DPARAM_TOL] = kTolerance;
+    z.assign(static_cast<std::size_t>(n), 0.0);
+    w.assign(static_cast<std::size_t>(n), 0.0);
+  }
+  SiconosRun(const SiconosRun&) = delete;
+  SiconosRun& operator=(const SiconosRun&) = delete;
+  ~SiconosRun() {
+    solver_options_delete(options);
+    NM_free(problem.M);
+    std::free(problem.q);
+  }
+  void solve() {
+    std::fill(z.begin(), z.end(), 0.0);
+    std::fill(w.begin(), w.end(), 0.0);
+    if (solver_id == SICONOS_LCP_LEMKE)
+      lcp_lexicolemke(&problem, z.data(), w.data(), &info, options);
+    else if (solver_id == SICONOS_LCP_PGS)
+      lcp_pgs(&problem, z.data(), w.data(), &info, options);
+    else
+      lcp_newton_FB(&problem, z.data(), w.data(), &info, options);
+  }
+  int iterations() const { return options->iparam[SICONOS_IPARAM_ITER_DONE]; }
+};
+
+const std::pair<int, const char*> kSiconosSolvers[] = {
+    {SICONOS_LCP_LEMKE, "siconos_lexicolemke"},
+    {SICONOS_LCP_PGS, "siconos_pgs"},
+    {SICONOS_LCP_NEWTON_FB_FBLSA, "siconos_newton_fb"}};
+#endif
+
+// Runs our solvers (and Siconos's) on one problem; records one row per solver.
+void run_all(const std::string& set, const std::string& name, const Problem& p, int batches,
+             double min_time) {
+  Lemke lemke_solver(p.size());
+  const struct {
+    const char* label;
+    std::function<Result()> run;
+  } ours[] = {
+      {"lemke", [&] { return lemke_solver.solve(p); }},
+      {"pgs",
+       [&] {
+         PgsOptions o;
+         o.tolerance = kTolerance;
+         return pgs(p, o);
+       }},
+      {"nfb",
+       [&] {
+         NewtonFbOptions o;
+         o.tolerance = kTolerance;
+         return newton_fb(p, o);
+       }},
+  };
+  for (const auto& s : ours) {
+    Result r = s.run();
+    Row row{set, name, static_cast<int>(p.size()), s.label, 0.0, std::string(to_string(r.status)),
+            r.iterations, r.residual, r.siconos_error};
+    row.median_us = 1e6 * median_time([&] { r = s.run(); }, batches, min_time);
+    rows.push_back(row);
+  }
+#ifdef NSB_HAVE_SICONOS
+  for (const auto& [id, label] : kSiconosSolvers) {
+    SiconosRun run(p, id);
+    run.solve();
+    Result r;
+    r.z = Eigen::Map<const Vector>(run.z.data(), p.size());
+    evaluate(p, r);
+    // Siconos's info = 0 is not always a solution (its Lemke reports 0 after a ray, e.g. on
+    // CPS_3): it counts as solved only if our residual agrees.
+    const bool solved = run.info == 0 && r.residual <= kAcceptSiconos;
+    Row row{set, name, static_cast<int>(p.size()), label, 0.0,
+            solved ? "solved" : "info=" + std::to_string(run.info) + (run.info == 0 ? ",not_sol" : ""),
+            run.iterations(), r.residual, r.siconos_error};
+    row.median_us = 1e6 * median_time([&] { run.solve(); }, batches, min_time);
+    rows.push_back(row);
+  }
+#else
+  (void)name;
+#endif
+}
+
+void print_rows(const std::string& set) {
+  std::printf("\n%-28s %4s %-20s %12s %-18s %6s %10s %10s\n", "problem", "n", "solver",
+              "median [us]", "status", "iter", "residual", "siconos_e");
+  for (const Row& r : rows) {
+    if (r.set != set) continue;
+    std::printf("%-28s %4d %-20s %12.3f %-18s %6d %10.2e %10.2e\n", r.problem.c_str(), r.n,
+                r.solver.c_str(), r.median_us, r.status.c_str(), r.iterations, r.residual,
+                r.siconos_error);
+  }
+}
+
+#ifdef NSB_HAVE_SICONOS
+void print_ratios(const std::string& set) {
+  std::printf("\nratio ours / Siconos (median times, same problem):\n");
+  const std::pair<const char*, const char*> pairs[] = {{"lemke", "siconos_lexicolemke"},
+                                                       {"pgs", "siconos_pgs"},
+                                                       {"nfb", "siconos_newton_fb"}};
+  for (const Row& a : rows) {
+    if (a.set != set) continue;
+    for (const auto& [ours, theirs] : pairs) {
+      if (a.solver != ours) continue;
+      for (const Row& b : rows)
+        if (b.set == set && b.problem == a.problem && b.solver == theirs)
+          std::printf("  %-28s %-6s / %-20s = %8.3f\n", a.problem.c_str(), ours, theirs,
+                      a.median_us / b.median_us);
+    }
+  }
+}
+#endif
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false;
+  std::string csv = "lcp_bench.csv";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--quick") {
+      quick = true;
+    } else if (a == "--csv" && i + 1 < argc) {
+      csv = argv[++i];
+    } else {
+      std::cerr << "usage: lcp_bench [--quick] [--csv FILE]\n";
+      return 2;
+    }
+  }
+  std::printf("lcp_bench: build type %s, git revision %s, tolerance %g, Siconos %s\n",
+              NSB_BUILD_TYPE, NSB_GIT_REVISION, kTolerance,
+#ifdef NSB_HAVE_SICONOS
+              "linked"
+#else
+              "not available"
+#endif
+  );
+
+  // 1. Eq. (6): the per-step problem of the integrators, through the reusable solver.
+  std::printf("\n== eq. (6) problems, eps = 0, mu = 0.5: median over %d random bodies ==\n",
+              quick ? 50 : 200);
+  std::printf("%-9s %4s %-22s %12s %10s %10s %12s\n", "contacts", "n", "solver", "median [us]",
+              "solved", "max iter", "max resid");
+  std::mt19937 rng(6);
+  const int bodies = quick ? 50 : 200;
+  for (int m = 1; m <= 4; ++m) {
+    std::vector<FrictionalProblem> problems;
+    for (int k = 0; k < bodies; ++k)
+      problems.push_back(testing::rigid_body_impact(rng, m, 0.0, 0.5).problem);
+    FrictionalSolver solver(4);
+    FrictionalResult out;
+    std::vector<Problem> lcps;
+    for (const auto& fp : problems) lcps.push_back(build_eq6(fp));
+    const int n = static_cast<int>(lcps.front().size());
+    const auto measure = [&](const char* label, const std::function<void(std::size_t)>& run,
+                             const std::function<std::pair<bool, std::pair<int, double>>(
+                                 std::size_t)>& outcome) {
+      std::vector<double> t;
+      int solved = 0;
+      int worst_iter = 0;
+      double worst_res = 0.0;
+      for (std::size_t k = 0; k < problems.size(); ++k) {
+        t.push_back(median_time([&] { run(k); }, quick ? 3 : 5, quick ? 2e-4 : 1e-3));
+        const auto o = outcome(k);
+        solved += o.first;
+        worst_iter = std::max(worst_iter, o.second.first);
+        worst_res = std::max(worst_res, o.second.second);
+      }
+      const double med = 1e6 * median(t);
+      std::printf("%-9d %4d %-22s %12.3f %6d/%-3zu %10d %12.2e\n", m, n, label, med, solved,
+                  problems.size(), worst_iter, worst_res);
+      rows.push_back(Row{"eq6", "contacts=" + std::to_string(m), n, label, med,
+                         std::to_string(solved) + "/" + std::to_string(problems.size()),
+                         worst_iter, worst_res, 0.0});
+    };
+    for (Solver s : {Solver::kLemke, Solver::kPgs, Solver::kNewtonFb}) {
+      const std::string label = std::string("frictional_") + std::string(to_string(s));
+      measure(
+          label.c_str(), [&](std::size_t k) { solver.solve(problems[k], s, {}, false, out); },
+          [&](std::size_t k) {
+            solver.solve(problems[k], s, {}, false, out);
+            return std::make_pair(out.ok(), std::make_pair(out.iterations, out.residual));
+          });
+    }
+    Lemke lemke_solver(12);
+    Vector z(n);
+    measure(
+        "lemke_core_eq6",
+        [&](std::size_t k) { lemke_solver.run(lcps[k].M, lcps[k].q, LemkeOptions{}, z); },
+        [&](std::size_t k) {
+          const Status s = lemke_solver.run(lcps[k].M, lcps[k].q, LemkeOptions{}, z);
+          return std::make_pair(s == Status::kSolved,
+                                std::make_pair(lemke_solver.pivots(), lemke_solver.last_residual()));
+        });
+#ifdef NSB_HAVE_SICONOS
+    std::vector<std::unique_ptr<SiconosRun>> runs;
+    for (const auto& p : lcps) runs.push_back(std::make_unique<SiconosRun>(p, SICONOS_LCP_LEMKE));
+    measure(
+        "siconos_lexicolemke", [&](std::size_t k) { runs[k]->solve(); },
+        [&](std::size_t k) {
+          runs[k]->solve();
+          const Vector zz = Eigen::Map<const Vector>(runs[k]->z.data(), n);
+          const double res = residual(lcps[k].M, lcps[k].q, zz);
+          return std::make_pair(runs[k]->info == 0 && res <= kAcceptSiconos,
+                                std::make_pair(runs[k]->iterations(), res));
+        });
+#endif
+  }
+
+  // 2. Dense SPD problems (cond 100, manufactured with complementary supports).
+  std::printf("\n== dense SPD problems, cond(M) = 100 ==");
+  for (int n : {50, 200, 500}) {
+    const auto m = testing::manufacture(rng, testing::spd(rng, n, 100.0), 0.0);
+    run_all("spd", "spd_n" + std::to_string(n), m.problem, quick ? 3 : (n >= 500 ? 5 : 9),
+            quick ? 1e-3 : 1e-2);
+  }
+  print_rows("spd");
+#ifdef NSB_HAVE_SICONOS
+  print_ratios("spd");
+#endif
+  // Newton–FB iterations to 1e-12 on SPD problems of several sizes and conditionings.
+  int worst = 0;
+  std::string worst_case;
+  for (int n : {10, 50, 200}) {
+    for (double cond : {1.0, 1e2, 1e4, 1e6}) {
+      for (int k = 0; k < 5; ++k) {
+        const auto m = testing::manufacture(rng, testing::spd(rng, n, cond), 0.0);
+        const Result r = newton_fb(m.problem);
+        if (r.iterations > worst) {
+          worst = r.iterations;
+          worst_case = "n = " + std::to_string(n) + ", cond = " + std::to_string(cond) +
+                       ", status " + std::string(to_string(r.status));
+        }
+      }
+    }
+  }
+  std::printf("\nNewton-FB: most iterations to 1e-12 over 60 SPD problems (n 10-200, cond 1-1e6): "
+              "%d (%s)\n", worst, worst_case.c_str());
+
+  // 3. Siconos's collection.
+  std::printf("\n== Siconos LCP collection ==");
+  std::vector<std::filesystem::path> files;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::filesystem::path(NSB_DATA_DIR) / "siconos-lcp"))
+    if (e.path().filename().string().find("_block") == std::string::npos) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files)
+    run_all("siconos", f.stem().string(), read_siconos_lcp(f), quick ? 3 : 7, quick ? 1e-3 : 5e-3);
+  print_rows("siconos");
+#ifdef NSB_HAVE_SICONOS
+  print_ratios("siconos");
+#endif
+
+  std::ofstream out(csv);
+  out << "set,problem,n,solver,median_us,status,iterations,residual,siconos_error\n";
+  for (const Row& r : rows)
+    out << r.set << ',' << r.problem << ',' << r.n << ',' << r.solver << ',' << r.median_us << ','
+        << r.status << ',' << r.iterations << ',' << r.residual << ',' << r.siconos_error << '\n';
+  std::printf("\nwrote %s\n", csv.c_str());
+  return 0;
+}

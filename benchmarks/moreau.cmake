@@ -1,0 +1,4 @@
+# Moreau–Jean on the benchmark bridge under the 7 excitations at h = 1e-4 and 1e-3
+# (docs/benchmarks/moreau.md). Run: build/benchmarks/moreau_bench [repeats] [csv file].
+nsb_add_benchmark(moreau_bench SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/moreau_bench.cpp
+                  DEPS nsb_models nsb_integrators nsb_lcp)

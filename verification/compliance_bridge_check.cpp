@@ -1,0 +1,141 @@
+// The compliance method on the benchmark bridge under excitation 5 (scenes/bridge-exc5.toml),
+// over the first seconds that contain the first pounding:
+//  - theta(t) converges to the nonsmooth (Moreau–Jean) history computed with eps =
+//    e_effective of the damping law as the stiffness grows from 1e-4 k0 to 1e2 k0;
+//  - the first pounding's penetration depth and contact duration grow as k falls (the
+//    paper's Figure 8 trend).
+// The full 22 s study is benchmarks/compliance_bench.cpp (docs/benchmarks/compliance.md).
+// Release only: the eight bridge runs take a few seconds optimised but minutes under ASan.
+#include "integrators/compliance.hpp"
+#include "integrators/moreau_jean.hpp"
+#include "models/scene.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using nsb::integrators::EventKind;
+using nsb::integrators::Recorder;
+
+// The first pounding of excitation 5 (contact 2, near t = 2.29 s with the assumed record)
+// and 1.7 s of the response after it.
+constexpr double kEndTime = 4.0;  // [s]
+constexpr double kReferenceStep = 1e-4;  // Moreau–Jean h of the reference [s]
+
+std::string scene_file() { return std::string(NSB_SCENES_DIR) + "/bridge-exc5.toml"; }
+
+std::string number(double v) {
+  std::ostringstream os;
+  os.precision(12);
+  os << v;
+  return os.str();
+}
+
+double interpolate(const std::vector<double>& t, const std::vector<double>& y, double x) {
+  auto it = std::lower_bound(t.begin(), t.end(), x);
+  if (it == t.begin()) return y.front();
+  if (it == t.end()) return y.back();
+  const auto i = static_cast<std::size_t>(it - t.begin());
+  const double s = (x - t[i - 1]) / (t[i] - t[i - 1]);
+  return (1 - s) * y[i - 1] + s * y[i];
+}
+
+struct Run {
+  double error = 0.0;        // RMS of theta - theta_ref over the reference samples
+  double penetration = 0.0;  // first pounding: largest penetration [m]
+  double duration = 0.0;     // first pounding: close -> open [s]
+  int contact = 0;
+};
+
+}  // namespace
+
+TEST_CASE("compliance: bridge theta(t) converges to the nonsmooth history as k grows") {
+#ifndef NDEBUG
+  MESSAGE("compliance_bridge_check runs in optimised (NDEBUG) builds only");
+  return;
+#else
+  const auto law = nsb::integrators::DampingLaw::kHertzDamp;
+  const double e_set = 0.0;  // the paper's eps_N
+  const double e_eff = nsb::integrators::hunt_crossley_restitution(
+      nsb::integrators::damping_factor(law, e_set));
+  const std::vector<std::string> common{"solver.end_time=" + number(kEndTime)};
+
+  // Reference: Moreau–Jean with eps = e_effective.
+  auto ref_overrides = common;
+  ref_overrides.push_back("model.seats.restitution=" + number(e_eff));
+  auto ref_scene = nsb::models::load_scene(scene_file(), ref_overrides);
+  nsb::integrators::MoreauJeanOptions mo;
+  mo.end_time = kEndTime;
+  mo.step = kReferenceStep;
+  Recorder ref(*ref_scene.system, 0.0);
+  REQUIRE(nsb::integrators::moreau_jean(*ref_scene.system, mo, ref).completed);
+  const auto t_ref = ref.series("t"), th_ref = ref.series("theta");
+  double peak_ref = 0.0;
+  for (double v : th_ref) peak_ref = std::max(peak_ref, std::abs(v));
+  REQUIRE(peak_ref > 0.0);
+
+  std::vector<double> factors{1e-4, 1e-2, 1.0, 1e2};
+  std::vector<Run> runs;
+  for (double factor : factors) {
+    auto overrides = common;
+    overrides.push_back("model.seats.restitution=" + number(e_set));
+    auto sc = nsb::models::load_scene(scene_file(), overrides);
+    nsb::integrators::ComplianceOptions o;
+    o.end_time = kEndTime;
+    o.tolerance = sc.solver.tolerance;
+    o.stiffness = sc.solver.contact_stiffness * factor;
+    o.stick_slip_velocity = sc.solver.stick_slip_velocity;
+    o.law = law;
+    Recorder rec(*sc.system, 0.0);
+    const auto st = nsb::integrators::compliance(*sc.system, o, rec);
+    REQUIRE(st.completed);
+    const auto t = rec.series("t"), th = rec.series("theta");
+    Run r;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < t_ref.size(); ++i) {
+      const double d = interpolate(t, th, t_ref[i]) - th_ref[i];
+      sum += d * d;
+    }
+    r.error = std::sqrt(sum / static_cast<double>(t_ref.size())) / peak_ref;
+    double t_close = 0.0;
+    for (const auto& ev : rec.events()) {
+      if (r.contact == 0 && ev.kind == EventKind::kClose) {
+        r.contact = ev.contact;
+        t_close = ev.t;
+      } else if (r.contact != 0 && ev.contact == r.contact && ev.kind == EventKind::kOpen) {
+        r.duration = ev.t - t_close;
+        break;
+      }
+    }
+    REQUIRE(r.contact > 0);
+    const auto g = rec.series("gN" + std::to_string(r.contact));
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      if (t[i] >= t_close && t[i] <= t_close + r.duration) {
+        r.penetration = std::max(r.penetration, -g[i]);
+      }
+    }
+    std::printf("k = %6.0e k0: theta RMS error / peak %.4e; first pounding contact %d at %.4f s, "
+                "penetration %.4e m, duration %.4e s; %lld steps\n",
+                factor, r.error, r.contact, t_close, r.penetration, r.duration,
+                static_cast<long long>(st.steps));
+    runs.push_back(r);
+  }
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    CAPTURE(factors[i]);
+    // Convergence: the error falls as k grows.
+    CHECK(runs[i].error < runs[i - 1].error);
+    // Figure 8: a softer gap element penetrates deeper and stays closed longer.
+    CHECK(runs[i].penetration < runs[i - 1].penetration);
+    CHECK(runs[i].duration < runs[i - 1].duration);
+  }
+  // At 1e2 k0 the compliance history is close to the nonsmooth one.
+  CHECK(runs.back().error < 0.05);
+#endif
+}
