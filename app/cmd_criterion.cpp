@@ -45,7 +45,13 @@ void run_criterion(const CriterionArgs& a) {
     in.validate();
   } catch (const std::invalid_argument& e) {
     // validate() names the field as the option is named (skew, width, length, friction).
-    throw InputError(std::string("criterion: --") + e.what());
+    const std::string what = e.what();
+    const std::string field = what.substr(0, what.find(':'));
+    const double given = field == "skew"    ? a.skew
+                         : field == "width" ? a.width
+                         : field == "length" ? a.length
+                                             : a.friction;
+    throw InputError("criterion: --" + what + " (got " + number(given) + ")");
   }
   const auto c = models::analytic::rotation_criterion(in);
   const char* yes_no[] = {"no", "yes"};

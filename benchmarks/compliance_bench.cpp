@@ -5,7 +5,7 @@
 // pounding's penetration depth and contact duration (the paper's Figure 8 trend).
 //
 // Usage: compliance_bench [--scene FILE] [--law NAME] [--restitution E] [--end-time T]
-//                         [--factors f1,f2,...] [--repeat N] [--reference-step H]
+//                         [--tolerance TOL] [--factors f1,f2,...] [--repeat N] [--reference-step H]
 //                         [--event-driven] [--csv FILE] [--history-dir DIR]
 // Writes one CSV row per run; compliance_plot.gp turns it into pictures.
 #include "integrators/compliance.hpp"
@@ -137,6 +137,7 @@ int main(int argc, char** argv) {
   std::string law_name = "hertzdamp";
   double restitution = 0.0;  // e_set of the contacts (the paper's eps_N = 0)
   double end_time = 0.0;     // 0: the scene's
+  double tolerance = 0.0;    // 0: the scene's solver.tolerance
   std::vector<double> factors{1e-4, 1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2};
   int repeat = 3;
   double reference_step = 1e-4;
@@ -149,6 +150,7 @@ int main(int argc, char** argv) {
   app.add_option("--restitution", restitution, "e_set of the gap elements")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--end-time", end_time, "simulated time [s]; 0 keeps the scene's");
+  app.add_option("--tolerance", tolerance, "compliance error tolerance; 0 keeps the scene's");
   app.add_option("--factors", factors, "stiffness factors k / k0")->delimiter(',');
   app.add_option("--repeat", repeat, "runs per configuration (median wall time)")
       ->check(CLI::PositiveNumber);
@@ -264,7 +266,7 @@ int main(int argc, char** argv) {
       auto sc = nsb::models::load_scene(scene, base);
       nsb::integrators::ComplianceOptions o;
       o.end_time = sc.solver.end_time;
-      o.tolerance = sc.solver.tolerance;
+      o.tolerance = tolerance > 0.0 ? tolerance : sc.solver.tolerance;
       o.stiffness = k = sc.solver.contact_stiffness * factor;
       o.stick_slip_velocity = sc.solver.stick_slip_velocity;
       o.law = law;

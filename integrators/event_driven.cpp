@@ -16,8 +16,6 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -81,6 +79,10 @@ constexpr int kBrentIterations = 200;
 // Relative margin below which |lambda_T| counts as on the friction cone mu lambda_N: the
 // contact LCP is solved to 1e-12.
 constexpr double kConeSaturation = 1e-9;
+// Default gap_tolerance [m]: closed contacts are projected back once they drift further, and
+// open contacts count as touching at an event within it. An absolute length, not a multiple
+// of the (relative) tolerance: at tolerance 1e-3 that would be 1 cm, the size of the gaps.
+constexpr double kDefaultGapTolerance = 1e-9;
 // A normal force below this fraction of the applied forces' scale is round-off of the
 // contact LCP (solved to 1e-12): the contact is not held closed by it.
 constexpr double kClosedForce = 1e-12;
@@ -94,7 +96,7 @@ class EventDriven {
     const double tol = opt_.tolerance;
     closing_velocity_ = opt_.closing_velocity > 0.0 ? opt_.closing_velocity : 10.0 * tol;
     stick_velocity_ = opt_.stick_velocity > 0.0 ? opt_.stick_velocity : 10.0 * tol;
-    gap_tolerance_ = opt_.gap_tolerance > 0.0 ? opt_.gap_tolerance : 10.0 * tol;
+    gap_tolerance_ = opt_.gap_tolerance > 0.0 ? opt_.gap_tolerance : kDefaultGapTolerance;
     gap_shift_ = 1e-2 * gap_tolerance_;
     const Matrix& M = sys_.mass();
     if (M.rows() != n_ || M.cols() != n_) {
@@ -311,13 +313,20 @@ class EventDriven {
     if (ha > 0.0 && fires) return brent(h, ta, tb);
     if (ha <= 0.0 && fires) {
       // The contact has just been released at ta. If it rose and came back, locate the apex
-      // (gdot_N = 0), then the crossing after it; otherwise it never left.
+      // (gdot_N = 0), then the crossing after it.
       if (va > 0.0 && vb < 0.0) {
         auto ngd = [&gd](double t) { return gd(t); };
         const double apex = brent(ngd, ta, tb);
         if (h(apex) > 0.0) return brent(h, apex, tb);
       }
-      return va > 0.0 ? inf : ta;
+      if (va > 0.0) return inf;
+      // Released with gdot_N = 0 and gddot_N >= 0, but higher derivatives bring it back:
+      // the event is where the penetration reaches gap_shift_.
+      if (ha > -gap_shift_ && hb < -gap_shift_) {
+        auto hs = [&h, this](double t) { return h(t) + gap_shift_; };
+        return brent(hs, ta, tb);
+      }
+      return ta;
     }
     if (ha > 0.0 && hb >= 0.0 && va < 0.0 && vb > 0.0) {
       // Grazing inside the step: the gap has a minimum; test whether it dips below 0.
@@ -806,10 +815,6 @@ RunStats EventDriven::run() {
     dense_.calc_state(t, x);
     if (sample_dt == 0.0) record_sample(t, x, false);
     if (k_event >= 0 && t_event <= tb) {
-      if (std::getenv("NSB_ED_DEBUG")) {
-        dense_.calc_state(t, xs_); indicators(t, xs_);
-        fprintf(stderr, "event k=%d t=%.15g ta=%.15g tb=%.15g hprev=%.3e hb=%.3e h(t)=%.3e mode=%d\n", k_event, t, ta, tb, h_prev[k_event], h_b[k_event], h_[k_event], (int)modes_[idx(k_event/2)].mode);
-      }
       if (!handle_event(t, x, k_event / 2 + 1, false)) {
         sys_.commit();
         return finish(false);

@@ -41,7 +41,8 @@ struct EventDrivenOptions {
   double stick_velocity = 0.0;      // |gdot_T| [m/s] below which a closed contact is a stick
                                     //   candidate; 0 selects 10 * tolerance
   double gap_tolerance = 0.0;       // g_N [m] below which a contact counts as touching at an
-                                    //   event; 0 selects 10 * tolerance
+                                    //   event, and the drift of a closed contact that is
+                                    //   projected away; 0 selects 1e-9 m
   double max_step = 0.0;            // largest smooth-phase step [s]; 0 = limited only by the
                                     //   tolerance and the next event; >= 0
   double initial_step = 1e-4;       // first trial step of a phase [s], > 0

@@ -175,6 +175,8 @@ bool Lemke::refine(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vec
 Status Lemke::run(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
                   const LemkeOptions& options, Eigen::Ref<Vector> z) {
   const Eigen::Index n = q.size();
+  if (M.rows() != n || M.cols() != n || z.size() != n)
+    throw std::invalid_argument("Lemke::run: M must be n x n and z of size n, with n = q.size()");
   reserve(n);
   n_ = n;
   pivots_ = 0;

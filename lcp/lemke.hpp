@@ -43,7 +43,9 @@ class Lemke {
   Eigen::Index capacity() const { return capacity_; }
 
   // The allocation-free core: writes the solution (or last iterate) into z (size n) and
-  // returns the status; pivots() and residual() describe the run.
+  // returns the status; pivots() and last_residual() describe the run. Throws
+  // std::invalid_argument if M is not n x n or z not of size n (n = q.size()); the data are
+  // not otherwise validated here (Lemke::solve does that).
   Status run(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
              const LemkeOptions& options, Eigen::Ref<Vector> z);
   int pivots() const { return pivots_; }

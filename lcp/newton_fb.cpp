@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace nsb::lcp {
 
@@ -10,6 +11,42 @@ namespace {
 // A Jacobian whose reciprocal condition estimate is below this is treated as singular: the
 // Newton direction would carry no correct digits.
 constexpr double kSingularRcond = 1e-14;
+// The active-set trial: A = {i : z_i > w_i}. If A equals the previous estimate, solve
+// M_AA z_A = -q_A and, if that z meets the tolerance, replace z and res and return true.
+bool polish_step(const Problem& p, Vector& z, std::vector<char>& active,
+                 std::vector<char>& previous, double& res, double tolerance) {
+  const Eigen::Index n = p.size();
+  const Vector w = p.M * z + p.q;
+  std::vector<Eigen::Index> index;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    active[static_cast<std::size_t>(i)] = z(i) > w(i) ? 1 : 0;
+    if (active[static_cast<std::size_t>(i)]) index.push_back(i);
+  }
+  const bool same = active == previous;
+  previous = active;
+  if (!same) return false;
+  const auto k = static_cast<Eigen::Index>(index.size());
+  Vector trial = Vector::Zero(n);
+  if (k > 0) {
+    Matrix A(k, k);
+    Vector b(k);
+    for (Eigen::Index c = 0; c < k; ++c) {
+      b(c) = -p.q(index[static_cast<std::size_t>(c)]);
+      for (Eigen::Index r = 0; r < k; ++r)
+        A(r, c) = p.M(index[static_cast<std::size_t>(r)], index[static_cast<std::size_t>(c)]);
+    }
+    const Eigen::PartialPivLU<Matrix> lu(A);
+    const Vector x = lu.solve(b);
+    if (!x.allFinite()) return false;
+    for (Eigen::Index c = 0; c < k; ++c) trial(index[static_cast<std::size_t>(c)]) = std::max(0.0, x(c));
+  }
+  const double r = residual(p.M, p.q, trial);
+  if (!(r <= tolerance)) return false;
+  z = trial;
+  res = r;
+  return true;
+}
+
 }  // namespace
 
 void NewtonFbOptions::validate() const {
@@ -93,6 +130,8 @@ Result newton_fb(const Problem& p, const NewtonFbOptions& options, const Vector&
   double res = residual(p.M, p.q, r.z);
   if (options.record_history) r.history.push_back(res);
   if (res <= options.tolerance) return finish(Status::kSolved, "the start point solves it");
+  std::vector<char> active(static_cast<std::size_t>(n), 0);
+  std::vector<char> previous(static_cast<std::size_t>(n), 2);  // 2: no estimate yet
   for (int k = 1; k <= options.max_iterations; ++k) {
     fischer_burmeister(p, r.z, phi, H);
     const double psi = 0.5 * phi.squaredNorm();
@@ -138,7 +177,11 @@ Result newton_fb(const Problem& p, const NewtonFbOptions& options, const Vector&
     }
     r.z = trial;
     res = residual(p.M, p.q, r.z);
+    bool polished = false;
+    if (options.polish && res > options.tolerance)
+      polished = polish_step(p, r.z, active, previous, res, options.tolerance);
     if (options.record_history) r.history.push_back(res);
+    if (polished) return finish(Status::kSolved, "converged (active-set solution)");
     if (res <= options.tolerance) return finish(Status::kSolved, "converged");
   }
   return finish(Status::kMaxIterations, "Newton step limit reached");

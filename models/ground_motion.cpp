@@ -130,6 +130,8 @@ Record read_at2(const std::filesystem::path& file, double g) {
   }
   const std::string npts_s = m[1].str();
   const std::string dt_s = m[2].str();
+  // At most 9 digits: far more samples than any record, and no overflow in the conversion.
+  if (npts_s.size() > 9) fail(at(file, 4), "NPTS = " + npts_s + " is too large");
   const long npts = std::stol(npts_s);
   const double dt = parse_number(dt_s, file, 4);
   if (npts < static_cast<long>(kMinSamples)) {

@@ -3,6 +3,7 @@
 # excitation (scenes/bridge-exc7.toml, transverse PGA 1.0 g) with Moreau–Jean, and plot x, y,
 # theta and the four gaps to out/bridge-exc7/response.png.
 #   bash scripts/run-main.sh [SCENE.toml] [-- extra nsbridge run options, e.g. --set solver.step=1e-5]
+# NSB_BUILD_DIR selects the build directory (default: build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -14,11 +15,12 @@ name=$(basename "$scene" .toml)
 out=out/$name
 
 bash scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DNSB_WARNINGS_AS_ERRORS=ON >/dev/null
-cmake --build build --target nsbridge -j "$jobs"
+build=${NSB_BUILD_DIR:-build}
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DNSB_WARNINGS_AS_ERRORS=ON >/dev/null
+cmake --build "$build" --target nsbridge -j "$jobs"
 
 status=0
-build/app/nsbridge run "$scene" --out "$out" --method moreau "$@" || status=$?
+"$build/app/nsbridge" run "$scene" --out "$out" --method moreau "$@" || status=$?
 if [[ $status -eq 2 || ! -f "$out/history.csv" ]]; then
   echo "run-main: the run failed (exit $status)" >&2
   exit "$status"

@@ -479,6 +479,11 @@ TEST_CASE("a step allocates nothing") {
     Ball a(0.1, 0.0, 0.0), b(0.1, 0.0, 0.0);
     CHECK(run(a, 1.0) == run(b, 2.0));
   }
+  SUBCASE("a frictional contact problem in every step (Lemke workspace)") {
+    // The block slides until t = 0.51 s, then sticks: both runs see the same events.
+    Block a(2.0, 0.4), b(2.0, 0.4);
+    CHECK(run(a, 0.6) == run(b, 1.2));
+  }
 }
 
 }  // namespace nsb::integrators

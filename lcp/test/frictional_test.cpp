@@ -146,13 +146,16 @@ TEST_CASE("build_eq6 has the block structure of eq. 6") {
 // friction locks): then no solution exists; see the test "expected failure" below.
 TEST_CASE("random planar rigid bodies, 1 to 4 contacts: Newton's and Coulomb's laws hold") {
   std::mt19937 rng(2017);
-  for (int trial = 0; trial < 400; ++trial) {
+  for (int trial = 0; trial < 240; ++trial) {
     const int contacts = 1 + trial % 4;
     const double eps = contacts <= 2 && (trial / 4) % 3 != 0 ? 0.5 : 0.0;
     const double mu = (trial / 12) % 4 == 0 ? 0.0 : 0.2 + 0.3 * ((trial / 12) % 3);
     const auto b = testing::rigid_body_impact(rng, contacts, eps, mu);
     const FrictionalProblem& fp = b.problem;
     for (Solver s : kAllSolvers) {
+      // Enumeration visits 2^(3m) supports: keep it to m <= 3 here (the verification check
+      // compares every solver with it at m = 4 too).
+      if (s == Solver::kEnumeration && contacts == 4) continue;
       INFO("trial " << trial << ", " << contacts << " contacts, mu = " << mu << ", eps = " << eps
                     << ", solver " << to_string(s));
       const FrictionalResult r = solve_frictional(fp, s, options_for(s), false);
@@ -203,7 +206,7 @@ TEST_CASE("expected failure: restitution with a wedged frictional body has no so
   // report a ray termination, never success.
   std::mt19937 rng(2017);
   int infeasible = 0;
-  for (int trial = 0; trial < 200; ++trial) {
+  for (int trial = 0; trial < 60; ++trial) {
     const auto b = testing::rigid_body_impact(rng, 3, 0.5, 0.5);
     const Problem p = build_eq6(b.problem);
     const Result e = enumerate(p);
@@ -217,7 +220,7 @@ TEST_CASE("expected failure: restitution with a wedged frictional body has no so
     }
     if (l.ok()) CHECK(l.residual <= 1e-12);
   }
-  CHECK(infeasible > 20);  // the case is common, not a curiosity of one seed
+  CHECK(infeasible > 6);  // the case is common, not a curiosity of one seed
 }
 
 TEST_CASE("one contact: the impulses are unique, and every solver finds the same ones") {

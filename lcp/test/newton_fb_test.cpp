@@ -85,6 +85,7 @@ TEST_CASE("quadratic convergence on nondegenerate P-matrix problems (iteration h
     NewtonFbOptions o;
     o.record_history = true;
     o.tolerance = 1e-15;  // run into the quadratic regime before stopping
+    o.polish = false;     // show the pure Newton rate
     const Result r = newton_fb(m.problem, o);
     std::ostringstream h;
     for (double v : r.history) h << ' ' << v;
