@@ -4,7 +4,7 @@
 // Scene loading (records, splines) is outside the timing. The process CPU time is reported
 // beside the wall time, since a shared machine inflates the latter. Writes CSV for moreau_plot.gp.
 //
-//   moreau_bench [repeats = 3] [csv = moreau_bench.csv]
+//   moreau_bench [repeats = 3] [csv = moreau_bench.csv] [excitation = all (1..7)]
 #include "integrators/moreau_jean.hpp"
 #include "models/scene.hpp"
 
@@ -22,6 +22,12 @@ int main(int argc, char** argv) {
   using namespace nsb;
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
   const std::string csv_path = argc > 2 ? argv[2] : "moreau_bench.csv";
+  // One excitation only (1..7), for quick measurements while profiling.
+  const int only = argc > 3 ? std::atoi(argv[3]) : 0;
+  if (argc > 3 && (only < 1 || only > 7)) {
+    std::fprintf(stderr, "moreau_bench: excitation must be 1..7, got '%s'\n", argv[3]);
+    return 2;
+  }
   std::printf("moreau_bench: Moreau-Jean on the benchmark bridge, %d repeats (median)\n", repeats);
   std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, NSB_GIT_REVISION);
   std::ofstream csv(csv_path);
@@ -31,6 +37,7 @@ int main(int argc, char** argv) {
               "steps", "lcp", "lcp share", "wall [s]", "wall/T", "x real", "cpu [s]", "x real",
               "peak |theta|", "E error");
   for (int exc = 1; exc <= 7; ++exc) {
+    if (only != 0 && exc != only) continue;
     const std::string scene_file =
         std::string(NSB_SCENES_DIR) + "/bridge-exc" + std::to_string(exc) + ".toml";
     for (double h : {1e-4, 1e-3}) {

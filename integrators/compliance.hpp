@@ -3,9 +3,11 @@
 // friction regularised over a small slip velocity along the tangent (eq. 10). The contact
 // forces enter the smooth equations of motion
 //   M udot = f(t, q, u) + sum_i ( W_N,i lambda_N,i + W_T,i lambda_T,i ),   qdot = u,
-// which are integrated by Boost.Odeint's Rosenbrock 4(3) method (rosenbrock4) with step-size
-// control and an analytic Jacobian (the system's tangent K, C plus the derivatives of the
-// contact forces). See docs/compliance.md for the derivations and the measured behaviour.
+// which are integrated by the L-stable Rosenbrock 4(3) method of Boost.Odeint's rosenbrock4
+// (Hairer & Wanner's RODAS coefficients and Odeint's step-size controller, run on Eigen
+// vectors because Odeint's uBLAS-based stepper does not compile under C++20 with Boost 1.74)
+// with an analytic Jacobian (the system's tangent K, C plus the derivatives of the contact
+// forces). See docs/compliance.md for the derivations and the measured behaviour.
 //
 // Sign convention (the printed eq. 9, -k (g_N)^1.5, is undefined for g_N < 0): with the
 // penetration delta = -g_N > 0 and its rate deltadot = -gdot_N (> 0 while compressing),

@@ -206,19 +206,24 @@ class EventDriven {
       dxdt[idx(n_ + i)] = udot_[i];
     }
     const PowerTerms p = sys_.power(t, q_, u_);
-    double normal = 0.0, friction = 0.0;
+    // The power of a contact force on the system, lambda W^T u = lambda (gdot - what), splits
+    // into the power in the contact, lambda gdot (<= 0: zero when closed or sticking,
+    // -mu lambda_N |gdot_T| when sliding), and the power of the moving seat, -lambda what,
+    // which is energy put in through support motion.
+    double normal = 0.0, friction = 0.0, seat = 0.0;
     bool any_closed = false;
     for (const auto& md : modes_) any_closed = any_closed || md.mode != Mode::kOpen;
     if (any_closed) {
       for (int i = 0; i < m_; ++i) {
         if (modes_[idx(i)].mode == Mode::kOpen) continue;
         const auto& c = cbuf_[idx(i)];
-        normal += lambda_n_[i] * c.w_normal.dot(u_);
-        friction += lambda_t_[i] * c.w_tangent.dot(u_);
+        normal += lambda_n_[i] * c.gap_rate(u_);
+        friction += lambda_t_[i] * c.slip_rate(u_);
+        seat -= lambda_n_[i] * c.what_normal + lambda_t_[i] * c.what_tangent;
       }
     }
     dxdt[idx(2 * n_ + kDamping)] = p.damping;
-    dxdt[idx(2 * n_ + kGround)] = p.ground;
+    dxdt[idx(2 * n_ + kGround)] = p.ground + seat;
     dxdt[idx(2 * n_ + kExternal)] = p.external;
     dxdt[idx(2 * n_ + kNormal)] = normal;
     dxdt[idx(2 * n_ + kFriction)] = friction;
@@ -345,7 +350,10 @@ class EventDriven {
   }
   lcp::FrictionalResult solve_contact_problem(lcp::FrictionalProblem& fp);
   void project_positions(double t, Vector& q, const Vector& u);
-  double project_velocities(double t, const Vector& q, Vector& u);
+  void project_velocities(double t, const Vector& q, Vector& u);
+  void book_impulses(const Matrix& W, const Vector& impulse, const Vector& what,
+                     const std::vector<bool>& tangential, const Vector& u_minus,
+                     const Vector& u_plus);
   bool handle_event(double t, State& x, int trigger_contact, bool initial);
   void record_sample(double t, const State& x, bool force);
   double balance_error(double t, const State& x);
@@ -371,7 +379,7 @@ class EventDriven {
   RunStats stats_;
   lcp::SolveOptions lcp_options_;
   std::int64_t rhs_evaluations_ = 0;
-  double impact_normal_work_ = 0.0, impact_friction_work_ = 0.0;
+  double impact_normal_work_ = 0.0, impact_friction_work_ = 0.0, impact_ground_work_ = 0.0;
   double initial_energy_ = 0.0;
   double next_sample_ = -std::numeric_limits<double>::infinity();
   std::deque<double> recent_events_;
@@ -429,35 +437,56 @@ void EventDriven::project_positions(double t, Vector& q, const Vector& u) {
   }
 }
 
-double EventDriven::project_velocities(double t, const Vector& q, Vector& u) {
+void EventDriven::project_velocities(double t, const Vector& q, Vector& u) {
   // gdot_N = 0 for closed contacts and gdot_T = 0 for sticking ones, closest in the kinetic
-  // metric: du = -M^-1 R (R^T M^-1 R)^+ (R^T u + what). Returns the change of kinetic energy.
+  // metric: du = -M^-1 R (R^T M^-1 R)^+ (R^T u + what), the effect of the impulses
+  // P = -(R^T M^-1 R)^+ (R^T u + what) along R. Their work is booked like an impact's.
   sys_.contact_data(t, q, u, cbuf_);
   int k = 0;
   for (const auto& md : modes_) {
     if (md.mode != Mode::kOpen) ++k;
     if (md.mode == Mode::kStick) ++k;
   }
-  if (k == 0) return 0.0;
+  if (k == 0) return;
   Matrix R(n_, k);
-  Vector r(k);
+  Vector r(k), what(k);
+  std::vector<bool> tangential(static_cast<std::size_t>(k), false);
   int j = 0;
   for (int i = 0; i < m_; ++i) {
     const auto& c = cbuf_[idx(i)];
     const auto& md = modes_[idx(i)];
     if (md.mode == Mode::kOpen) continue;
     R.col(j) = c.w_normal;
+    what[j] = c.what_normal;
     r[j++] = c.gap_rate(u);
     if (md.mode == Mode::kStick) {
       R.col(j) = c.w_tangent;
+      what[j] = c.what_tangent;
+      tangential[idx(j)] = true;
       r[j++] = c.slip_rate(u);
     }
   }
-  const Matrix& M = sys_.mass();
-  const double before = 0.5 * u.dot(M * u);
   const Matrix G = R.transpose() * minv_ * R;
-  u -= minv_ * (R * G.completeOrthogonalDecomposition().solve(r));
-  return 0.5 * u.dot(M * u) - before;
+  const Vector impulse = -G.completeOrthogonalDecomposition().solve(r);
+  const Vector u_plus = u + minv_ * (R * impulse);
+  book_impulses(R, impulse, what, tangential, u, u_plus);
+  u = u_plus;
+}
+
+// Work of impulses P along the columns of W for a velocity jump u- -> u+:
+// P . W^T (u- + u+)/2 (Glocker 2001), split as for the contact forces into the work in the
+// contact, P . gdot_mid (normal: impacts, tangential: friction), and the work of the moving
+// seats, -P . what (ground).
+void EventDriven::book_impulses(const Matrix& W, const Vector& impulse, const Vector& what,
+                                const std::vector<bool>& tangential, const Vector& u_minus,
+                                const Vector& u_plus) {
+  const Vector u_mid = 0.5 * (u_minus + u_plus);
+  for (Eigen::Index j = 0; j < impulse.size(); ++j) {
+    const double in_contact = impulse[j] * (W.col(j).dot(u_mid) + what[j]);
+    (tangential[static_cast<std::size_t>(j)] ? impact_friction_work_ : impact_normal_work_) +=
+        in_contact;
+    impact_ground_work_ -= impulse[j] * what[j];
+  }
 }
 
 double EventDriven::balance_error(double t, const State& x) {
@@ -470,7 +499,7 @@ double EventDriven::balance_error(double t, const State& x) {
   e.hysteretic = es.hysteretic;
   e.initial = initial_energy_;
   e.damping = energy_term(x, kDamping);
-  e.ground = energy_term(x, kGround);
+  e.ground = energy_term(x, kGround) + impact_ground_work_;
   e.external = energy_term(x, kExternal);
   e.impacts = energy_term(x, kNormal) + impact_normal_work_;
   e.friction = energy_term(x, kFriction) + impact_friction_work_;
@@ -579,11 +608,21 @@ bool EventDriven::handle_event(double t, State& x, int trigger_contact, bool ini
     Vector impulse = W.leftCols(k) * r.lambda_n;
     if (nt > 0) impulse += W.rightCols(k) * r.lambda_t;
     const Vector u_plus = u + minv_ * impulse;
-    const Vector u_mid = 0.5 * (u + u_plus);
-    // Work of an impulse P on a velocity jump u- -> u+ is P . (u- + u+)/2 (Glocker 2001).
+    {
+      Vector all(k + nt), what(k + nt);
+      std::vector<bool> tangential(static_cast<std::size_t>(k + nt), false);
+      all.head(k) = r.lambda_n;
+      for (int j = 0; j < k; ++j) {
+        what[j] = cbuf_[idx(touching[idx(j)])].what_normal;
+        if (nt > 0) {
+          all[k + j] = r.lambda_t[j];
+          what[k + j] = cbuf_[idx(touching[idx(j)])].what_tangent;
+          tangential[idx(k + j)] = true;
+        }
+      }
+      book_impulses(W, all, what, tangential, u, u_plus);
+    }
     for (int j = 0; j < k; ++j) {
-      impact_normal_work_ += r.lambda_n[j] * W.col(j).dot(u_mid);
-      if (nt > 0) impact_friction_work_ += r.lambda_t[j] * W.col(k + j).dot(u_mid);
       const auto& c = cbuf_[idx(touching[idx(j)])];
       if (c.gap_rate(u) < -closing_velocity_ || r.lambda_n[j] > 0.0) {
         if (c.gap_rate(u) < -closing_velocity_) {
@@ -612,8 +651,7 @@ bool EventDriven::handle_event(double t, State& x, int trigger_contact, bool ini
   // Project the candidates onto the constraint manifold (drift correction, and gdot_N = 0
   // for a contact whose post-impact velocity is below the Zeno threshold).
   project_positions(t, q, u);
-  double dke = project_velocities(t, q, u);
-  impact_normal_work_ += dke;
+  project_velocities(t, q, u);
 
   // 3. The acceleration-level contact problem on the candidates: eq. (6) with accelerations
   //    in place of velocities, eps = 0 (Pfeiffer & Glocker 1996, ch. 6). Sliding contacts
@@ -692,8 +730,7 @@ bool EventDriven::handle_event(double t, State& x, int trigger_contact, bool ini
     }
     // Final projection with the decided modes (sticking contacts get gdot_T = 0).
     project_positions(t, q, u);
-    dke = project_velocities(t, q, u);
-    impact_normal_work_ += dke;
+    project_velocities(t, q, u);
   }
   if (solved_lcp) ++stats_.steps_with_lcp;
 
@@ -846,7 +883,7 @@ RunStats EventDriven::run() {
     if (drift) {
       Vector q = q_, u = u_;
       project_positions(t, q, u);
-      impact_normal_work_ += project_velocities(t, q, u);
+      project_velocities(t, q, u);
       for (int i = 0; i < n_; ++i) {
         x[idx(i)] = q[i];
         x[idx(n_ + i)] = u[i];

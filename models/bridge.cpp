@@ -148,6 +148,21 @@ Bridge::Bridge(const Parameters& p, Excitation excitation)
   corners_ = p_.deck.corner_faces();
   faces_ = p_.deck.face_points();
 
+  for (std::size_t j = 0; j < nb; ++j) {
+    SupportIndex ix;
+    if (!excitation_.bents.empty()) {
+      ix.longitudinal = motion_index(excitation_.bents[j].longitudinal, false);
+      ix.transverse = motion_index(excitation_.bents[j].transverse, false);
+    }
+    bent_index_.push_back(ix);
+  }
+  for (std::size_t a = 0; a < 2; ++a) {
+    const auto& s = excitation_.seats[a];
+    seat_index_[a] = {motion_index(s.longitudinal, true), motion_index(s.transverse, true),
+                      motion_index(s.rotation, true)};
+  }
+  values_.assign(motions_.size(), MotionValue{});
+
   // Initial penetration at t0 = 0 with the seats at their initial pose.
   for (int i = 0; i < 4; ++i) {
     const auto k = corner_contact(corners_[static_cast<std::size_t>(i)], p_.initial_position,
@@ -162,45 +177,73 @@ Bridge::Bridge(const Parameters& p, Excitation excitation)
   }
 }
 
-const Bridge::SupportMotion& Bridge::bent_motion(std::size_t j) const {
-  return excitation_.bents.empty() ? no_motion_ : excitation_.bents[j];
+int Bridge::motion_index(const Motion& m, bool needs_acceleration) {
+  if (!m) return kNone;
+  const auto it = std::find(motions_.begin(), motions_.end(), m.get());
+  const auto i = static_cast<std::size_t>(it - motions_.begin());
+  if (it == motions_.end()) {
+    motions_.push_back(m.get());
+    needs_acceleration_.push_back(0);
+  }
+  if (needs_acceleration) needs_acceleration_[i] = 1;
+  return static_cast<int>(i);
 }
 
-PlanarMotion Bridge::seat_motion(int seat, double t) const {
-  const auto& s = excitation_.seats[static_cast<std::size_t>(seat)];
+void Bridge::update_motions(double t) const {
+  if (t == values_t_) return;
+  for (std::size_t i = 0; i < motions_.size(); ++i) {
+    MotionValue& v = values_[i];
+    v.d = motions_[i]->displacement(t);
+    v.v = motions_[i]->velocity(t);
+    // The bents need no acceleration: only the seats' contact kinematics (wbar) use it.
+    v.a = needs_acceleration_[i] ? motions_[i]->acceleration(t) : 0.0;
+  }
+  us_dot_ = Eigen::Vector3d::Zero();
+  for (std::size_t j = 0; j < p_.bents.size(); ++j) {
+    us_dot_ += qs_x_[j] * value(bent_index_[j].longitudinal).v +
+               qs_y_[j] * value(bent_index_[j].transverse).v;
+  }
+  values_t_ = t;
+}
+
+PlanarMotion Bridge::seat_motion_cached(int seat) const {
+  const auto a = static_cast<std::size_t>(seat);
+  const SupportIndex& ix = seat_index_[a];
+  const MotionValue &mx = value(ix.longitudinal), &my = value(ix.transverse),
+                    &mr = value(ix.rotation);
   PlanarMotion m;
-  m.position << faces_[static_cast<std::size_t>(seat)].x() + disp(s.longitudinal, t),
-      faces_[static_cast<std::size_t>(seat)].y() + disp(s.transverse, t), disp(s.rotation, t);
-  m.velocity << vel(s.longitudinal, t), vel(s.transverse, t), vel(s.rotation, t);
-  m.acceleration << acc(s.longitudinal, t), acc(s.transverse, t), acc(s.rotation, t);
+  m.position << faces_[a].x() + mx.d, faces_[a].y() + my.d, mr.d;
+  m.velocity << mx.v, my.v, mr.v;
+  m.acceleration << mx.a, my.a, mr.a;
   return m;
 }
 
+PlanarMotion Bridge::seat_motion(int seat, double t) const {
+  update_motions(t);
+  return seat_motion_cached(seat);
+}
+
 Eigen::Vector3d Bridge::quasi_static_velocity(double t) const {
-  Eigen::Vector3d us = Eigen::Vector3d::Zero();
-  for (std::size_t j = 0; j < p_.bents.size(); ++j) {
-    const auto& m = bent_motion(j);
-    us += qs_x_[j] * vel(m.longitudinal, t) + qs_y_[j] * vel(m.transverse, t);
-  }
-  return us;
+  update_motions(t);
+  return us_dot_;
 }
 
 void Bridge::forces(double t, const integrators::Vector& q, const integrators::Vector& u,
                     integrators::Vector& f) {
+  update_motions(t);
   Eigen::Vector3d fs = Eigen::Vector3d::Zero();
   for (std::size_t j = 0; j < p_.bents.size(); ++j) {
-    const auto& m = bent_motion(j);
     const double s = p_.bents[j].position;
     // Deck displacement at the bent relative to the bent's own ground (small rotations).
-    const double dx = q(0) - disp(m.longitudinal, t);
-    const double dy = q(1) + s * q(2) - disp(m.transverse, t);
+    const double dx = q(0) - value(bent_index_[j].longitudinal).d;
+    const double dy = q(1) + s * q(2) - value(bent_index_[j].transverse).d;
     const double fx = springs_x_[j].set_trial(dx);
     const double fy = springs_y_[j].set_trial(dy);
     fs(0) -= fx;
     fs(1) -= fy;
     fs(2) -= s * fy;  // torque of the transverse bent force about the deck centre
   }
-  const Eigen::Vector3d vr = u.head<3>() - quasi_static_velocity(t);
+  const Eigen::Vector3d vr = u.head<3>() - us_dot_;
   f.head<3>() = fs - c_ * vr;
 }
 
@@ -240,7 +283,8 @@ void Bridge::contact_data(double t, const integrators::Vector& q, const integrat
                           std::vector<integrators::ContactData>& out) const {
   if (out.size() != 4) out.resize(4);
   const Eigen::Vector3d q3 = q.head<3>(), u3 = u.head<3>();
-  const std::array<PlanarMotion, 2> seats{seat_motion(0, t), seat_motion(1, t)};
+  update_motions(t);
+  const std::array<PlanarMotion, 2> seats{seat_motion_cached(0), seat_motion_cached(1)};
   for (std::size_t i = 0; i < 4; ++i) {
     const auto k = corner_contact(
         corners_[i], q3, u3,
@@ -252,14 +296,14 @@ void Bridge::contact_data(double t, const integrators::Vector& q, const integrat
 integrators::PowerTerms Bridge::power(double t, const integrators::Vector&,
                                       const integrators::Vector& u) const {
   integrators::PowerTerms pw;
-  const Eigen::Vector3d us = quasi_static_velocity(t);
+  update_motions(t);
+  const Eigen::Vector3d us = us_dot_;
   const Eigen::Vector3d vr = u.head<3>() - us;
   pw.damping = vr.dot(c_ * vr);
   double ground = -us.dot(c_ * vr);
   for (std::size_t j = 0; j < p_.bents.size(); ++j) {
-    const auto& m = bent_motion(j);
-    ground -= springs_x_[j].force() * vel(m.longitudinal, t) +
-              springs_y_[j].force() * vel(m.transverse, t);
+    ground -= springs_x_[j].force() * value(bent_index_[j].longitudinal).v +
+              springs_y_[j].force() * value(bent_index_[j].transverse).v;
   }
   pw.ground = ground;
   return pw;

@@ -18,6 +18,11 @@
 // (models/contact_geometry.hpp) with moving seats: seat a is posed at its reference face point
 // plus its displacement (u_x, u_y) and rotation about that point.
 //
+// Cost: an integrator asks for forces, contact data and power at the same time t several
+// times per step, and supports usually share one record. The bridge therefore evaluates each
+// distinct GroundMotion object once per distinct t and keeps the values (a cache inside the
+// const methods): one Bridge must not be used from several threads at once.
+//
 // Units: kN, t, m, s, rad.
 #pragma once
 
@@ -29,6 +34,7 @@
 #include "models/takeda.hpp"
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -137,14 +143,35 @@ class Bridge final : public integrators::System {
   integrators::EnergyState energy(double t, const integrators::Vector& q) const override;
 
  private:
-  static double disp(const Motion& m, double t) { return m ? m->displacement(t) : 0.0; }
-  static double vel(const Motion& m, double t) { return m ? m->velocity(t) : 0.0; }
-  static double acc(const Motion& m, double t) { return m ? m->acceleration(t) : 0.0; }
-  const SupportMotion& bent_motion(std::size_t j) const;
+  // Values of one distinct ground motion at the cached time.
+  struct MotionValue {
+    double d = 0.0, v = 0.0, a = 0.0;  // displacement, velocity, acceleration
+  };
+  // Where a support's components are in motions_; kNone: no motion in that direction.
+  static constexpr int kNone = -1;
+  struct SupportIndex {
+    int longitudinal = kNone, transverse = kNone, rotation = kNone;
+  };
+  int motion_index(const Motion& m, bool needs_acceleration);
+  // Evaluates every distinct motion at t unless the cache already holds t.
+  void update_motions(double t) const;
+  const MotionValue& value(int index) const {
+    static constexpr MotionValue kZero{};
+    return index == kNone ? kZero : values_[static_cast<std::size_t>(index)];
+  }
+  PlanarMotion seat_motion_cached(int seat) const;
 
   Parameters p_;
   Excitation excitation_;
-  SupportMotion no_motion_;
+  // The distinct motions of the excitation (supports sharing a GroundMotion object share an
+  // entry), whether their acceleration is needed (seats), and each support's indices.
+  std::vector<const GroundMotion*> motions_;
+  std::vector<char> needs_acceleration_;
+  std::vector<SupportIndex> bent_index_;
+  std::array<SupportIndex, 2> seat_index_;
+  mutable std::vector<MotionValue> values_;
+  mutable Eigen::Vector3d us_dot_ = Eigen::Vector3d::Zero();  // us_dot at values_t_
+  mutable double values_t_ = std::numeric_limits<double>::quiet_NaN();
   std::vector<takeda::Spring> springs_x_, springs_y_;
   std::array<CornerFace, 4> corners_;
   std::array<Eigen::Vector2d, 2> faces_;

@@ -345,6 +345,9 @@ TEST_CASE("compliance: a closure is never stepped over, however large max_step")
   CHECK(rec.count(EventKind::kOpen) == 1);
   CHECK(rec.events().front().t == doctest::Approx(1.0).epsilon(1e-9));
   CHECK(rec.series("v0").back() == doctest::Approx(0.5).epsilon(1e-4));
+  // The step that crossed the wall was retaken to end at the closure (free flight has no
+  // error-control rejections, so every rejected step here is such a retake).
+  CHECK(st.rejected_steps >= 1);
   // One commit at the start and one per accepted step.
   CHECK(s.commits == st.steps + 1);
   CHECK(st.factorizations == st.steps + st.rejected_steps);

@@ -248,6 +248,11 @@ TEST_CASE("rheonomic support: the ball leaves a shaking table when it accelerate
   REQUIRE(!opens.empty());
   const double t_lift = std::asin(b.g / (b.A * b.w * b.w)) / b.w;
   CHECK(std::abs(opens[0] - t_lift) < kTimeTol);
+  // The table does the work on the ball (-lambda_N what_N, booked as ground input); the
+  // contact itself does none while closed, and the plastic re-impact (e = 0) dissipates.
+  CHECK(s.energy.ground > 0.0);
+  CHECK(s.energy.impacts <= 1e-12);
+  CHECK(s.energy.error < 1e-6);
 }
 
 TEST_CASE("block under a constant force: stick below mu m g, exact slip above") {
