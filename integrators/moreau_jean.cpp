@@ -26,6 +26,19 @@ constexpr std::int64_t kMaxWarnings = 100;
 // Number of lcp::Status values (kNotRun .. kTooLarge), for allocation-free counting.
 constexpr int kStatusCount = static_cast<int>(lcp::Status::kTooLarge) + 1;
 
+// y += alpha A x. The systems here are tiny (3 DOF for the bridge), where the general
+// matrix-vector kernel's dispatch costs more than the arithmetic. Per row the products are
+// summed over the columns in order, then scaled by alpha and added: the order of Eigen's
+// column-major kernel, so the results are the same numbers.
+void add_product(double alpha, const Matrix& a, const Vector& x, Vector& y) {
+  const Eigen::Index rows = a.rows(), cols = a.cols();
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    double c = 0.0;
+    for (Eigen::Index j = 0; j < cols; ++j) c += a(i, j) * x[j];
+    y[i] += c * alpha;
+  }
+}
+
 // Per-contact state, for events (impact, close, open, stick, slip).
 enum class ContactState { kOpen, kClosed /* frictionless */, kStick, kSlipPositive, kSlipNegative };
 
@@ -253,9 +266,9 @@ bool MoreauJean::step(double h, double t1) {
   system_.forces(t1, q_, u_, f_pred_);
   rhs_ = (h * (1.0 - theta_)) * f_k_;
   rhs_ += (h * theta_) * f_pred_;
-  if (has_stiffness_) rhs_.noalias() -= (h * h * theta_) * K_ * u_;
+  if (has_stiffness_) add_product(-(h * h * theta_), K_, u_, rhs_);
   u_free_ = u_;
-  u_free_.noalias() += A_inv_ * rhs_;
+  add_product(1.0, A_inv_, rhs_, u_free_);
 
   // Index set: contacts closed or closing within the step, g_N + (h/2) gdot_N <= 0, with
   // g_N and gdot_N at t_k (Acary & Brogliato 2008, ch. 10; Siconos uses the same rule).
@@ -404,6 +417,9 @@ void MoreauJean::update_events(double t1) {
     const auto ui = static_cast<std::size_t>(i);
     const ContactData& c = contacts_[ui];
     const ContactState before = state_[ui];
+    // An open contact without a normal impulse stays open: nothing to evaluate (most
+    // contacts at most steps).
+    if (before == ContactState::kOpen && !(lambda_n_[i] > 0.0)) continue;
     ContactState now = ContactState::kOpen;
     const bool resting = std::abs(c.gap_rate(u_new_)) <= v_tol;
     if (lambda_n_[i] > 0.0) {

@@ -19,13 +19,9 @@ Result enumerate(const Problem& p, const EnumerationOptions& options) {
   options.validate();
   const Eigen::Index n = p.size();
   Result r;
-  const auto start = std::chrono::steady_clock::now();
+  const SolveClock clock(p);
   const auto finish = [&](Status s, std::string message) {
-    r.status = s;
-    r.message = std::move(message);
-    r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    evaluate(p, r);
-    return r;
+    return clock.finish(r, s, std::move(message));
   };
   if (n > options.max_size) {
     std::ostringstream s;

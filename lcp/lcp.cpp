@@ -88,4 +88,15 @@ void evaluate(const Problem& p, Result& r) {
   r.siconos_error = siconos_error(p.M, p.q, r.z);
 }
 
+SolveClock::SolveClock(const Problem& p)
+    : problem_(p), start_(std::chrono::steady_clock::now()) {}
+
+Result& SolveClock::finish(Result& r, Status s, std::string message) const {
+  r.status = s;
+  r.message = std::move(message);
+  r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  evaluate(problem_, r);
+  return r;
+}
+
 }  // namespace nsb::lcp

@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include <chrono>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -76,5 +77,17 @@ double siconos_error(const Matrix& M, const Vector& q, const Vector& z);
 
 // Fills r.w, r.residual and r.siconos_error from r.z.
 void evaluate(const Problem& p, Result& r);
+
+// Times one solve and closes its result: every solver ends through finish(), which sets the
+// status, the message and the wall time, and evaluates w and both residuals from r.z.
+class SolveClock {
+ public:
+  explicit SolveClock(const Problem& p);
+  Result& finish(Result& r, Status s, std::string message) const;
+
+ private:
+  const Problem& problem_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 }  // namespace nsb::lcp

@@ -103,13 +103,9 @@ Result newton_fb(const Problem& p, const NewtonFbOptions& options, const Vector&
   options.validate();
   const Eigen::Index n = p.size();
   Result r;
-  const auto start = std::chrono::steady_clock::now();
+  const SolveClock clock(p);
   const auto finish = [&](Status s, std::string message) {
-    r.status = s;
-    r.message = std::move(message);
-    r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    evaluate(p, r);
-    return r;
+    return clock.finish(r, s, std::move(message));
   };
   r.z = warm_start.size() == n ? warm_start : Vector::Zero(n);
   Vector phi(n);

@@ -21,13 +21,9 @@ Result pgs(const Problem& p, const PgsOptions& options, const Vector& warm_start
   options.validate();
   const Eigen::Index n = p.size();
   Result r;
-  const auto start = std::chrono::steady_clock::now();
+  const SolveClock clock(p);
   const auto finish = [&](Status s, std::string message) {
-    r.status = s;
-    r.message = std::move(message);
-    r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    evaluate(p, r);
-    return r;
+    return clock.finish(r, s, std::move(message));
   };
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!(p.M(i, i) > 0.0)) {

@@ -299,8 +299,9 @@ integrators::PowerTerms Bridge::power(double t, const integrators::Vector&,
   update_motions(t);
   const Eigen::Vector3d us = us_dot_;
   const Eigen::Vector3d vr = u.head<3>() - us;
-  pw.damping = vr.dot(c_ * vr);
-  double ground = -us.dot(c_ * vr);
+  const Eigen::Vector3d cvr = c_ * vr;
+  pw.damping = vr.dot(cvr);
+  double ground = -us.dot(cvr);
   for (std::size_t j = 0; j < p_.bents.size(); ++j) {
     ground -= springs_x_[j].force() * value(bent_index_[j].longitudinal).v +
               springs_y_[j].force() * value(bent_index_[j].transverse).v;

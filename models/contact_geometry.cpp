@@ -22,8 +22,11 @@ struct Rotation {
     c = last_c;
     s = last_s;
   }
-  Eigen::Vector2d operator()(const Eigen::Vector2d& v) const {
-    return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+  // (x, y) = R v, as two scalars: building a Vector2d from separately computed halves and
+  // reading it back whole stalls the store forwarding, a large share of this function.
+  void apply(const Eigen::Vector2d& v, double& x, double& y) const {
+    x = c * v.x() - s * v.y();
+    y = s * v.x() + c * v.y();
   }
 };
 
@@ -42,33 +45,42 @@ ContactKinematics corner_contact(const CornerFace& c, const Eigen::Vector3d& q,
   const Rotation body_rotation(q.z()), obstacle_rotation(phi);
 
   // Body corner: position p = (x, y) + r and velocity pdot = v + omega J r.
-  const Eigen::Vector2d r = body_rotation(c.body_point);
-  const double px = q.x() + r.x(), py = q.y() + r.y();
-  const double pdx = vx + omega * -r.y(), pdy = vy + omega * r.x();
+  double rx, ry;
+  body_rotation.apply(c.body_point, rx, ry);
+  const double px = q.x() + rx, py = q.y() + ry;
+  const double pdx = vx + omega * -ry, pdy = vy + omega * rx;
 
   // Obstacle face point: position, velocity and acceleration (rigid-body kinematics).
-  const Eigen::Vector2d ra = obstacle_rotation(c.face_point);
-  const double ax = obstacle.position.x() + ra.x(), ay = obstacle.position.y() + ra.y();
-  const double adx = obstacle.velocity.x() + phid * -ra.y();
-  const double ady = obstacle.velocity.y() + phid * ra.x();
+  double rax, ray;
+  obstacle_rotation.apply(c.face_point, rax, ray);
+  const double ax = obstacle.position.x() + rax, ay = obstacle.position.y() + ray;
+  const double adx = obstacle.velocity.x() + phid * -ray;
+  const double ady = obstacle.velocity.y() + phid * rax;
   const double phid2 = phid * phid;
-  const double addx = obstacle.acceleration.x() + phidd * -ra.y() - phid2 * ra.x();
-  const double addy = obstacle.acceleration.y() + phidd * ra.x() - phid2 * ra.y();
+  const double addx = obstacle.acceleration.x() + phidd * -ray - phid2 * rax;
+  const double addy = obstacle.acceleration.y() + phidd * rax - phid2 * ray;
 
-  const Eigen::Vector2d n = obstacle_rotation(c.face_normal);
-  const double nx = n.x(), ny = n.y();
+  double nx, ny;
+  obstacle_rotation.apply(c.face_normal, nx, ny);
   const double tx = -ny, ty = nx;  // t = J n
   const double dx = px - ax, dy = py - ay;
 
-  k.point = Eigen::Vector2d(px, py);
-  k.normal = n;
-  k.tangent = Eigen::Vector2d(tx, ty);
+  k.point.x() = px;
+  k.point.y() = py;
+  k.normal.x() = nx;
+  k.normal.y() = ny;
+  k.tangent.x() = tx;
+  k.tangent.y() = ty;
   k.gap_normal = nx * dx + ny * dy;
   k.gap_tangent = tx * dx + ty * dy;
-  const double wn2 = r.x() * ny - r.y() * nx;  // r x n
-  const double wt2 = r.x() * ty - r.y() * tx;  // r x t
-  k.w_normal = Eigen::Vector3d(nx, ny, wn2);
-  k.w_tangent = Eigen::Vector3d(tx, ty, wt2);
+  const double wn2 = rx * ny - ry * nx;  // r x n
+  const double wt2 = rx * ty - ry * tx;  // r x t
+  k.w_normal.x() = nx;
+  k.w_normal.y() = ny;
+  k.w_normal.z() = wn2;
+  k.w_tangent.x() = tx;
+  k.w_tangent.y() = ty;
+  k.w_tangent.z() = wt2;
   k.what_normal = phid * k.gap_tangent - (nx * adx + ny * ady);
   k.what_tangent = -phid * k.gap_normal - (tx * adx + ty * ady);
   k.gap_rate_normal = (nx * vx + ny * vy + wn2 * omega) + k.what_normal;
@@ -77,9 +89,9 @@ ContactKinematics corner_contact(const CornerFace& c, const Eigen::Vector3d& q,
   // Terms of the second derivatives that do not depend on udot (see the header).
   const double relx = pdx - adx, rely = pdy - ady;
   const double omega2 = omega * omega;
-  k.wbar_normal = phid * (tx * relx + ty * rely) - omega2 * (nx * r.x() + ny * r.y()) -
+  k.wbar_normal = phid * (tx * relx + ty * rely) - omega2 * (nx * rx + ny * ry) -
                   (nx * addx + ny * addy) + phidd * k.gap_tangent + phid * k.gap_rate_tangent;
-  k.wbar_tangent = -phid * (nx * relx + ny * rely) - omega2 * (tx * r.x() + ty * r.y()) -
+  k.wbar_tangent = -phid * (nx * relx + ny * rely) - omega2 * (tx * rx + ty * ry) -
                    (tx * addx + ty * addy) - phidd * k.gap_normal - phid * k.gap_rate_normal;
   return k;
 }
