@@ -7,6 +7,7 @@
 // Plot: gnuplot -e "csv='DIR/work_precision.csv'; png='docs/benchmarks/work-precision.png'"
 //       benchmarks/plot_work_precision.gp
 #include "integrators/event_driven.hpp"
+#include "integrators/compliance.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "models/scene.hpp"
 #include "models/simple_systems.hpp"
@@ -87,6 +88,15 @@ Run measure(const std::string& scene, const std::string& method, double paramete
       o.end_time = end_time;
       o.tolerance = parameter;
       run.stats = ni::event_driven(*sys, o, rec);
+    } else if (method == "compliance") {
+      // parameter = stiffness factor on the default Hertz stiffness. The exact Hunt–Crossley
+      // law reproduces each contact's restitution, so the compliance answer tends to the
+      // nonsmooth reference as k grows (docs/compliance.md).
+      ni::ComplianceOptions o;
+      o.end_time = end_time;
+      o.stiffness *= parameter;
+      o.law = ni::DampingLaw::kHuntCrossleyExact;
+      run.stats = ni::compliance(*sys, o, rec);
     } else {
       ni::MoreauJeanOptions o;
       o.end_time = end_time;
@@ -143,9 +153,11 @@ int main(int argc, char** argv) {
 
   std::vector<double> tolerances{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
   std::vector<double> steps{1e-2, 1e-3, 1e-4, 1e-5};
+  std::vector<double> stiffness_factors{1e-4, 1e-2, 1.0, 1e2};
   if (quick) {
     tolerances = {1e-4, 1e-6, 1e-8};
     steps = {1e-2, 1e-3};
+    stiffness_factors = {1e-2, 1.0};
     bridge_end = std::min(bridge_end, 6.0);
   }
 
@@ -187,6 +199,10 @@ int main(int argc, char** argv) {
     }
     for (double h : steps) {
       runs.push_back(measure(sc.name, "moreau", h, sc.make, sc.end_time, sc.sample_dt,
+                             sc.column, repeats));
+    }
+    for (double k : stiffness_factors) {
+      runs.push_back(measure(sc.name, "compliance", k, sc.make, sc.end_time, sc.sample_dt,
                              sc.column, repeats));
     }
     const Run& ref = runs[tolerances.size() - 1];  // tightest event-driven tolerance

@@ -28,8 +28,8 @@ constexpr int kStatusCount = static_cast<int>(lcp::Status::kTooLarge) + 1;
 
 // y += alpha A x. The systems here are tiny (3 DOF for the bridge), where the general
 // matrix-vector kernel's dispatch costs more than the arithmetic. Per row the products are
-// summed over the columns in order, then scaled by alpha and added: the order of Eigen's
-// column-major kernel, so the results are the same numbers.
+// summed over the columns in order, then scaled by alpha and added, as Eigen's column-major
+// kernel does (the bridge benchmark's histories came out bit for bit the same).
 void add_product(double alpha, const Matrix& a, const Vector& x, Vector& y) {
   const Eigen::Index rows = a.rows(), cols = a.cols();
   for (Eigen::Index i = 0; i < rows; ++i) {

@@ -26,6 +26,9 @@ constexpr int kLastPower = 5;
 constexpr int kPowers = kLastPower - kFirstPower + 1;
 // A cubic spline needs three samples (GSL's cspline minimum size).
 constexpr std::size_t kMinSamples = 3;
+// Knots within this fraction of a sampling step of the uniform grid count as uniformly
+// sampled: the direct interval guess is then off by at most one knot (GroundMotion::Data).
+constexpr double kUniformSlack = 0.1;
 
 [[noreturn]] void fail(const std::string& where, const std::string& what) {
   throw std::invalid_argument(where + ": " + what);
@@ -305,11 +308,28 @@ struct GroundMotion::Data {
     dp /= T;
     ddp /= T * T;
   }
+  // Index i in [0, n-2] of the interval holding t_rel: the last knot with t[i] <= t_rel
+  // (0 before the first). Records are almost always sampled uniformly: then the interval
+  // follows from the sampling step, corrected by at most a knot or two for round-off in the
+  // knot times, with the same result as the binary search used otherwise.
   std::size_t interval(double t_rel) const {
+    const std::size_t last = t.size() - 2;
+    if (uniform_rate > 0.0) {
+      const double guess = (t_rel - t0) * uniform_rate;
+      std::size_t i = !(guess > 0.0) ? 0  // also NaN, which must not reach the cast
+                      : guess >= static_cast<double>(last) ? last
+                                                           : static_cast<std::size_t>(guess);
+      while (i > 0 && t[i] > t_rel) --i;
+      while (i < last && t[i + 1] <= t_rel) ++i;
+      return i;
+    }
     const auto it = std::upper_bound(t.begin(), t.end(), t_rel);
     const std::size_t i = it == t.begin() ? 0 : static_cast<std::size_t>(it - t.begin()) - 1;
-    return std::min(i, t.size() - 2);
+    return std::min(i, last);
   }
+  // 1 / sampling step when every knot lies within a tenth of a step of the uniform grid
+  // t0 + i (t1 - t0) / (n - 1); 0 otherwise (interval() then searches).
+  double uniform_rate = 0.0;
 };
 
 GroundMotion::GroundMotion(const Record& r, const GroundMotionOptions& o) {
@@ -330,6 +350,14 @@ GroundMotion::GroundMotion(const Record& r, const GroundMotionOptions& o) {
   }
   d->t0 = d->t.front();
   d->t1 = d->t.back();
+  {
+    const double step = (d->t1 - d->t0) / static_cast<double>(n - 1);
+    bool uniform = step > 0.0;
+    for (std::size_t i = 0; uniform && i < n; ++i) {
+      uniform = std::abs(d->t[i] - (d->t0 + static_cast<double>(i) * step)) <= kUniformSlack * step;
+    }
+    if (uniform) d->uniform_rate = 1.0 / step;
+  }
 
   // Natural cubic spline of the acceleration samples (GSL), then its exact integrals.
   d->spline = std::shared_ptr<gsl_spline>(gsl_spline_alloc(gsl_interp_cspline, n), SplineDeleter{});

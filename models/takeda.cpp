@@ -2,7 +2,10 @@
 #include "models/takeda.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -24,6 +27,41 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 }
 
 int sign_of(double x) { return x >= 0.0 ? 1 : -1; }
+
+// Both states still on the initial elastic branch: they can then differ only in d, f and work
+// (a move on that branch changes nothing else).
+bool both_elastic(const State& a, const State& b) {
+  return a.branch == Branch::kElastic && b.branch == Branch::kElastic;
+}
+
+void copy_elastic(const State& from, State& to) {
+  to.d = from.d;
+  to.f = from.f;
+  to.work = from.work;
+}
+
+// std::pow(base, exponent), remembered. A yielded spring asks for the unloading stiffness
+// of the same peak at nearly every step (each trial that reverses on the backbone or a
+// reloading line), and pow dominated the cost of the update; a small direct-mapped table per
+// thread returns the very same value without recomputing it.
+double memo_pow(double base, double exponent) {
+  struct Entry {
+    double base = std::numeric_limits<double>::quiet_NaN();  // NaN never matches: empty
+    double exponent = 0.0;
+    double value = 0.0;
+  };
+  constexpr std::size_t kEntries = 16;  // a few springs, each with its current peak
+  thread_local std::array<Entry, kEntries> table;
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &base, sizeof bits);
+  Entry& e = table[(bits ^ (bits >> 17) ^ (bits >> 37)) % kEntries];
+  if (!(e.base == base && e.exponent == exponent)) {
+    e.base = base;
+    e.exponent = exponent;
+    e.value = std::pow(base, exponent);
+  }
+  return e.value;
+}
 
 }  // namespace
 
@@ -145,7 +183,7 @@ double Spring::unloading_stiffness(int side, double peak_d) const {
     return (backbone_magnitude(x) + f_crack_) / (x + d_crack_);
   }
   // Rule 5: k_u = k_y (d_y / d_max)^alpha.
-  return k_yield_unload_ * std::pow(p_.d_yield / x, p_.unloading_exponent);
+  return k_yield_unload_ * memo_pow(p_.d_yield / x, p_.unloading_exponent);
 }
 
 double Spring::peak_magnitude(const State& s, int side) {
@@ -334,10 +372,20 @@ double Spring::set_trial(double d) {
   if (!std::isfinite(d)) {
     throw std::invalid_argument("takeda::Spring::set_trial: displacement must be finite");
   }
-  State s = committed_;
-  if (d != s.d) advance(s, d);
-  trial_ = s;
-  trial_tangent_ = d != committed_.d ? tangent_of(s) : committed_tangent_;
+  if (both_elastic(committed_, trial_) && std::abs(d) <= d_crack_) {
+    // Rule 1 without the general machinery. A state that never left the elastic branch
+    // differs from the initial one only in d, f and work (side, peaks and lines are those of
+    // the constructor), and the committed one has |d| <= d_crack, so the move stays on the
+    // branch exactly when |d| <= d_crack: the same numbers as advance(), without copying
+    // the whole state.
+    copy_elastic(committed_, trial_);
+    if (d != committed_.d) move_on_line(trial_, d, k_elastic_ * d);
+    trial_tangent_ = d != committed_.d ? k_elastic_ : committed_tangent_;
+    return trial_.f;
+  }
+  trial_ = committed_;
+  if (d != committed_.d) advance(trial_, d);
+  trial_tangent_ = d != committed_.d ? tangent_of(trial_) : committed_tangent_;
   return trial_.f;
 }
 
@@ -372,12 +420,20 @@ double Spring::stored_energy() const {
 double Spring::dissipated_energy() const { return trial_.work - stored_energy(); }
 
 void Spring::commit() {
-  committed_ = trial_;
+  if (both_elastic(committed_, trial_)) {
+    copy_elastic(trial_, committed_);  // the other fields are equal (see set_trial)
+  } else {
+    committed_ = trial_;
+  }
   committed_tangent_ = trial_tangent_;
 }
 
 void Spring::revert() {
-  trial_ = committed_;
+  if (both_elastic(committed_, trial_)) {
+    copy_elastic(committed_, trial_);
+  } else {
+    trial_ = committed_;
+  }
   trial_tangent_ = committed_tangent_;
 }
 
