@@ -56,15 +56,7 @@ class Core {
  public:
   Core(System& system, const ComplianceOptions& o)
       : sys_(system), opt_(o), n_(system.dofs()), m_(system.contacts()) {
-    const Matrix& M = sys_.mass();
-    if (M.rows() != n_ || M.cols() != n_) {
-      throw std::invalid_argument("compliance: the system's mass matrix is not dofs() x dofs()");
-    }
-    Eigen::LLT<Matrix> llt(M);
-    if (llt.info() != Eigen::Success) {
-      throw std::invalid_argument("compliance: the system's mass matrix is not positive definite");
-    }
-    minv_ = llt.solve(Matrix::Identity(n_, n_));
+    minv_ = checked_inverse_mass(sys_, "compliance");
     q_ = Vector::Zero(n_);
     u_ = Vector::Zero(n_);
     f_ = Vector::Zero(n_);

@@ -98,15 +98,7 @@ class EventDriven {
     stick_velocity_ = opt_.stick_velocity > 0.0 ? opt_.stick_velocity : 10.0 * tol;
     gap_tolerance_ = opt_.gap_tolerance > 0.0 ? opt_.gap_tolerance : kDefaultGapTolerance;
     gap_shift_ = 1e-2 * gap_tolerance_;
-    const Matrix& M = sys_.mass();
-    if (M.rows() != n_ || M.cols() != n_) {
-      throw std::invalid_argument("event_driven: mass matrix is not dofs() x dofs()");
-    }
-    Eigen::LLT<Matrix> llt(M);
-    if (llt.info() != Eigen::Success) {
-      throw std::invalid_argument("event_driven: mass matrix is not positive definite");
-    }
-    minv_ = llt.solve(Matrix::Identity(n_, n_));
+    minv_ = checked_inverse_mass(sys_, "event_driven");
     cbuf_ = sys_.make_contact_buffer();
     modes_.assign(static_cast<std::size_t>(m_), ContactMode{});
     f_ = Vector::Zero(n_);

@@ -110,21 +110,10 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
       m_(system.contacts()),
       theta_(options.theta) {
   options.validate();
-  if (n_ <= 0) throw std::invalid_argument("moreau_jean: the system has no degrees of freedom");
-  if (m_ < 0) throw std::invalid_argument("moreau_jean: the system reports contacts() < 0");
-  if (mass_.rows() != n_ || mass_.cols() != n_) {
-    throw std::invalid_argument("moreau_jean: mass() is not dofs() x dofs()");
-  }
+  checked_inverse_mass(system, "moreau_jean");
   t_ = system.initial_time();
   q_ = system.initial_position();
   u_ = system.initial_velocity();
-  if (q_.size() != n_ || u_.size() != n_) {
-    throw std::invalid_argument(
-        "moreau_jean: initial_position() or initial_velocity() is not of size dofs()");
-  }
-  if (!q_.allFinite() || !u_.allFinite() || !mass_.allFinite()) {
-    throw std::invalid_argument("moreau_jean: non-finite initial state or mass matrix");
-  }
   if (!(options.end_time > t_)) {
     throw std::invalid_argument("moreau_jean: end_time (" + std::to_string(options.end_time) +
                                 ") must exceed the system's initial time (" +

@@ -14,6 +14,7 @@
 #include <Eigen/Dense>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace nsb::integrators {
@@ -102,5 +103,11 @@ class System {
     return c;
   }
 };
+
+// Checks what every integrator relies on and throws std::invalid_argument, the message
+// prefixed with `method`, when the system breaks it: dofs() > 0, contacts() >= 0, a finite
+// symmetric positive definite dofs() x dofs() mass matrix, and a finite initial state of size
+// dofs(). Returns M^-1.
+Matrix checked_inverse_mass(const System& system, std::string_view method);
 
 }  // namespace nsb::integrators
