@@ -10,7 +10,6 @@ packages=(
   doctest-dev libcli11-dev libtomlplusplus-dev
   libgnuplot-iostream-dev libboost-iostreams-dev libboost-system-dev libboost-filesystem-dev
   gnuplot-nox
-  libbenchmark-dev
 )
 if [[ "${1:-}" == "--with-siconos" ]]; then
   packages+=(libsiconos-numerics-dev)
