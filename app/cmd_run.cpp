@@ -7,11 +7,8 @@
 // unsolved; the files are still written, and say so.
 #include "app/commands.hpp"
 
-#include "integrators/compliance.hpp"
-#include "integrators/event_driven.hpp"
-#include "integrators/moreau_jean.hpp"
 #include "integrators/output.hpp"
-#include "lcp/solve.hpp"
+#include "integrators/run.hpp"
 #include "models/scene.hpp"
 
 #include <unistd.h>
@@ -73,53 +70,16 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
-lcp::Solver lcp_solver_of(const models::SolverSettings& s) {
-  const auto solver = lcp::parse_solver(s.lcp_solver);
-  if (!solver) {
-    throw InputError("solver.lcp_solver: '" + s.lcp_solver +
-                     "' is not one of lemke, pgs, nfb, enum");
-  }
-  return *solver;
-}
-
-// One branch per method: options from the scene's SolverSettings, then the integrator.
-integrators::RunStats integrate(models::Scene& scene, integrators::Recorder& recorder) {
-  const models::SolverSettings& s = scene.solver;
-  integrators::System& system = *scene.system;
-  if (s.method == "moreau") {
-    integrators::MoreauJeanOptions o;
-    o.end_time = s.end_time;
-    o.step = s.step;
-    o.theta = s.theta;
-    o.solver = lcp_solver_of(s);
-    ProgressBar bar(system.initial_time(), s.end_time);
-    o.progress = [&bar](double t) { bar.update(t); };
-    return integrators::moreau_jean(system, o, recorder);
-  }
-  if (s.method == "event_driven") {
-    integrators::EventDrivenOptions o;
-    o.end_time = s.end_time;
-    o.tolerance = s.tolerance;
-    o.solver = lcp_solver_of(s);
-    return integrators::event_driven(system, o, recorder);
-  }
-  if (s.method == "compliance") {
-    integrators::ComplianceOptions o;
-    o.end_time = s.end_time;
-    o.tolerance = s.tolerance;
-    o.stiffness = s.contact_stiffness * s.stiffness_factor;
-    o.stick_slip_velocity = s.stick_slip_velocity;
-    o.law = integrators::parse_damping_law(s.damping_law);
-    return integrators::compliance(system, o, recorder);
-  }
-  throw InputError("solver.method: '" + s.method +
-                   "' is not one of moreau, event_driven, compliance");
-}
-
 void print_summary(const models::Scene& scene, const integrators::Recorder& recorder,
-                   const integrators::RunStats& stats, const std::filesystem::path& out) {
+                   const integrators::RunResult& stats, const std::filesystem::path& out) {
   std::cout << "scene      " << scene.name << " (" << scene.kind << "), method " << stats.method
             << '\n';
+  std::cout << "status     " << integrators::to_string(stats.status);
+  if (!integrators::succeeded(stats.status)) {
+    std::cout << " at t = " << stats.failure_time << " s (" << stats.lcp_unsolved
+              << " contact problems unsolved)";
+  }
+  std::cout << '\n';
   std::cout << "time       " << stats.end_time << " s in " << stats.steps << " steps"
             << (stats.completed ? "" : " (stopped early: " + stats.message + ")") << '\n';
   std::cout << "contacts   " << stats.steps_with_lcp << " steps with a contact problem, "
@@ -154,7 +114,9 @@ void run(const RunArgs& args) {
   models::Scene scene = models::load_scene(args.scene, overrides);
   if (!scene.system) throw InputError(args.scene + ": the scene built no system");
   integrators::Recorder recorder(*scene.system, scene.output.sample_dt);
-  const integrators::RunStats stats = integrate(scene, recorder);
+  ProgressBar bar(scene.system->initial_time(), integrators::end_time(scene.run));
+  const integrators::RunResult stats = integrators::integrate(
+      *scene.system, scene.run, recorder, [&bar](double t) { bar.update(t); });
   const std::filesystem::path out =
       args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
   try {
@@ -163,9 +125,7 @@ void run(const RunArgs& args) {
     throw InputError(std::string("--out: ") + e.what());  // an unwritable place is bad input
   }
   print_summary(scene, recorder, stats, out);
-  bool unsolved = false;
-  for (const auto& [status, count] : stats.lcp_status) unsolved |= (status != "solved" && count > 0);
-  if (!stats.completed || unsolved) exit_code() = 1;
+  if (!integrators::succeeded(stats.status)) exit_code() = 1;
 }
 
 }  // namespace

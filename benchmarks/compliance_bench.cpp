@@ -28,7 +28,7 @@
 namespace {
 
 using nsb::integrators::Recorder;
-using nsb::integrators::RunStats;
+using nsb::integrators::RunResult;
 
 struct History {
   std::vector<double> t, theta;
@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
          "first_contact,first_close,first_duration,first_penetration,first_peak_force\n";
   const auto row = [&](const std::string& method, double factor, double k,
                        const std::vector<double>& walls, const std::vector<double>& cpus,
-                       const RunStats& st,
+                       const RunResult& st,
                        const ThetaError& err, double peak, const Pounding& p) {
     out << method << ',' << law_name << ',' << restitution << ',' << e_eff << ',' << factor
         << ',' << k << ',' << median(walls) << ',' << median(cpus) << ',' << st.steps << ',' << st.rejected_steps
@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
   History ref;
   {
     std::vector<double> walls, cpus;
-    RunStats st;
+    RunResult st;
     Recorder keep(*nsb::models::load_scene(scene, reference_overrides).system, 0.0);
     for (int r = 0; r < repeat; ++r) {
       auto sc = nsb::models::load_scene(scene, reference_overrides);
@@ -228,7 +228,7 @@ int main(int argc, char** argv) {
     o.theta = sc.solver.theta;
     Recorder rec(*sc.system, sc.output.sample_dt);
     const double c0 = cpu_seconds();
-    const RunStats st = nsb::integrators::moreau_jean(*sc.system, o, rec);
+    const RunResult st = nsb::integrators::moreau_jean(*sc.system, o, rec);
     const double cpu = cpu_seconds() - c0;
     const History hh = history(rec);
     const ThetaError err = theta_error(hh, ref);
@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
     o.tolerance = sc.solver.tolerance;
     Recorder rec(*sc.system, sc.output.sample_dt);
     const double c0 = cpu_seconds();
-    const RunStats st = nsb::integrators::event_driven(*sc.system, o, rec);
+    const RunResult st = nsb::integrators::event_driven(*sc.system, o, rec);
     const double cpu = cpu_seconds() - c0;
     const History hh = history(rec);
     const ThetaError err = theta_error(hh, ref);
@@ -258,7 +258,7 @@ int main(int argc, char** argv) {
 
   for (double factor : factors) {
     std::vector<double> walls, cpus;
-    RunStats st;
+    RunResult st;
     History hh;
     Pounding p;
     double k = 0.0;

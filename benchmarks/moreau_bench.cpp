@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
         std::string(NSB_SCENES_DIR) + "/bridge-exc" + std::to_string(exc) + ".toml";
     for (double h : {1e-4, 1e-3}) {
       std::vector<double> walls, cpus;  // wall and process CPU time of each repeat [s]
-      integrators::RunStats stats;
+      integrators::RunResult stats;
       double peak_rotation = 0.0;
       double duration = 0.0;
       for (int r = 0; r < repeats; ++r) {

@@ -34,7 +34,7 @@ struct Run {
   std::string scene, method;
   double parameter = 0.0;  // tolerance or step
   double wall = 0.0;       // median wall time [s]
-  ni::RunStats stats;
+  ni::RunResult stats;
   std::vector<double> t, x;  // sampled history of the compared coordinate
   std::size_t impacts = 0, events = 0;
 };

@@ -395,10 +395,10 @@ void ComplianceOptions::validate() const {
   require(max_steps > 0, "max_steps", "must be > 0");
 }
 
-RunStats compliance(System& system, const ComplianceOptions& options, Recorder& recorder) {
+RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder) {
   options.validate();
   const auto wall_start = std::chrono::steady_clock::now();
-  RunStats stats;
+  RunResult stats;
   stats.method = "compliance";
   const double t0 = system.initial_time();
   if (!(options.end_time > t0)) {

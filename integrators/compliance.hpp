@@ -113,6 +113,6 @@ struct ComplianceOptions {
 // "compliance": steps, rejected_steps, factorizations (one LU per attempted step).
 // Throws std::invalid_argument for bad options; a step size that underflows or a
 // non-finite state ends the run with completed = false and a message.
-RunStats compliance(System& system, const ComplianceOptions& options, Recorder& recorder);
+RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder);
 
 }  // namespace nsb::integrators

@@ -113,7 +113,7 @@ class EventDriven {
     lcp_options_.tolerance = opt_.lcp_tolerance;
   }
 
-  RunStats run();
+  RunResult run();
 
  private:
   // ---- state helpers ----
@@ -368,7 +368,7 @@ class EventDriven {
   Vector f_, q_, u_, udot_, lambda_n_, lambda_t_, h_;
   State xs_;
   Dense dense_ = odeint::make_dense_output(1e-8, 1e-8, Dopri());
-  RunStats stats_;
+  RunResult stats_;
   lcp::SolveOptions lcp_options_;
   std::int64_t rhs_evaluations_ = 0;
   double impact_normal_work_ = 0.0, impact_friction_work_ = 0.0, impact_ground_work_ = 0.0;
@@ -751,7 +751,7 @@ bool EventDriven::handle_event(double t, State& x, int trigger_contact, bool ini
   return true;
 }
 
-RunStats EventDriven::run() {
+RunResult EventDriven::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   gsl_error_handler_t* old_handler = gsl_set_error_handler_off();
   double t = sys_.initial_time();
@@ -891,7 +891,7 @@ RunStats EventDriven::run() {
 
 }  // namespace
 
-RunStats event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder) {
+RunResult event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder) {
   options.validate();
   EventDriven integrator(system, options, recorder);
   return integrator.run();

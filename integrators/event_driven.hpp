@@ -57,6 +57,6 @@ struct EventDrivenOptions {
 // run's statistics with method "event_driven". Throws std::invalid_argument for bad options;
 // numerical trouble (an LCP that no solver solves, a step size that underflows, the event
 // bound reached twice in a row) ends the run with completed = false and a message.
-RunStats event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder);
+RunResult event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder);
 
 }  // namespace nsb::integrators

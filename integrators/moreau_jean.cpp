@@ -20,7 +20,7 @@ namespace {
 constexpr double kTimeSlack = 1e-9;
 // Largest number of steps a run may take: beyond it the step is certainly a unit mistake.
 constexpr double kMaxSteps = 1e10;
-// Unsolved contact problems reported one by one (events and RunStats::warnings); more are
+// Unsolved contact problems reported one by one (events and RunResult::warnings); more are
 // only counted, so a persistently failing solver cannot flood the outputs.
 constexpr std::int64_t kMaxWarnings = 100;
 // Number of lcp::Status values (kNotRun .. kTooLarge), for allocation-free counting.
@@ -45,7 +45,7 @@ enum class ContactState { kOpen, kClosed /* frictionless */, kStick, kSlipPositi
 class MoreauJean {
  public:
   MoreauJean(System& system, const MoreauJeanOptions& options, Recorder& recorder);
-  RunStats run();
+  RunResult run();
 
  private:
   void factorize(double h);
@@ -95,7 +95,7 @@ class MoreauJean {
   EnergyBalance energy_;
   PowerTerms power_k_;
 
-  RunStats stats_;
+  RunResult stats_;
   std::array<std::int64_t, kStatusCount> status_count_{};
   std::int64_t unsolved_ = 0;  // contact problems that ended without kSolved
   double last_sample_t_ = -1e300;
@@ -197,7 +197,7 @@ void MoreauJean::factorize(double h) {
   ++stats_.factorizations;
 }
 
-RunStats MoreauJean::run() {
+RunResult MoreauJean::run() {
   const auto start = std::chrono::steady_clock::now();
   const double t0 = t_;
   const double h = options_.step;
@@ -496,7 +496,7 @@ void MoreauJeanOptions::validate() const {
   }
 }
 
-RunStats moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder) {
+RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder) {
   MoreauJean integrator(system, options, recorder);
   return integrator.run();
 }

@@ -48,7 +48,7 @@ struct MoreauJeanOptions {
 // Integrates system from its initial state to options.end_time. Samples the history into
 // recorder (contact forces lambda = Lambda / h) and records per-contact events. Throws
 // std::invalid_argument for bad options or a system whose sizes are inconsistent; every
-// numerical outcome (non-finite state, unsolved contact problems) is reported in RunStats.
-RunStats moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder);
+// numerical outcome (non-finite state, unsolved contact problems) is reported in RunResult.
+RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder);
 
 }  // namespace nsb::integrators

@@ -117,7 +117,7 @@ std::string events_csv(const Recorder& recorder) {
 }
 
 std::string summary_json(const std::string& scene_name, const Recorder& recorder,
-                         const RunStats& stats) {
+                         const RunResult& stats) {
   std::string o = "{\n";
   auto key = [&](std::string_view k) {
     o += "  ";
@@ -138,6 +138,8 @@ std::string summary_json(const std::string& scene_name, const Recorder& recorder
   o += json_string(scene_name) + ",\n";
   key("method");
   o += json_string(stats.method) + ",\n";
+  key("status");
+  o += json_string(to_string(stats.status)) + ",\n";
   key("completed");
   o += stats.completed ? "true,\n" : "false,\n";
   key("message");
@@ -148,6 +150,8 @@ std::string summary_json(const std::string& scene_name, const Recorder& recorder
   integer("steps_with_lcp", stats.steps_with_lcp);
   integer("lcp_solves", stats.lcp_solves);
   integer("lcp_fallbacks", stats.lcp_fallbacks);
+  integer("lcp_unsolved", stats.lcp_unsolved);
+  if (!succeeded(stats.status)) num("failure_time", stats.failure_time);
   key("lcp_status");
   o += "{";
   {
@@ -255,7 +259,7 @@ std::string summary_json(const std::string& scene_name, const Recorder& recorder
 }
 
 void write_outputs(const std::filesystem::path& dir, const std::string& scene_name,
-                   const Recorder& recorder, const RunStats& stats) {
+                   const Recorder& recorder, const RunResult& stats) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir)) {

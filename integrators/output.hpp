@@ -14,12 +14,12 @@ namespace nsb::integrators {
 // All three files are written under temporary names before any is renamed, so a failure
 // leaves no partial file (earlier complete outputs of the same names are left untouched).
 void write_outputs(const std::filesystem::path& dir, const std::string& scene_name,
-                   const Recorder& recorder, const RunStats& stats);
+                   const Recorder& recorder, const RunResult& stats);
 
 // The text of each file, for tests and for callers that write elsewhere.
 std::string history_csv(const Recorder& recorder);
 std::string events_csv(const Recorder& recorder);
 std::string summary_json(const std::string& scene_name, const Recorder& recorder,
-                         const RunStats& stats);
+                         const RunResult& stats);
 
 }  // namespace nsb::integrators

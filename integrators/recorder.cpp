@@ -18,6 +18,21 @@ std::string_view to_string(EventKind k) {
   return "unknown";
 }
 
+std::string_view to_string(RunStatus s) {
+  switch (s) {
+    case RunStatus::kCompleted: return "completed";
+    case RunStatus::kCompletedWithFallbacks: return "completed_with_fallbacks";
+    case RunStatus::kContactUnsolved: return "contact_unsolved";
+    case RunStatus::kDiverged: return "diverged";
+    case RunStatus::kStalled: return "stalled";
+  }
+  return "unknown";
+}
+
+bool succeeded(RunStatus s) {
+  return s == RunStatus::kCompleted || s == RunStatus::kCompletedWithFallbacks;
+}
+
 void EnergyBalance::close() {
   const double lhs = kinetic + stored;
   const double rhs = initial + external + ground - damping - hysteretic + impacts + friction;

@@ -49,18 +49,42 @@ struct EnergyBalance {
   void close();             // computes `error` from the other fields
 };
 
-// Statistics of one run, written to summary.json. Every integrator returns one:
-//   RunStats <method>(System&, const <Method>Options&, Recorder&);
-struct RunStats {
+// How a run ended. Every integrator reports one; the app maps it to the exit code
+// (docs/run-api.md): 0 for the two completed states, 1 for the others.
+enum class RunStatus {
+  kCompleted,               // reached end_time; every contact problem was solved by the
+                            //   configured solver. The history is usable.
+  kCompletedWithFallbacks,  // reached end_time; some contact problems needed the fallback
+                            //   chain, and every one was solved. The history is usable.
+  kContactUnsolved,         // reached end_time or stopped, but at least one contact problem
+                            //   was solved by no solver of the chain: the history after
+                            //   failure_time is not to be trusted.
+  kDiverged,                // a non-finite state or energy: the run stopped at failure_time.
+  kStalled,                 // an adaptive method could not advance (step size underflow, or
+                            //   the event bound reached twice in a row): stopped at
+                            //   failure_time.
+};
+std::string_view to_string(RunStatus s);
+// True for kCompleted and kCompletedWithFallbacks.
+bool succeeded(RunStatus s);
+
+// The outcome and statistics of one run, written to summary.json. Every integrator returns
+// one:  RunResult <method>(System&, const <Method>Options&, Recorder&).
+struct RunResult {
+  RunStatus status = RunStatus::kCompleted;
   std::string method;                  // "moreau", "event_driven" or "compliance"
   bool completed = false;              // reached end_time
   std::string message;                 // why it stopped early, if it did
   double end_time = 0.0;               // simulated time reached [s]
+  double failure_time = 0.0;           // time of the first failure [s]; meaningful only
+                                       //   when !succeeded(status)
   std::int64_t steps = 0;              // accepted steps
   std::int64_t rejected_steps = 0;
   std::int64_t steps_with_lcp = 0;     // steps or events that solved a contact problem
   std::int64_t lcp_solves = 0;
-  std::int64_t lcp_fallbacks = 0;      // solves where the chosen solver failed and Lemke ran
+  std::int64_t lcp_fallbacks = 0;      // solves where the configured solver failed and the
+                                       //   fallback chain produced the answer
+  std::int64_t lcp_unsolved = 0;       // solves that no solver of the chain solved
   std::map<std::string, std::int64_t> lcp_status;  // count per lcp::Status name
   std::int64_t factorizations = 0;     // iteration-matrix factorizations
   double wall_time = 0.0;              // [s]

@@ -737,6 +737,33 @@ void OutputSettings::validate() const {
     throw std::invalid_argument("output.sample_dt: must be >= 0 [s]");
 }
 
+integrators::RunConfig make_run_config(const SolverSettings& s) {
+  s.validate();
+  const lcp::Solver solver = *lcp::parse_solver(s.lcp_solver);
+  if (s.method == "moreau") {
+    integrators::MoreauJeanOptions o;
+    o.end_time = s.end_time;
+    o.step = s.step;
+    o.theta = s.theta;
+    o.solver = solver;
+    return o;
+  }
+  if (s.method == "event_driven") {
+    integrators::EventDrivenOptions o;
+    o.end_time = s.end_time;
+    o.tolerance = s.tolerance;
+    o.solver = solver;
+    return o;
+  }
+  integrators::ComplianceOptions o;
+  o.end_time = s.end_time;
+  o.tolerance = s.tolerance;
+  o.stiffness = s.contact_stiffness * s.stiffness_factor;
+  o.stick_slip_velocity = s.stick_slip_velocity;
+  o.law = integrators::parse_damping_law(s.damping_law);
+  return o;
+}
+
 const std::vector<std::string>& scene_kinds() {
   static const std::vector<std::string> k{"bridge", "rigid_deck", "bouncing_ball",
                                           "impact_oscillator", "sliding_block"};
@@ -802,6 +829,7 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   }
   scene.solver.validate();
   scene.output.validate();
+  scene.run = make_run_config(scene.solver);
   return scene;
 }
 

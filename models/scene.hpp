@@ -6,6 +6,7 @@
 // (for a value set by an override: "<file>: <key> (override): <what is allowed>").
 #pragma once
 
+#include "integrators/run.hpp"
 #include "integrators/system.hpp"
 
 #include <filesystem>
@@ -41,9 +42,14 @@ struct Scene {
   std::string kind;                   // [model] kind
   std::filesystem::path path;
   std::unique_ptr<integrators::System> system;
-  SolverSettings solver;
+  SolverSettings solver;               // the [solver] keys as read (after overrides)
+  integrators::RunConfig run;          // the typed configuration built from them, once
   OutputSettings output;
 };
+
+// The typed run configuration of validated solver settings: the options struct of
+// settings.method with the scene's values. Throws std::invalid_argument naming the key.
+integrators::RunConfig make_run_config(const SolverSettings& settings);
 
 // The model kinds a scene may name in [model] kind.
 const std::vector<std::string>& scene_kinds();

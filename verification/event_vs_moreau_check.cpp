@@ -50,14 +50,14 @@ double peak_abs(const ni::Recorder& r, const char* column) {
   return p;
 }
 
-ni::RunStats run_event(ni::System& s, double end, double tol, ni::Recorder& r) {
+ni::RunResult run_event(ni::System& s, double end, double tol, ni::Recorder& r) {
   ni::EventDrivenOptions o;
   o.end_time = end;
   o.tolerance = tol;
   return ni::event_driven(s, o, r);
 }
 
-ni::RunStats run_moreau(ni::System& s, double end, double h, ni::Recorder& r) {
+ni::RunResult run_moreau(ni::System& s, double end, double h, ni::Recorder& r) {
   ni::MoreauJeanOptions o;
   o.end_time = end;
   o.step = h;

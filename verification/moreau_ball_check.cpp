@@ -18,10 +18,10 @@ namespace {
 using integrators::EventKind;
 using integrators::MoreauJeanOptions;
 using integrators::Recorder;
-using integrators::RunStats;
+using integrators::RunResult;
 
 struct Run {
-  RunStats stats;
+  RunResult stats;
   std::vector<double> t, y, v, lambda;
   std::vector<double> impacts;  // impact event times
 };

@@ -13,7 +13,7 @@ namespace nsb {
 
 namespace {
 struct BridgeRun {
-  integrators::RunStats stats;
+  integrators::RunResult stats;
   double deepest_gap = 0.0;  // most negative g_N over the run [m]
   double peak_speed = 0.0;   // largest |vx| [m/s]
 };

@@ -20,10 +20,10 @@ using integrators::Matrix;
 using integrators::MoreauJeanOptions;
 using integrators::PowerTerms;
 using integrators::Recorder;
-using integrators::RunStats;
+using integrators::RunResult;
 using integrators::Vector;
 
-RunStats run(integrators::System& s, Recorder& rec, double h, double end_time) {
+RunResult run(integrators::System& s, Recorder& rec, double h, double end_time) {
   MoreauJeanOptions o;
   o.step = h;
   o.end_time = end_time;
@@ -87,7 +87,7 @@ TEST_CASE("impact oscillator: impact speeds, rebounds and amplitudes") {
   const double h = 1e-4;
   models::ImpactOscillator s(p);
   Recorder rec(s, 0.0);
-  const RunStats stats = run(s, rec, h, 3.0);
+  const RunResult stats = run(s, rec, h, 3.0);
   CHECK(stats.completed);
   const auto t = rec.series("t"), x = rec.series("x"), v = rec.series("vx");
   std::vector<std::size_t> rows;  // history row of each impact (the step that applies it)
@@ -123,7 +123,7 @@ TEST_CASE("sliding block: stopping time and distance") {
   for (double h : {1e-3, 1e-4}) {
     models::SlidingBlock s(p);
     Recorder rec(s, 0.0);
-    const RunStats stats = run(s, rec, h, 1.0);
+    const RunResult stats = run(s, rec, h, 1.0);
     CHECK(stats.completed);
     const auto t = rec.series("t"), x = rec.series("x"), vx = rec.series("vx");
     std::size_t stop = 0;
@@ -151,7 +151,7 @@ TEST_CASE("friction oscillator: turning points decay by 2 mu g / w^2, then stick
   const double h = 1e-4;
   FrictionOscillatorSystem s(m, k, mu, g, x0);
   Recorder rec(s, 0.0);
-  const RunStats stats = run(s, rec, h, 2.0);
+  const RunResult stats = run(s, rec, h, 2.0);
   CHECK(stats.completed);
   const auto x = rec.series("x"), vx = rec.series("vx");
   // Numerical turning points: where vx changes sign or comes to rest after moving (|vx| below

@@ -14,7 +14,7 @@ using nsb::integrators::DampingLaw;
 using nsb::integrators::EventKind;
 using nsb::integrators::Matrix;
 using nsb::integrators::Recorder;
-using nsb::integrators::RunStats;
+using nsb::integrators::RunResult;
 using nsb::integrators::Vector;
 
 // Point masses on a line, body j at x_j with mass m_j, linear springs to the ground
@@ -109,7 +109,7 @@ constexpr double kRestitutionTolerance = 1e-5;
 // One body of mass m hits the wall at speed v0 from x = 0.01 m; returns -u(end)/v0 (the
 // body flies freely after the impact) and the stats.
 double wall_restitution(DampingLaw law, double e, double k, double m = 1.0, double v0 = 1.0,
-                        RunStats* stats = nullptr, Recorder* rec_out = nullptr) {
+                        RunResult* stats = nullptr, Recorder* rec_out = nullptr) {
   Line s({m});
   s.q0_[0] = 0.01;
   s.u0_[0] = -v0;
@@ -123,7 +123,7 @@ double wall_restitution(DampingLaw law, double e, double k, double m = 1.0, doub
   // penetration of ~(5 m v0^2 / 4 k)^0.4: end time 40 s covers it for k >= 1e4.
   o.end_time = 40.0;
   Recorder rec(s, 0.0);
-  const RunStats st = compliance(s, o, rec);
+  const RunResult st = compliance(s, o, rec);
   REQUIRE(st.completed);
   if (stats) *stats = st;
   if (rec_out) *rec_out = rec;
@@ -280,7 +280,7 @@ TEST_CASE("compliance: undamped Hertz impact duration and peak force (Goldsmith 
   o.max_step = tc / 400.0;  // resolves the force peak in the recorded samples
   o.end_time = 1e-3 / v0 + 1.5 * tc;
   Recorder rec(s, 0.0);
-  const RunStats st = compliance(s, o, rec);
+  const RunResult st = compliance(s, o, rec);
   REQUIRE(st.completed);
   REQUIRE(rec.count(EventKind::kClose) == 1);
   REQUIRE(rec.count(EventKind::kOpen) == 1);
@@ -339,7 +339,7 @@ TEST_CASE("compliance: a closure is never stepped over, however large max_step")
   o.max_step = 100.0;
   o.end_time = 3.0;
   Recorder rec(s, 0.0);
-  const RunStats st = compliance(s, o, rec);
+  const RunResult st = compliance(s, o, rec);
   REQUIRE(st.completed);
   CHECK(rec.count(EventKind::kClose) == 1);
   CHECK(rec.count(EventKind::kOpen) == 1);
@@ -364,7 +364,7 @@ TEST_CASE("compliance: contact-free harmonic oscillator matches the closed form"
   two.springs_ << 8.0, 0.0;
   two.q0_ << 0.1, 10.0;
   Recorder rec(two, 0.0);
-  const RunStats st = compliance(two, o, rec);
+  const RunResult st = compliance(two, o, rec);
   REQUIRE(st.completed);
   CHECK(rec.series("x0").back() == doctest::Approx(0.1 * std::cos(4.0)).epsilon(1e-7));
   CHECK(st.energy.error < 1e-8);
@@ -388,7 +388,7 @@ TEST_CASE("compliance: a block sliding on a compliant floor stops where Coulomb 
   o.tolerance = 1e-9;
   o.end_time = 0.5;
   Recorder rec(s, 0.0);
-  const RunStats st = compliance(s, o, rec);
+  const RunResult st = compliance(s, o, rec);
   REQUIRE(st.completed);
   const double g = 9.81, stop = 1.0 / (0.4 * g), dist = 1.0 / (2 * 0.4 * g);
   const auto t = rec.series("t");
@@ -427,7 +427,7 @@ TEST_CASE("compliance: a moving wall (rheonomic contact) strikes a body at rest"
   o.max_step = 1e-3;
   o.end_time = 0.2;
   Recorder rec(s, 0.0);
-  const RunStats st = compliance(s, o, rec);
+  const RunResult st = compliance(s, o, rec);
   REQUIRE(st.completed);
   REQUIRE(rec.count(EventKind::kClose) == 1);
   CHECK(rec.events().front().t == doctest::Approx(0.01 / V).epsilon(1e-9));

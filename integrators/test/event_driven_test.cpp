@@ -145,7 +145,7 @@ TEST_CASE("bouncing ball: impact times, accumulation, rest") {
   o.end_time = 3.0;
   o.tolerance = 1e-10;
   ni::Recorder r(b, 0.01);
-  const ni::RunStats s = ni::event_driven(b, o, r);
+  const ni::RunResult s = ni::event_driven(b, o, r);
   REQUIRE(s.completed);
   const double t1 = std::sqrt(2.0 * b.y0 / b.g), v1 = b.g * t1;
   const auto impacts = times_of(r, ni::EventKind::kImpact);

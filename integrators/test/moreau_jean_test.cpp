@@ -257,7 +257,7 @@ TEST_CASE("Siconos's bouncing-ball reference output is reproduced to 1e-10") {
   o.step = 0.005;
   o.end_time = 10.0;
   o.theta = 0.5;
-  const RunStats stats = moreau_jean(ball, o, rec);
+  const RunResult stats = moreau_jean(ball, o, rec);
   CHECK(stats.completed);
   CHECK(stats.steps == 2000);
   REQUIRE(rec.rows() == ref.size());
@@ -289,7 +289,7 @@ TEST_CASE("theta = 1/2 conserves the energy of an undamped linear oscillator") {
   MoreauJeanOptions o;
   o.step = 1e-3;
   o.end_time = 10.0;
-  const RunStats stats = moreau_jean(s, o, rec);
+  const RunResult stats = moreau_jean(s, o, rec);
   const double e0 = 0.5 * 2.0 * 0.3 * 0.3 + 0.5 * 50.0 * 0.1 * 0.1;
   const auto x = rec.series("x"), v = rec.series("vx");
   for (std::size_t r = 0; r < rec.rows(); r += 97) {
@@ -331,7 +331,7 @@ TEST_CASE("a shortened last step is taken with its own factorization") {
   MoreauJeanOptions o;
   o.step = 0.03;
   o.end_time = 1.0;  // 33 full steps and one of 0.01
-  const RunStats stats = moreau_jean(s, o, rec);
+  const RunResult stats = moreau_jean(s, o, rec);
   CHECK(stats.steps == 34);
   CHECK(stats.factorizations == 2);
   CHECK(rec.series("t").back() == 1.0);
@@ -345,7 +345,7 @@ TEST_CASE("an inelastic ball comes to rest on the ground with no drift") {
   MoreauJeanOptions o;
   o.step = 1e-3;
   o.end_time = 3.0;
-  const RunStats stats = moreau_jean(ball, o, rec);
+  const RunResult stats = moreau_jean(ball, o, rec);
   CHECK(stats.completed);
   REQUIRE(rec.count(EventKind::kImpact) == 1);
   CHECK(rec.count(EventKind::kClose) == 1);
@@ -398,7 +398,7 @@ TEST_CASE("a sliding block stops at v0 / (mu g) after v0^2 / (2 mu g)") {
   MoreauJeanOptions o;
   o.step = h;
   o.end_time = 1.0;
-  const RunStats stats = moreau_jean(block, o, rec);
+  const RunResult stats = moreau_jean(block, o, rec);
   CHECK(stats.completed);
   CHECK(stats.steps_with_lcp == stats.steps);
   CHECK(stats.lcp_status.at("solved") == stats.lcp_solves);
@@ -433,7 +433,7 @@ TEST_CASE("every LCP solver gives the same sliding block") {
     o.end_time = 0.6;
     o.solver = solver;
     o.lcp_tolerance = 1e-10;
-    const RunStats stats = moreau_jean(block, o, rec);
+    const RunResult stats = moreau_jean(block, o, rec);
     CHECK(stats.lcp_fallbacks == 0);
     CHECK(stats.lcp_status.at("solved") == stats.lcp_solves);
     const auto x = rec.series("x");
@@ -451,7 +451,7 @@ TEST_CASE("hysteresis is committed once per accepted step and the tangent is ref
   MoreauJeanOptions o;
   o.step = 1e-3;
   o.end_time = 6.0;
-  const RunStats stats = moreau_jean(s, o, rec);
+  const RunResult stats = moreau_jean(s, o, rec);
   CHECK(s.commits == stats.steps + 1);  // + the initial state
   CHECK(stats.factorizations > 2);      // it yielded and unloaded
   CHECK(stats.factorizations < stats.steps / 10);  // but only when the tangent changed

@@ -107,7 +107,7 @@ TEST_CASE("events.csv lists t, contact, kind and a quoted note") {
 TEST_CASE("summary.json holds the documented keys") {
   TwoBodies s;
   const Recorder rec = filled_recorder(s);
-  RunStats stats;
+  RunResult stats;
   stats.method = "moreau";
   stats.completed = true;
   stats.steps = 7;
@@ -135,7 +135,7 @@ TEST_CASE("summary.json holds the documented keys") {
 TEST_CASE("write_outputs writes the three files and leaves no temporary behind") {
   TwoBodies s;
   const Recorder rec = filled_recorder(s);
-  RunStats stats;
+  RunResult stats;
   const auto dir = fresh_dir("ok") / "nested";
   write_outputs(dir, "scene", rec, stats);
   CHECK(read(dir / "history.csv") == history_csv(rec));
