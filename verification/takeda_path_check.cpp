@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 namespace tk = nsb::models::takeda;
@@ -139,7 +140,7 @@ TEST_CASE("takeda: hand-derived trilinear path through every rule") {
     d = v.d;
     const double f = s.force();
     worst = std::max(worst, std::abs(f - v.f) / std::max(1.0, std::abs(v.f)));
-    INFO("vertex D = " << v.d << " m, rule " << v.rule << ": F = " << f << " kN, hand "
+    INFO("vertex D = " << v.d << " m, rule " << std::string(v.rule) << ": F = " << f << " kN, hand "
                        << v.f << " kN");
     CHECK(std::abs(f - v.f) <= kExact * std::max(1.0, std::abs(v.f)));
     CHECK(s.committed_state().branch == v.branch);
