@@ -213,8 +213,12 @@ struct Tally {
     ++checks;
     if (ok || failures++ > 0) return;
     char buf[200];
-    std::snprintf(buf, sizeof buf, "t = %.9g, contact %d: %s (%.6g)", t, contact + 1, what,
-                  value);
+    if (std::isnan(value)) {
+      std::snprintf(buf, sizeof buf, "t = %.9g, contact %d: %s", t, contact + 1, what);
+    } else {
+      std::snprintf(buf, sizeof buf, "t = %.9g, contact %d: %s (%.6g)", t, contact + 1, what,
+                    value);
+    }
     first_failure = buf;
   }
   void expect(bool ok, const std::string& what) { expect(ok, what.c_str()); }
@@ -354,11 +358,12 @@ void check_run(const RunData& d, Tally& tally) {
                           slip * slip_alt > 0.0;
       if (slides) {
         tally.expect(std::abs(cone) <= 1e-6 * mu * ln + tol,
-                     "sliding with |lambda_T| != mu lambda_N", r.t, c);
-        tally.expect(lt * slip <= 0.0, "friction does not oppose the slip", r.t, c);
+                     "sliding with |lambda_T| != mu lambda_N", r.t, c, cone);
+        tally.expect(lt * slip <= 0.0, "friction does not oppose the slip", r.t, c, lt * slip);
       }
       if (d.method->bound == Bound::kHertz) {
-        tally.expect(lt * slip <= tol * std::abs(slip), "friction does not oppose the slip", r.t, c);
+        tally.expect(lt * slip <= tol * std::abs(slip), "friction does not oppose the slip", r.t,
+                     c, lt * slip);
       }
     }
     // Moreau–Jean's velocity-level Signorini condition (eqs. 3, 7), exact to LCP round-off:
