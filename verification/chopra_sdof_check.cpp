@@ -139,7 +139,8 @@ class ElasticBent final : public nsb::integrators::System {
       : gm_(gm),
         k_(std::pow(2.0 * std::numbers::pi / period, 2.0) * kMass),
         c_(2.0 * zeta * std::sqrt(k_ * kMass)),
-        spring_(nsb::models::takeda::Parameters::bilinear(kUnreachableYield, kUnreachableYield / k_)),
+        spring_(nsb::models::takeda::Parameters::bilinear(kUnreachableYield,
+                                                          kUnreachableYield / k_)),
         mass_(nsb::integrators::Matrix::Constant(1, 1, kMass)) {}
 
   bool elastic() const { return spring_.elastic(); }  // never left the elastic branch
