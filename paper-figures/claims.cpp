@@ -48,10 +48,17 @@ std::string quoted(const std::string& text) {
   std::string out = "\"";
   for (char ch : text) {
     switch (ch) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      default: out += ch;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      default:
+        out += ch;
     }
   }
   return out + "\"";
@@ -79,8 +86,8 @@ std::string claims_json(const std::vector<Claim>& claims) {
     const Claim& c = claims[i];
     s << (i ? ",\n" : "\n") << "  {\"id\": " << quoted(c.id)
       << ", \"statement\": " << quoted(c.statement)
-      << ", \"holds\": " << (c.holds() ? "true" : "false")
-      << ", \"reason\": " << quoted(c.reason()) << ",\n   \"measured\": {";
+      << ", \"holds\": " << (c.holds() ? "true" : "false") << ", \"reason\": " << quoted(c.reason())
+      << ",\n   \"measured\": {";
     for (std::size_t k = 0; k < c.measured.size(); ++k) {
       s << (k ? ", " : "") << quoted(c.measured[k].first) << ": " << number(c.measured[k].second);
     }
@@ -110,17 +117,17 @@ std::string claims_markdown(const std::vector<Claim>& claims) {
               ck.op + " " + short_number(ck.threshold) + ")";
     }
     if (!c.failure.empty()) nums = c.reason();
-    s << "| " << c.id << " | " << c.statement << " | "
-      << (c.holds() ? "holds" : "does not hold") << " | " << nums << " |\n";
+    s << "| " << c.id << " | " << c.statement << " | " << (c.holds() ? "holds" : "does not hold")
+      << " | " << nums << " |\n";
   }
   for (const auto& c : claims) {
     s << "\n## " << c.id << ": " << c.statement << "\n\n"
       << "Verdict: **" << (c.holds() ? "holds" : "does not hold") << "** (" << c.reason()
       << ").\n\n";
     for (const auto& ck : c.checks) {
-      s << "- `" << ck.quantity << "` = " << short_number(ck.value) << ", required " << ck.op
-        << " " << short_number(ck.threshold) << ": " << (ck.holds() ? "yes" : "no") << ". "
-        << ck.why << "\n";
+      s << "- `" << ck.quantity << "` = " << short_number(ck.value) << ", required " << ck.op << " "
+        << short_number(ck.threshold) << ": " << (ck.holds() ? "yes" : "no") << ". " << ck.why
+        << "\n";
     }
     s << "\nMeasured:";
     for (const auto& [k, v] : c.measured) s << " " << k << " = " << short_number(v) << ";";

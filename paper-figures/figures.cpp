@@ -1,13 +1,5 @@
 #include "paper-figures/figures.hpp"
 
-#include "integrators/run.hpp"
-#include "models/analytic.hpp"
-#include "models/bridge.hpp"
-#include "models/contact_geometry.hpp"
-#include "models/rigid_deck.hpp"
-#include "models/scene.hpp"
-#include "paper-figures/plot.hpp"
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -21,6 +13,14 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+
+#include "integrators/run.hpp"
+#include "models/analytic.hpp"
+#include "models/bridge.hpp"
+#include "models/contact_geometry.hpp"
+#include "models/rigid_deck.hpp"
+#include "models/scene.hpp"
+#include "paper-figures/plot.hpp"
 
 #ifndef NSB_SCENES_DIR
 #error "NSB_SCENES_DIR must name the scenes folder (set by paper-figures/CMakeLists.txt)"
@@ -53,8 +53,8 @@ namespace {
 // The seven runs: target transverse and longitudinal PGA [g] of the scenes bridge-exc<n>.toml.
 // Read back from the scenes' excitation, these only label the figure axes.
 constexpr int kRuns = 7;
-constexpr int kExample = 5;     // the paper's example, excitation No. 5
-constexpr int kStrongest = 7;   // the strongest run
+constexpr int kExample = 5;    // the paper's example, excitation No. 5
+constexpr int kStrongest = 7;  // the strongest run
 // The paper's contact stiffness range: 1e-4 k ... 1e2 k (sec. 4).
 const std::vector<double> kFactorsFull{1e-4, 1e-3, 1e-2, 1e-1, 1e0, 1e1, 1e2};
 const std::vector<double> kFactorsQuick{1e-4, 1e-2, 1e0, 1e2};
@@ -196,8 +196,8 @@ std::vector<Sliding> sliding_contacts(const Recorder& r, double t_final) {
   std::map<int, double> open;  // contact -> start of its current slip
   for (const auto& e : r.events()) {
     if (e.contact == 0) continue;
-    const bool ends = e.kind == EventKind::kOpen || e.kind == EventKind::kStick ||
-                      e.kind == EventKind::kSlip;
+    const bool ends =
+        e.kind == EventKind::kOpen || e.kind == EventKind::kStick || e.kind == EventKind::kSlip;
     if (ends) {
       if (auto it = open.find(e.contact); it != open.end()) {
         out.push_back({e.contact, it->second, e.t});
@@ -220,8 +220,8 @@ std::pair<double, int> first_impact(const Recorder& r) {
 
 std::string status_text(const RunOutput& r) {
   std::ostringstream s;
-  s << r.spec.name << ": " << integrators::to_string(r.result.status) << " at t = "
-    << r.result.failure_time << " s";
+  s << r.spec.name << ": " << integrators::to_string(r.result.status)
+    << " at t = " << r.result.failure_time << " s";
   return s.str();
 }
 
@@ -238,12 +238,12 @@ void use_runs(Claim& c, const std::vector<const RunOutput*>& runs) {
 
 struct Setup {
   bool quick = false;
-  std::vector<int> pga_runs;        // runs of Fig. 6 and C2, C3
-  std::vector<int> mu0_runs;        // runs repeated with mu = 0 (C1)
-  std::vector<double> factors;      // compliance stiffness factors (Fig. 7, C4)
-  double compliance_end = 0.0;      // 0: the scene's end time
-  std::vector<double> eta_skews;    // [deg]
-  std::vector<double> eta_ratios;   // W/L
+  std::vector<int> pga_runs;       // runs of Fig. 6 and C2, C3
+  std::vector<int> mu0_runs;       // runs repeated with mu = 0 (C1)
+  std::vector<double> factors;     // compliance stiffness factors (Fig. 7, C4)
+  double compliance_end = 0.0;     // 0: the scene's end time
+  std::vector<double> eta_skews;   // [deg]
+  std::vector<double> eta_ratios;  // W/L
 };
 
 Setup setup(bool quick) {
@@ -279,7 +279,8 @@ std::vector<RunSpec> bridge_runs(const Setup& s) {
   }
   for (int n : s.mu0_runs) v.push_back({"exc" + std::to_string(n) + "-mu0", exc(n), kNoFriction});
   for (double f : s.factors) {
-    std::vector<std::string> o{"solver.method=compliance", "solver.stiffness_factor=" + factor_name(f)};
+    std::vector<std::string> o{"solver.method=compliance",
+                               "solver.stiffness_factor=" + factor_name(f)};
     if (s.compliance_end > 0) o.push_back("solver.end_time=" + factor_name(s.compliance_end));
     v.push_back({"exc5-k" + factor_name(f), exc(kExample), o});
   }
@@ -311,13 +312,13 @@ std::vector<RunSpec> eta_runs(const std::vector<EtaPoint>& pts, double length) {
     const double vx = gn * -c + gt * -sn, vy = gn * sn + gt * -c;
     std::ostringstream vel;
     vel << std::setprecision(17) << "model.initial_velocity=[" << vx << ", " << vy << ", 0.0]";
-    v.push_back({p.name, "rigid-deck-straight",
+    v.push_back({p.name,
+                 "rigid-deck-straight",
                  {"model.skew_deg=" + factor_name(p.skew_deg),
                   "model.width=" + factor_name(p.ratio * length),
                   "model.friction=" + factor_name(kEtaMapFriction), vel.str(),
                   "model.gap_left=0.0127", "model.gap_right=0.0127", "solver.end_time=0.2",
-                  "solver.method=event_driven",
-                  "output.sample_dt=0"}});
+                  "solver.method=event_driven", "output.sample_dt=0"}});
   }
   return v;
 }
@@ -327,11 +328,13 @@ std::vector<RunSpec> eta_runs(const std::vector<EtaPoint>& pts, double length) {
 
 std::string fig3(const fs::path& dir, const Recorder& mj, const Recorder& ed,
                  const std::string& gp) {
-  Table t{{"t", "x", "y", "theta", "gN1", "gN2", "gN3", "gN4", "x_event", "y_event", "theta_event"}};
+  Table t{
+      {"t", "x", "y", "theta", "gN1", "gN2", "gN3", "gN4", "x_event", "y_event", "theta_event"}};
   const auto ts = mj.series("t");
   for (std::size_t i = 0; i < ts.size(); ++i) {
     std::vector<double> row{ts[i]};
-    for (const char* c : {"x", "y", "theta", "gN1", "gN2", "gN3", "gN4"}) row.push_back(mj.at(i, mj.column(c)));
+    for (const char* c : {"x", "y", "theta", "gN1", "gN2", "gN3", "gN4"})
+      row.push_back(mj.at(i, mj.column(c)));
     for (const char* c : {"x", "y", "theta"}) row.push_back(value_at(ed, c, ts[i]));
     t.add(row);
   }
@@ -354,8 +357,8 @@ plot data using 't':'gN3' with lines title 'g_{N3}', data using 't':'gN4' with l
 unset multiplot)");
 }
 
-std::string fig4(const fs::path& dir, const Recorder& mj, const Recorder& ed,
-                 const Sliding& slide, const std::string& gp) {
+std::string fig4(const fs::path& dir, const Recorder& mj, const Recorder& ed, const Sliding& slide,
+                 const std::string& gp) {
   Table t{{"t", "omega", "omega_event"}};
   const auto ts = mj.series("t"), om = mj.series("omega");
   for (std::size_t i = 0; i < ts.size(); ++i) t.add({ts[i], om[i], value_at(ed, "omega", ts[i])});
@@ -408,13 +411,14 @@ struct Peaks {
 double scene_pga(const RunOutput& r, bool transverse) {
   const auto* b = dynamic_cast<const models::Bridge*>(r.scene->system.get());
   if (b == nullptr || b->excitation().bents.empty()) return 0.0;
-  const auto& m = transverse ? b->excitation().bents[0].transverse : b->excitation().bents[0].longitudinal;
+  const auto& m =
+      transverse ? b->excitation().bents[0].transverse : b->excitation().bents[0].longitudinal;
   return m ? m->pga() / 9.81 : 0.0;
 }
 
 std::string fig6(const fs::path& dir, const std::vector<Peaks>& peaks, const std::string& gp) {
-  Table t{{"run", "pga_transverse_g", "pga_longitudinal_g", "peak_theta_pounding",
-           "peak_theta_mu0", "peak_theta_no_pounding", "impacts"}};
+  Table t{{"run", "pga_transverse_g", "pga_longitudinal_g", "peak_theta_pounding", "peak_theta_mu0",
+           "peak_theta_no_pounding", "impacts"}};
   for (const auto& p : peaks) {
     t.add({double(p.run), p.pga_y, p.pga_x, p.pounding, p.mu0, p.free, double(p.impacts)});
   }
@@ -457,8 +461,9 @@ Claim claim_c2(const std::vector<Peaks>& peaks, const std::vector<const RunOutpu
   // Least-squares exponent b of theta = a PGA^b over the distinct PGAs (run 7 repeats run 6).
   std::vector<std::pair<double, double>> pts;
   for (const auto& p : peaks) {
-    if (p.pounding > 0 && p.pga_y > 0 &&
-        std::none_of(pts.begin(), pts.end(), [&](auto& q) { return std::abs(q.first - std::log(p.pga_y)) < 1e-9; })) {
+    if (p.pounding > 0 && p.pga_y > 0 && std::none_of(pts.begin(), pts.end(), [&](auto& q) {
+          return std::abs(q.first - std::log(p.pga_y)) < 1e-9;
+        })) {
       pts.push_back({std::log(p.pga_y), std::log(p.pounding)});
     }
     c.measured.push_back({"peak_theta_exc" + std::to_string(p.run), p.pounding});
@@ -535,7 +540,8 @@ std::string fig8(const fs::path& dir, const std::vector<std::pair<double, const 
   }
   const auto ts = mj.series("t"), gs = mj.series(g), ls = mj.series(l);
   for (std::size_t i = 0; i < ts.size(); ++i) {
-    if (ts[i] >= t_first - 0.02 && ts[i] <= t_first + kFirstPoundingWindow) t.add({0.0, ts[i], gs[i], ls[i]});
+    if (ts[i] >= t_first - 0.02 && ts[i] <= t_first + kFirstPoundingWindow)
+      t.add({0.0, ts[i], gs[i], ls[i]});
   }
   t.write(dir / "fig8-first-pounding.csv");
   std::ostringstream b;
@@ -587,8 +593,9 @@ Claim claim_c5(const std::vector<FirstPounding>& fps, const std::vector<const Ru
 
 Claim claim_c4(const Recorder& mj, const std::vector<std::pair<double, const Recorder*>>& k,
                double t_end, const std::vector<const RunOutput*>& runs) {
-  Claim c{"C4", "the compliance method with a large k tracks the nonsmooth result, and with "
-                "1e-4 ... 1e-2 k it underestimates the rotation"};
+  Claim c{"C4",
+          "the compliance method with a large k tracks the nonsmooth result, and with "
+          "1e-4 ... 1e-2 k it underestimates the rotation"};
   use_runs(c, runs);
   const double ref = peak(mj, "theta", t_end);
   c.measured.push_back({"peak_theta_nonsmooth", ref});
@@ -598,15 +605,17 @@ Claim claim_c4(const Recorder& mj, const std::vector<std::pair<double, const Rec
     c.measured.push_back({"peak_theta_k" + factor_name(f), p});
     if (f >= 1e2) {
       c.checks.push_back({"abs_peak_ratio_minus_1_k" + factor_name(f), std::abs(p / ref - 1.0), "<",
-                          0.1, "\"tracks\": the peak within 10 %, the agreement the paper "
+                          0.1,
+                          "\"tracks\": the peak within 10 %, the agreement the paper "
                           "accepts between its analysis and the test (Fig. 6)"});
       c.checks.push_back({"normalized_rms_difference_k" + factor_name(f),
                           normalized_rms_difference(mj, *r, "theta", t_end), "<", 0.5,
                           "\"tracks\": the history differs by less than half its own RMS"});
     }
     if (f <= 1e-2) {
-      c.checks.push_back({"peak_ratio_k" + factor_name(f), p / ref, "<", 0.9,
-                          "\"underestimates\": at least 10 % below, outside the band of \"tracks\""});
+      c.checks.push_back(
+          {"peak_ratio_k" + factor_name(f), p / ref, "<", 0.9,
+           "\"underestimates\": at least 10 % below, outside the band of \"tracks\""});
     }
   }
   return c;
@@ -617,9 +626,9 @@ Claim claim_c4(const Recorder& mj, const std::vector<std::pair<double, const Rec
 
 struct SlidingState {
   Sliding slide;
-  double lambda_n = 0.0, lambda_t = 0.0;  // [kN] at the start
+  double lambda_n = 0.0, lambda_t = 0.0;                            // [kN] at the start
   double max_deviation = std::numeric_limits<double>::quiet_NaN();  // max ||lT| - mu lN| / (mu lN)
-  std::size_t samples = 0;                // slipping steps examined
+  std::size_t samples = 0;                                          // slipping steps examined
 };
 
 SlidingState measure_sliding(const RunOutput& run, const Sliding& s, double mu) {
@@ -647,8 +656,10 @@ std::string fig5(const fs::path& dir, const RunOutput& run, const SlidingState& 
   const auto ts = r.series("t");
   std::size_t row = 0;
   while (row + 1 < ts.size() && ts[row] < st.slide.start) ++row;
-  const Eigen::Vector3d q(r.at(row, r.column("x")), r.at(row, r.column("y")), r.at(row, r.column("theta")));
-  const Eigen::Vector3d u(r.at(row, r.column("vx")), r.at(row, r.column("vy")), r.at(row, r.column("omega")));
+  const Eigen::Vector3d q(r.at(row, r.column("x")), r.at(row, r.column("y")),
+                          r.at(row, r.column("theta")));
+  const Eigen::Vector3d u(r.at(row, r.column("vx")), r.at(row, r.column("vy")),
+                          r.at(row, r.column("omega")));
   const double t = ts[row];
   const auto corners = b.parameters().deck.corner_faces();
   // Rows: kind 0 deck outline, 1 seat faces, 2 normal force, 3 tangential force; x, y [m] and
@@ -666,33 +677,41 @@ std::string fig5(const fs::path& dir, const RunOutput& run, const SlidingState& 
     const auto& cf = corners[a == 0 ? 0 : 2];
     const Eigen::Vector2d n = Eigen::Rotation2Dd(m.position(2)) * cf.face_normal;
     const Eigen::Vector2d tn = models::perp(n), o = m.position.head<2>();
-    tab.add({1, o.x() - half * tn.x(), o.y() - half * tn.y(), 2 * half * tn.x(), 2 * half * tn.y()});
+    tab.add(
+        {1, o.x() - half * tn.x(), o.y() - half * tn.y(), 2 * half * tn.x(), 2 * half * tn.y()});
   }
   const int c = st.slide.contact;
   const auto k = models::corner_contact(corners[static_cast<std::size_t>(c - 1)], q, u,
                                         b.seat_motion(models::DeckGeometry::abutment_of(c - 1), t));
-  const Eigen::Vector2d fn = st.lambda_n * kForceScale * k.normal, ft = st.lambda_t * kForceScale * k.tangent;
+  const Eigen::Vector2d fn = st.lambda_n * kForceScale * k.normal,
+                        ft = st.lambda_t * kForceScale * k.tangent;
   tab.add({2, k.point.x(), k.point.y(), fn.x(), fn.y()});
   tab.add({3, k.point.x(), k.point.y(), ft.x(), ft.y()});
   tab.write(dir / "fig5-sliding-contact.csv");
   static const std::string kPlan =
-      "plot data using (column('kind') == 0 ? column('x') : 1/0):'y' with lines lw 2 title 'deck', \\\n"
-      "  data using (column('kind') == 1 ? column('x') : 1/0):'y':'dx':'dy' with vectors nohead lw 3 lc rgb 'gray30' title 'seat faces', \\\n"
-      "  data using (column('kind') == 2 ? column('x') : 1/0):'y':'dx':'dy' with vectors lw 2 lc rgb 'red' title 'lambda_N n', \\\n"
-      "  data using (column('kind') == 3 ? column('x') : 1/0):'y':'dx':'dy' with vectors lw 2 lc rgb 'blue' title 'lambda_T t'\n";
+      "plot data using (column('kind') == 0 ? column('x') : 1/0):'y' with lines lw 2 title 'deck', "
+      "\\\n"
+      "  data using (column('kind') == 1 ? column('x') : 1/0):'y':'dx':'dy' with vectors nohead lw "
+      "3 lc rgb 'gray30' title 'seat faces', \\\n"
+      "  data using (column('kind') == 2 ? column('x') : 1/0):'y':'dx':'dy' with vectors lw 2 lc "
+      "rgb 'red' title 'lambda_N n', \\\n"
+      "  data using (column('kind') == 3 ? column('x') : 1/0):'y':'dx':'dy' with vectors lw 2 lc "
+      "rgb 'blue' title 'lambda_T t'\n";
   std::ostringstream body;
-  body << std::setprecision(4)
-       << "set multiplot layout 2,1 title sprintf('Fig. 5: excitation 5 at t = %.4f s, start of the "
-          "longest sliding contact (contact "
-       << c << ", " << st.slide.start << " - " << st.slide.end << " s): lambda_N = %.1f kN, "
-          "lambda_T = %.1f kN, omega = %.2e rad/s', "
-       << t << ", " << st.lambda_n << ", " << st.lambda_t << ", " << u(2) << ")\n"
-       << "set title 'plan (y exaggerated); forces at 1 m per 200 kN'\nset xlabel 'x [m]'\n"
-       << "set ylabel 'y [m]'\nset key outside right\n"
-       << kPlan << "set title 'close-up of contact " << c << " (equal axes)'\nset size ratio -1\n"
-       << "set xrange [" << k.point.x() - 1.2 << ":" << k.point.x() + 1.2 << "]\n"
-       << "set yrange [" << k.point.y() - 0.8 << ":" << k.point.y() + 0.8 << "]\n"
-       << kPlan << "unset multiplot";
+  body
+      << std::setprecision(4)
+      << "set multiplot layout 2,1 title sprintf('Fig. 5: excitation 5 at t = %.4f s, start of the "
+         "longest sliding contact (contact "
+      << c << ", " << st.slide.start << " - " << st.slide.end
+      << " s): lambda_N = %.1f kN, "
+         "lambda_T = %.1f kN, omega = %.2e rad/s', "
+      << t << ", " << st.lambda_n << ", " << st.lambda_t << ", " << u(2) << ")\n"
+      << "set title 'plan (y exaggerated); forces at 1 m per 200 kN'\nset xlabel 'x [m]'\n"
+      << "set ylabel 'y [m]'\nset key outside right\n"
+      << kPlan << "set title 'close-up of contact " << c << " (equal axes)'\nset size ratio -1\n"
+      << "set xrange [" << k.point.x() - 1.2 << ":" << k.point.x() + 1.2 << "]\n"
+      << "set yrange [" << k.point.y() - 0.8 << ":" << k.point.y() + 0.8 << "]\n"
+      << kPlan << "unset multiplot";
   return plot(gp, dir, "fig5-sliding-contact", body.str(), {1200, 900});
 }
 
@@ -749,16 +768,20 @@ std::string fig9(const fs::path& dir, const std::vector<EtaPoint>& pts,
   t.add({2, 0.5, 0.0, width / length, 1, 1, 0});  // the benchmark deck
   t.write(dir / "fig9-eta-map.csv");
   std::ostringstream b;
-  b << "set title sprintf('eta map: |eta| = 1 (derived criterion) for several mu; points: free-deck "
+  b << "set title sprintf('eta map: |eta| = 1 (derived criterion) for several mu; points: "
+       "free-deck "
        "impacts at mu = 0.5 (%d of %d as predicted)', "
     << agree << ", " << total << ")\n"
     << "set xlabel 'skew angle alpha [deg]'\nset ylabel 'W / L [-]'\nset key outside right\n"
     << "set yrange [0:1]\n"
-    << "plot for [m in '0 0.1 0.3 0.5 0.8'] data using (column('kind') == 0 && abs(column('mu') - m) "
+    << "plot for [m in '0 0.1 0.3 0.5 0.8'] data using (column('kind') == 0 && abs(column('mu') - "
+       "m) "
        "< 1e-9 ? column('skew_deg') : 1/0):'w_over_l' with lines title '|eta| = 1, mu = '.m, \\\n"
-    << "  data using (column('kind') == 1 && column('rotating') == 1 ? column('skew_deg') : 1/0):'w_over_l' "
+    << "  data using (column('kind') == 1 && column('rotating') == 1 ? column('skew_deg') : "
+       "1/0):'w_over_l' "
        "with points pt 7 ps 1.5 lc rgb 'red' title 'simulated: rotates', \\\n"
-    << "  data using (column('kind') == 1 && column('rotating') == 0 ? column('skew_deg') : 1/0):'w_over_l' "
+    << "  data using (column('kind') == 1 && column('rotating') == 0 ? column('skew_deg') : "
+       "1/0):'w_over_l' "
        "with points pt 6 ps 1.5 lc rgb 'blue' title 'simulated: does not rotate', \\\n"
     << "  data using (column('kind') == 2 ? column('skew_deg') : 1/0):'w_over_l' with points pt 9 "
        "ps 2 lc rgb 'black' title 'benchmark deck'";
@@ -776,9 +799,10 @@ FigureResult make_figures(const FigureOptions& options) {
   FigureResult res;
 
   // The free-deck length, for the eta map's widths.
-  const double length =
-      dynamic_cast<const models::RigidDeck&>(
-          *models::load_scene(scenes / "rigid-deck-straight.toml").system).parameters().length;
+  const double length = dynamic_cast<const models::RigidDeck&>(
+                            *models::load_scene(scenes / "rigid-deck-straight.toml").system)
+                            .parameters()
+                            .length;
   const auto pts = eta_points(s);
   std::vector<RunSpec> specs = bridge_runs(s);
   for (auto& e : eta_runs(pts, length)) specs.push_back(std::move(e));
@@ -798,16 +822,19 @@ FigureResult make_figures(const FigureOptions& options) {
   const std::vector<double> windows = options.quick ? kFactorsQuick : kFactorsFull;
   if (contact_first > 0) {
     for (double f : windows) {
-      late.push_back({"exc5-k" + factor_name(f) + "-first", exc(kExample),
+      late.push_back({"exc5-k" + factor_name(f) + "-first",
+                      exc(kExample),
                       {"solver.method=compliance", "solver.stiffness_factor=" + factor_name(f),
                        "solver.end_time=" + factor_name(t_first + kFirstPoundingWindow),
                        "output.sample_dt=0"}});
     }
   }
   if (longest.contact > 0) {
-    late.push_back({"exc5-moreau-sliding", exc(kExample),
-                    {"solver.method=moreau", "solver.end_time=" + factor_name(longest.end + kSlidingLead),
-                     "output.sample_dt=0"}});
+    late.push_back(
+        {"exc5-moreau-sliding",
+         exc(kExample),
+         {"solver.method=moreau", "solver.end_time=" + factor_name(longest.end + kSlidingLead),
+          "output.sample_dt=0"}});
   }
   const std::vector<RunOutput> late_runs = runner.run(late);
   res.runs = runner.count();
@@ -880,7 +907,8 @@ FigureResult make_figures(const FigureOptions& options) {
     fps.push_back(measure_first_pounding(f, *r.recorder, contact_first, t_first - 0.02));
     c5_runs.push_back(&r);
   }
-  if (contact_first > 0) draw("fig8-first-pounding", fig8(dir, w, *mj.recorder, contact_first, t_first, gp));
+  if (contact_first > 0)
+    draw("fig8-first-pounding", fig8(dir, w, *mj.recorder, contact_first, t_first, gp));
   res.claims.push_back(claim_c5(fps, c5_runs));
   if (contact_first == 0) res.claims.back().failure = "excitation 5 has no pounding";
 
@@ -899,7 +927,8 @@ FigureResult make_figures(const FigureOptions& options) {
 
   // The eta map.
   int agree = 0, total = 0;
-  const double width = dynamic_cast<const models::Bridge&>(*mj.scene->system).parameters().deck.width;
+  const double width =
+      dynamic_cast<const models::Bridge&>(*mj.scene->system).parameters().deck.width;
   draw("fig9-eta-map", fig9(dir, pts, runs, length, width, gp, agree, total));
 
   std::ofstream(dir / "claims.json") << claims_json(res.claims);

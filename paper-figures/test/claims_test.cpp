@@ -13,7 +13,9 @@ using nsb::paper_figures::Check;
 using nsb::paper_figures::Claim;
 
 namespace {
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 }  // namespace
 
 TEST_CASE("a check compares its value with its threshold") {
@@ -57,7 +59,7 @@ TEST_CASE("claims.json and claims.md carry the verdict and its numbers") {
   CHECK(contains(json, "grows \\\"faster\\\" than"));  // quotes escaped
   CHECK(contains(json, "\"holds\": true"));
   CHECK(contains(json, "\"peak\": 0.0015"));
-  CHECK(contains(json, "\"missing\": null"));          // non-finite: null, never inf
+  CHECK(contains(json, "\"missing\": null"));  // non-finite: null, never inf
   CHECK(contains(json, "\"value\": 1.25, \"op\": \">\", \"threshold\": 1"));
   CHECK(contains(json, "\"runs\": [\"exc1-moreau\", \"exc7-moreau\"]"));
   const std::string md = nsb::paper_figures::claims_markdown({c});
