@@ -60,7 +60,8 @@ takeda::Parameters BentDesign::takeda() const {
 
 Bridge::Parameters Bridge::Parameters::benchmark() {
   Parameters p;
-  const double positions[3] = {-8.34, 0.0, 8.34};  // four equal spans of L / 4
+  const double span = 0.25 * p.deck.length;  // four equal spans (assumed, docs/bridge.md)
+  const double positions[3] = {-span, 0.0, span};
   const double heights[3] = {1.83, 2.44, 1.52};    // assumed, docs/bridge.md
   for (int j = 0; j < 3; ++j) {
     BentDesign d;

@@ -73,7 +73,8 @@ class Bridge final : public integrators::System {
   struct Parameters {
     double mass = 140.5;        // m_d [t], > 0 (paper, sec. 3)
     double inertia = 13090.0;   // I_d [t m^2], > 0 (paper, sec. 3)
-    DeckGeometry deck{33.35, 2.44, 0.0, 0.0127, 0.0127};  // assumed, docs/bridge.md
+    // L = 110 ft = 33.53 m (Saiidi, Vosooghi & Nelson 2013); W, gaps assumed (docs/bridge.md).
+    DeckGeometry deck{33.53, 2.44, 0.0, 0.0127, 0.0127};
     double restitution = 0.0;   // eps_N in [0, 1] (paper: 0)
     double friction = 0.5;      // mu >= 0 (paper: 0.5)
     double damping_ratio_i = 0.08, damping_ratio_j = 0.08;  // Rayleigh ratios, >= 0 (paper 8 %)
@@ -83,7 +84,7 @@ class Bridge final : public integrators::System {
     Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();
     void validate() const;      // throws std::invalid_argument naming the field
     // The benchmark's parameter set (docs/bridge.md): three bents of heights 1.83, 2.44,
-    // 1.52 m at -8.34, 0, +8.34 m, designed by BentDesign.
+    // 1.52 m at -L/4, 0, +L/4 (four equal spans), designed by BentDesign.
     static Parameters benchmark();
   };
   // Ground motion of one support; null means none in that direction.

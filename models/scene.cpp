@@ -557,48 +557,52 @@ Bridge::Bent read_bent(Section& b) {
   return bent;
 }
 
-std::unique_ptr<integrators::System> build_bridge(Section& m, const Context& c,
-                                                  SolverSettings& solver, bool end_time_given) {
-  m.only({"kind", "deck", "gaps", "damping", "bents", "seats", "excitation"});
-  Bridge::Parameters p = Bridge::Parameters::benchmark();
-  p.bents.clear();
+// The steps of building the bridge, in the order of the model (docs/bridge.md): the deck, its
+// gaps, the damping, the bents, the seats, the excitation, and the support motions made from it.
 
-  // [model.deck]
-  if (const auto* t = m.table("deck")) {
-    Section s(c, *t, m.key_path("deck"));
-    s.only({"mass", "inertia", "length", "width", "skew_deg", "initial_position", "initial_velocity"});
-    p.mass = s.number("mass", p.mass, positive, "must be > 0 [t]");
-    p.inertia = s.number("inertia", p.inertia, positive, "must be > 0 [t m^2]");
-    p.deck.length = s.number("length", p.deck.length, positive, "must be > 0 [m]");
-    p.deck.width = s.number("width", p.deck.width, positive, "must be > 0 [m]");
-    p.deck.skew_deg = s.number("skew_deg", p.deck.skew_deg,
-                               [](double v) { return std::abs(v) < 80; }, "must be in (-80, 80) [deg]");
-    p.initial_position = s.vec3("initial_position", p.initial_position);
-    p.initial_velocity = s.vec3("initial_velocity", p.initial_velocity);
-    s.finish();
-  }
-  // [model.gaps]
-  if (const auto* t = m.table("gaps")) {
-    Section s(c, *t, m.key_path("gaps"));
-    s.only({"left", "right"});
-    p.deck.gap_left = s.number("left", p.deck.gap_left, non_negative, "must be >= 0 [m]");
-    p.deck.gap_right = s.number("right", p.deck.gap_right, non_negative, "must be >= 0 [m]");
-    s.finish();
-  }
-  // [model.damping]
-  if (const auto* t = m.table("damping")) {
-    Section s(c, *t, m.key_path("damping"));
-    s.only({"ratio_i", "ratio_j", "mode_i", "mode_j"});
-    const auto lt1 = [](double v) { return v >= 0 && v < 1; };
-    p.damping_ratio_i = s.number("ratio_i", p.damping_ratio_i, lt1, "must be in [0, 1)");
-    p.damping_ratio_j = s.number("ratio_j", p.damping_ratio_j, lt1, "must be in [0, 1)");
-    p.damping_mode_i = s.integer("mode_i", p.damping_mode_i, 1, 3);
-    p.damping_mode_j = s.integer("mode_j", p.damping_mode_j, 1, 3);
-    if (p.damping_mode_i == p.damping_mode_j) s.fail("mode_j", "must differ from mode_i");
-    s.finish();
-  }
-  // [[model.bents]]
-  std::vector<double> bent_delays;
+void read_deck(Section& m, const Context& c, Bridge::Parameters& p) {
+  const auto* t = m.table("deck");
+  if (t == nullptr) return;
+  Section s(c, *t, m.key_path("deck"));
+  s.only({"mass", "inertia", "length", "width", "skew_deg", "initial_position", "initial_velocity"});
+  p.mass = s.number("mass", p.mass, positive, "must be > 0 [t]");
+  p.inertia = s.number("inertia", p.inertia, positive, "must be > 0 [t m^2]");
+  p.deck.length = s.number("length", p.deck.length, positive, "must be > 0 [m]");
+  p.deck.width = s.number("width", p.deck.width, positive, "must be > 0 [m]");
+  p.deck.skew_deg = s.number("skew_deg", p.deck.skew_deg,
+                             [](double v) { return std::abs(v) < 80; }, "must be in (-80, 80) [deg]");
+  p.initial_position = s.vec3("initial_position", p.initial_position);
+  p.initial_velocity = s.vec3("initial_velocity", p.initial_velocity);
+  s.finish();
+}
+
+void read_gaps(Section& m, const Context& c, Bridge::Parameters& p) {
+  const auto* t = m.table("gaps");
+  if (t == nullptr) return;
+  Section s(c, *t, m.key_path("gaps"));
+  s.only({"left", "right"});
+  p.deck.gap_left = s.number("left", p.deck.gap_left, non_negative, "must be >= 0 [m]");
+  p.deck.gap_right = s.number("right", p.deck.gap_right, non_negative, "must be >= 0 [m]");
+  s.finish();
+}
+
+void read_damping(Section& m, const Context& c, Bridge::Parameters& p) {
+  const auto* t = m.table("damping");
+  if (t == nullptr) return;
+  Section s(c, *t, m.key_path("damping"));
+  s.only({"ratio_i", "ratio_j", "mode_i", "mode_j"});
+  const auto lt1 = [](double v) { return v >= 0 && v < 1; };
+  p.damping_ratio_i = s.number("ratio_i", p.damping_ratio_i, lt1, "must be in [0, 1)");
+  p.damping_ratio_j = s.number("ratio_j", p.damping_ratio_j, lt1, "must be in [0, 1)");
+  p.damping_mode_i = s.integer("mode_i", p.damping_mode_i, 1, 3);
+  p.damping_mode_j = s.integer("mode_j", p.damping_mode_j, 1, 3);
+  if (p.damping_mode_i == p.damping_mode_j) s.fail("mode_j", "must differ from mode_i");
+  s.finish();
+}
+
+// [[model.bents]]: the bents and the wave-passage delay of each [s].
+std::vector<double> read_bents(Section& m, const Context& c, Bridge::Parameters& p) {
+  std::vector<double> delays;
   const auto* bents = m.array_of_tables("bents");
   if (bents == nullptr || bents->size() < 2) {
     m.fail(bents == nullptr ? "kind" : "bents",
@@ -611,87 +615,140 @@ std::unique_ptr<integrators::System> build_bridge(Section& m, const Context& c,
       s.fail("position", "must lie on the deck, |position| <= length / 2 = " +
                              fmt(0.5 * p.deck.length) + " m (got " + fmt(p.bents.back().position) + ")");
     }
-    bent_delays.push_back(s.number("delay", 0.0, non_negative, "must be >= 0 [s]"));
+    delays.push_back(s.number("delay", 0.0, non_negative, "must be >= 0 [s]"));
     s.finish();
   }
-  // [model.seats]
-  std::array<double, 2> seat_delays{0.0, 0.0};
-  bool seats_transverse = false;
-  std::array<std::optional<Record>, 2> seat_rotation;
-  double rotation_scale = 1.0;
-  GroundMotionOptions gm;
-  if (const auto* t = m.table("seats")) {
-    Section s(c, *t, m.key_path("seats"));
-    s.only({"restitution", "friction", "transverse", "delay_left", "delay_right", "rotation_scale",
-            "rotation_unit", "rotation_record_left", "rotation_record_right"});
-    p.restitution = s.number("restitution", p.restitution, unit_interval, "must be in [0, 1]");
-    p.friction = s.number("friction", p.friction, non_negative, "must be >= 0");
-    seats_transverse = s.boolean("transverse", false);
-    seat_delays[0] = s.number("delay_left", 0.0, non_negative, "must be >= 0 [s]");
-    seat_delays[1] = s.number("delay_right", 0.0, non_negative, "must be >= 0 [s]");
-    rotation_scale = s.number("rotation_scale", 1.0);
-    const double unit = s.number("rotation_unit", 1.0, positive, "must be > 0 [rad/s^2 per file unit]");
-    const char* keys[2] = {"rotation_record_left", "rotation_record_right"};
-    for (int a = 0; a < 2; ++a) {
-      if (const auto name = s.opt_string(keys[a]); name && !name->empty()) {
-        seat_rotation[static_cast<std::size_t>(a)] = read_record(s, keys[a], *name, unit, c);
-      }
-    }
-    s.finish();
-  }
-  // [model.excitation]
-  std::optional<Record> rec_x, rec_y;
-  if (const auto* t = m.table("excitation")) {
-    Section s(c, *t, m.key_path("excitation"));
-    s.only({"longitudinal_record", "transverse_record", "record_unit", "target_pga", "scale",
-            "time_scale", "baseline_correction"});
-    const double unit = s.number("record_unit", 1.0, positive, "must be > 0 [m/s^2 per file unit]");
-    if (const auto n = s.opt_string("longitudinal_record"); n && !n->empty()) {
-      rec_x = read_record(s, "longitudinal_record", *n, unit, c);
-    }
-    if (const auto n = s.opt_string("transverse_record"); n && !n->empty()) {
-      rec_y = read_record(s, "transverse_record", *n, unit, c);
-    }
-    const double target = s.number("target_pga", 0.0, non_negative, "must be >= 0 [g] (0: as recorded)");
-    const double scale = s.number("scale", 1.0);
-    gm.time_scale = s.number("time_scale", 1.0, positive, "must be > 0");
-    gm.baseline_correction = s.boolean("baseline_correction", true);
-    s.finish();
-    // The target PGA is that of the transverse component; the longitudinal one is scaled by
-    // the same factor (docs/bridge.md).
-    const Record* ref = rec_y ? &*rec_y : (rec_x ? &*rec_x : nullptr);
-    double factor = scale;
-    if (ref != nullptr && target > 0) {
-      const double pk = peak(*ref);
-      if (!(pk > 0)) s.fail("target_pga", "the record's peak acceleration is zero: cannot scale it");
-      factor *= target * kStandardGravity / pk;
-    }
-    gm.target_pga = 0.0;
-    gm.scale = factor;
-  }
+  return delays;
+}
 
-  MotionSet mx(rec_x, gm), my(rec_y, gm);
-  GroundMotionOptions rot = gm;
-  rot.scale = rotation_scale;
+// [model.seats]: the contact law and how the seats move.
+struct SeatSettings {
+  std::array<double, 2> delays{0.0, 0.0};           // wave-passage delay of each seat [s]
+  bool transverse = false;                          // seats follow the transverse record too
+  std::array<std::optional<Record>, 2> rotation;    // angular acceleration records [rad/s^2]
+  double rotation_scale = 1.0;                      // factor on the rotation records
+};
+
+SeatSettings read_seats(Section& m, const Context& c, Bridge::Parameters& p) {
+  SeatSettings out;
+  const auto* t = m.table("seats");
+  if (t == nullptr) return out;
+  Section s(c, *t, m.key_path("seats"));
+  s.only({"restitution", "friction", "transverse", "delay_left", "delay_right", "rotation_scale",
+          "rotation_unit", "rotation_record_left", "rotation_record_right"});
+  p.restitution = s.number("restitution", p.restitution, unit_interval, "must be in [0, 1]");
+  p.friction = s.number("friction", p.friction, non_negative, "must be >= 0");
+  out.transverse = s.boolean("transverse", false);
+  out.delays[0] = s.number("delay_left", 0.0, non_negative, "must be >= 0 [s]");
+  out.delays[1] = s.number("delay_right", 0.0, non_negative, "must be >= 0 [s]");
+  out.rotation_scale = s.number("rotation_scale", 1.0);
+  const double unit = s.number("rotation_unit", 1.0, positive, "must be > 0 [rad/s^2 per file unit]");
+  const char* keys[2] = {"rotation_record_left", "rotation_record_right"};
+  for (int a = 0; a < 2; ++a) {
+    if (const auto name = s.opt_string(keys[a]); name && !name->empty()) {
+      out.rotation[static_cast<std::size_t>(a)] = read_record(s, keys[a], *name, unit, c);
+    }
+  }
+  s.finish();
+  return out;
+}
+
+// [model.excitation]: the two records with their own factors, and the shared options.
+struct ExcitationSettings {
+  std::optional<Record> longitudinal, transverse;
+  double longitudinal_factor = 1.0, transverse_factor = 1.0;  // amplitude factors
+  GroundMotionOptions options;                                // time scale, baseline
+};
+
+// The factor that scales record r to target [g]; fails at key when the record is all zeros.
+double factor_to(const Section& s, const std::string& key, const Record& r, double target) {
+  const double pk = peak(r);
+  if (!(pk > 0)) s.fail(key, "the record's peak acceleration is zero: cannot scale it");
+  return target * kStandardGravity / pk;
+}
+
+ExcitationSettings read_excitation(Section& m, const Context& c) {
+  ExcitationSettings out;
+  const auto* t = m.table("excitation");
+  if (t == nullptr) return out;
+  Section s(c, *t, m.key_path("excitation"));
+  s.only({"longitudinal_record", "transverse_record", "record_unit", "target_pga",
+          "longitudinal_pga", "scale", "time_scale", "baseline_correction"});
+  const double unit = s.number("record_unit", 1.0, positive, "must be > 0 [m/s^2 per file unit]");
+  if (const auto n = s.opt_string("longitudinal_record"); n && !n->empty()) {
+    out.longitudinal = read_record(s, "longitudinal_record", *n, unit, c);
+  }
+  if (const auto n = s.opt_string("transverse_record"); n && !n->empty()) {
+    out.transverse = read_record(s, "transverse_record", *n, unit, c);
+  }
+  const double target = s.number("target_pga", 0.0, non_negative, "must be >= 0 [g] (0: as recorded)");
+  const double target_x = s.number("longitudinal_pga", 0.0, non_negative,
+                                   "must be >= 0 [g] (0: the factor of target_pga)");
+  const double scale = s.number("scale", 1.0);
+  out.options.time_scale = s.number("time_scale", 1.0, positive, "must be > 0");
+  out.options.baseline_correction = s.boolean("baseline_correction", true);
+  s.finish();
+  // target_pga scales the transverse component (or the longitudinal one when it is alone);
+  // without longitudinal_pga the other component takes the same factor. longitudinal_pga
+  // gives the longitudinal component its own target (docs/bridge.md, "Target PGAs").
+  const Record* ref = out.transverse ? &*out.transverse
+                                     : (out.longitudinal ? &*out.longitudinal : nullptr);
+  double common = 1.0;
+  if (ref != nullptr && target > 0) common = factor_to(s, "target_pga", *ref, target);
+  out.transverse_factor = scale * common;
+  out.longitudinal_factor = scale * common;
+  if (target_x > 0) {
+    if (!out.longitudinal) s.fail("longitudinal_pga", "needs a longitudinal_record to scale");
+    out.longitudinal_factor = scale * factor_to(s, "longitudinal_pga", *out.longitudinal, target_x);
+  }
+  out.options.target_pga = 0.0;
+  return out;
+}
+
+// The support motions of every bent and seat, and the end of the longest bent motion [s].
+Bridge::Excitation support_motions(const ExcitationSettings& e, const SeatSettings& seats,
+                                   const std::vector<double>& bent_delays, double& end) {
+  GroundMotionOptions ox = e.options, oy = e.options;
+  ox.scale = e.longitudinal_factor;
+  oy.scale = e.transverse_factor;
+  MotionSet mx(e.longitudinal, ox), my(e.transverse, oy);
+  GroundMotionOptions rot = e.options;
+  rot.scale = seats.rotation_scale;
   Bridge::Excitation exc;
-  double end = 0.0;
-  for (std::size_t j = 0; j < p.bents.size(); ++j) {
-    exc.bents.push_back({mx.at_delay(bent_delays[j]), my.at_delay(bent_delays[j]), nullptr});
+  for (double delay : bent_delays) {
+    exc.bents.push_back({mx.at_delay(delay), my.at_delay(delay), nullptr});
   }
   for (std::size_t a = 0; a < 2; ++a) {
-    exc.seats[a].longitudinal = mx.at_delay(seat_delays[a]);
-    if (seats_transverse) exc.seats[a].transverse = my.at_delay(seat_delays[a]);
-    if (seat_rotation[a]) {
+    exc.seats[a].longitudinal = mx.at_delay(seats.delays[a]);
+    if (seats.transverse) exc.seats[a].transverse = my.at_delay(seats.delays[a]);
+    if (seats.rotation[a]) {
       GroundMotionOptions o = rot;
-      o.delay = seat_delays[a];
-      exc.seats[a].rotation = std::make_shared<const GroundMotion>(*seat_rotation[a], o);
+      o.delay = seats.delays[a];
+      exc.seats[a].rotation = std::make_shared<const GroundMotion>(*seats.rotation[a], o);
     }
   }
+  end = 0.0;
   for (const auto& b : exc.bents) {
     for (const auto& mo : {b.longitudinal, b.transverse}) {
       if (mo) end = std::max(end, mo->end_time());
     }
   }
+  return exc;
+}
+
+std::unique_ptr<integrators::System> build_bridge(Section& m, const Context& c,
+                                                  SolverSettings& solver, bool end_time_given) {
+  m.only({"kind", "deck", "gaps", "damping", "bents", "seats", "excitation"});
+  Bridge::Parameters p = Bridge::Parameters::benchmark();
+  p.bents.clear();
+  read_deck(m, c, p);
+  read_gaps(m, c, p);
+  read_damping(m, c, p);
+  const std::vector<double> bent_delays = read_bents(m, c, p);
+  const SeatSettings seats = read_seats(m, c, p);
+  const ExcitationSettings excitation = read_excitation(m, c);
+  double end = 0.0;
+  Bridge::Excitation exc = support_motions(excitation, seats, bent_delays, end);
   if (!end_time_given && end > 0) solver.end_time = end;
 
   try {

@@ -308,3 +308,15 @@ TEST_CASE("trial, commit and revert are delegated to the springs") {
   b.tangent(0.0, z, z, K, C);
   CHECK(K(0, 0) < 0.1 * b.initial_stiffness()(0, 0));  // post-yield: 5 % of k_y
 }
+
+TEST_CASE("the benchmark deck is 110 ft long with its bents at -L/4, 0, +L/4") {
+  // Saiidi, Vosooghi & Nelson (2013): a 110 ft deck, 110 * 0.3048 = 33.528 m, rounded to
+  // 33.53 m; four equal spans are assumed (docs/bridge.md).
+  const auto p = Bridge::Parameters::benchmark();
+  CHECK(p.deck.length == doctest::Approx(110 * 0.3048).epsilon(1e-4));
+  REQUIRE(p.bents.size() == 3);
+  CHECK(p.bents[0].position == doctest::Approx(-33.53 / 4).epsilon(1e-12));
+  CHECK(p.bents[1].position == 0.0);
+  CHECK(p.bents[2].position == doctest::Approx(33.53 / 4).epsilon(1e-12));
+  CHECK(p.inertia == 13090.0);  // I_d kept from the paper, not derived from L
+}

@@ -113,34 +113,55 @@ TEST_CASE("every scene in scenes/ loads and builds its system") {
     if (scene.kind == "bridge") {
       CHECK(scene.system->dofs() == 3);
       CHECK(scene.system->contacts() == 4);
-      // The record (8773 samples at 0.005 s = 43.9 s) compressed by 0.5 is covered.
+      // The record is covered: RSN 1084 (43.9 s) compressed by 0.5, or RSN 988 (39.98 s).
       CHECK(scene.solver.end_time >= 21.9);
     }
     ++count;
   }
-  CHECK(count >= 12);  // 7 bridge runs, 2 rigid decks, 3 simple systems
+  CHECK(count >= 13);  // 8 bridge runs, 2 rigid decks, 3 simple systems
 }
 
-TEST_CASE("the bridge runs scale the transverse record to their target PGA, longitudinal alike") {
-  // RSN1084 component 142 has a PGA of 0.923 g and 052 of 0.623 g (docs/bridge.md): scaling
-  // 142 to 0.65 g scales 052 to 0.623 * 0.65 / 0.923 g.
-  const auto scene = load_scene(fs::path(NSB_SCENES_DIR) / "bridge-exc5.toml");
+TEST_CASE("the bridge runs scale each component to its own target PGA") {
+  // Runs 6 and 7: about 1.0 g transverse and 1.2 g longitudinal (Saiidi, Vosooghi & Nelson
+  // 2013); RSN 988 has 2000 samples at 0.02 s (data/README.md), not compressed in time.
+  const auto scene = load_scene(fs::path(NSB_SCENES_DIR) / "bridge-exc7.toml");
   const auto& b = dynamic_cast<const nsb::models::Bridge&>(*scene.system);
   const auto& e = b.excitation();
   REQUIRE(e.bents.size() == 3);
   REQUIRE(e.bents[0].transverse != nullptr);
   REQUIRE(e.bents[0].longitudinal != nullptr);
   // Baseline correction changes the peak acceleration slightly: 2 %.
-  CHECK(e.bents[0].transverse->pga() == doctest::Approx(0.65 * 9.81).epsilon(0.02));
-  CHECK(e.bents[0].longitudinal->pga() ==
-        doctest::Approx(0.623 * 0.65 / 0.923 * 9.81).epsilon(0.02));
-  CHECK(e.bents[0].transverse->duration() == doctest::Approx(0.5 * 8772 * 0.005).epsilon(0.01));
-  // The seats follow the longitudinal motion only (paper sec. 2).
+  CHECK(e.bents[0].transverse->pga() == doctest::Approx(1.0 * 9.81).epsilon(0.02));
+  CHECK(e.bents[0].longitudinal->pga() == doctest::Approx(1.2 * 9.81).epsilon(0.02));
+  CHECK(e.bents[0].transverse->duration() == doctest::Approx(1999 * 0.02).epsilon(1e-9));
+  // The deck is 110 ft = 33.528 m long (published), the bents at -L/4, 0, +L/4.
+  CHECK(b.parameters().deck.length == doctest::Approx(110 * 0.3048).epsilon(1e-4));
+  // The seats follow the longitudinal motion only (published: longitudinal actuators).
   CHECK(e.seats[0].longitudinal != nullptr);
   CHECK(e.seats[0].transverse == nullptr);
   CHECK(b.parameters().friction == 0.5);
   CHECK(b.parameters().restitution == 0.0);
   CHECK(b.parameters().mass == 140.5);
+}
+
+TEST_CASE("without longitudinal_pga both components take the factor of target_pga") {
+  // RSN 988: 090 has a PGA of 0.2556669 g, 360 of 0.2216674 g (the largest |value| in each
+  // file). Scaling 360 to 1.0 g with one factor scales 090 to 0.2556669 / 0.2216674 g.
+  const auto scene = load_scene(fs::path(NSB_SCENES_DIR) / "bridge-exc7.toml",
+                                {"model.excitation.longitudinal_pga=0"});
+  const auto& e = dynamic_cast<const nsb::models::Bridge&>(*scene.system).excitation();
+  const double ratio = 0.2556669 / 0.2216674;
+  // The two motions' baseline corrections differ: measured ratio error 0.3 %, allowed 1 %.
+  CHECK(e.bents[0].longitudinal->pga() / e.bents[0].transverse->pga() ==
+        doctest::Approx(ratio).epsilon(0.01));
+}
+
+TEST_CASE("longitudinal_pga without a longitudinal record is an error naming the key") {
+  const std::string record = std::string(NSB_DATA_DIR) + "/ground-motions/RSN988_NORTHR_CCN360.AT2";
+  const auto e = error_of("lpga.toml", bridge_scene(record) + "longitudinal_pga = 1.2\n");
+  CHECK(contains(e, "lpga.toml:16:"));  // the line after the 15 of bridge_scene
+  CHECK(contains(e, "model.excitation.longitudinal_pga"));
+  CHECK(contains(e, "longitudinal_record"));
 }
 
 TEST_CASE("overrides apply before validation") {

@@ -1,0 +1,47 @@
+// nsbridge figures --out DIR [--quick]
+//
+// Regenerates the paper's figures (PNG and SVG, each with its CSV) and writes claims.json and
+// claims.md (paper-figures/, docs/paper-figures.md). Exit code 1 when a run or a plot failed
+// (the claims that used a failed run say "not evaluated"); 2 for bad input.
+#include <iostream>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "paper-figures/figures.hpp"
+
+namespace nsb::app {
+
+namespace {
+
+void run_figures(const paper_figures::FigureOptions& o) {
+  const auto res = paper_figures::make_figures(o);
+  std::cout << "figures    " << res.figures.size() << " in " << o.out.string() << " (" << res.runs
+            << " runs, " << res.wall_time << " s)\n";
+  for (const auto& c : res.claims) {
+    std::cout << "claim " << c.id << "   " << (c.holds() ? "holds" : "does not hold") << ": "
+              << c.reason() << '\n';
+  }
+  for (const auto& f : res.failed) std::cout << "failed run " << f << '\n';
+  for (const auto& f : res.plot_errors) std::cout << "failed plot " << f << '\n';
+  if (!res.succeeded()) {
+    std::cout << res.failed.size() << " runs and " << res.plot_errors.size() << " plots failed\n";
+    exit_code() = 1;
+  }
+}
+
+}  // namespace
+
+void add_figures_command(CLI::App& app) {
+  auto o = std::make_shared<paper_figures::FigureOptions>();
+  auto* cmd = app.add_subcommand("figures", "Regenerate the paper's figures and check its claims");
+  cmd->add_option("--out", o->out, "Output folder (figures, CSV, claims.json, claims.md)")
+      ->required();
+  cmd->add_flag("--quick", o->quick, "The reduced set (fewer runs; under a minute)");
+  cmd->add_option("--scenes", o->scenes,
+                  "Folder of the scenes (default: the source tree's scenes/)");
+  cmd->add_option("--gnuplot", o->gnuplot, "gnuplot executable");
+  cmd->add_option("--workers", o->workers, "Runs in parallel, 1..64");
+  cmd->callback([o] { run_figures(*o); });
+}
+
+}  // namespace nsb::app
