@@ -1,4 +1,5 @@
-// The compliance method on the benchmark bridge under excitation 5 (scenes/bridge-exc5.toml),
+// The compliance method on the benchmark bridge (scenes/bridge-exc5.toml with the earlier
+// input set: the Sylmar record at 0.65 g transverse, time compressed by 0.5, the 33.35 m deck),
 // over the first seconds that contain the first pounding:
 //  - theta(t) converges to the nonsmooth (Moreau–Jean) history computed with eps =
 //    e_effective of the damping law as the stiffness grows from 1e-4 k0 to 1e2 k0;
@@ -24,8 +25,11 @@ namespace {
 using nsb::integrators::EventKind;
 using nsb::integrators::Recorder;
 
-// The first pounding of excitation 5 (contact 2, near t = 2.29 s with the assumed record)
-// and 1.7 s of the response after it.
+// The first pounding (contact 2, near t = 2.29 s with the Sylmar input set) and 1.7 s of the
+// response after it. With the test's record (RSN 988) the first pounding comes at 3.97 s, so a
+// window that contains it and the response after it would cost twice the run time; the check
+// is about the method, not the record, so it keeps the earlier input set, written out below
+// (the override lines of docs/bridge.md).
 constexpr double kEndTime = 4.0;  // [s]
 constexpr double kReferenceStep = 1e-4;  // Moreau–Jean h of the reference [s]
 
@@ -60,7 +64,16 @@ void convergence(nsb::integrators::DampingLaw law) {
   const double e_set = 0.0;  // the paper's eps_N
   const double e_eff = nsb::integrators::hunt_crossley_restitution(
       nsb::integrators::damping_factor(law, e_set));
-  const std::vector<std::string> common{"solver.end_time=" + number(kEndTime)};
+  const std::vector<std::string> common{
+      "solver.end_time=" + number(kEndTime),
+      "model.deck.length=33.35",
+      "model.bents.0.position=-8.34",
+      "model.bents.2.position=8.34",
+      "model.excitation.transverse_record=ground-motions/RSN1084_NORTHR_SCS142.AT2",
+      "model.excitation.longitudinal_record=ground-motions/RSN1084_NORTHR_SCS052.AT2",
+      "model.excitation.target_pga=0.65",
+      "model.excitation.longitudinal_pga=0",
+      "model.excitation.time_scale=0.5"};
 
   // Reference: Moreau–Jean with eps = e_effective.
   auto ref_overrides = common;
