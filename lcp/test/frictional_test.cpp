@@ -203,7 +203,8 @@ TEST_CASE("expected failure: restitution with a wedged frictional body has no so
   // (an impulse d >= 0 in the friction cones with W d = 0), and the rebound that Newton's law
   // asks for (the eps gdot_N- part of q) makes q^T d < 0. By Farkas' lemma the LCP is then
   // infeasible along d. Enumeration confirms there is no complementary solution; Lemke must
-  // report a ray termination, never success.
+  // report a failure, never success: a verified secondary ray, or kRoundOff when pivots on
+  // near-zero entries spoilt the tableau so that the ray does not verify.
   std::mt19937 rng(2017);
   int infeasible = 0;
   for (int trial = 0; trial < 60; ++trial) {
@@ -213,7 +214,7 @@ TEST_CASE("expected failure: restitution with a wedged frictional body has no so
     const Result l = lemke(p);
     if (e.status == Status::kNoSolution) {
       ++infeasible;
-      CHECK(l.status == Status::kRayTermination);
+      CHECK((l.status == Status::kRayTermination || l.status == Status::kRoundOff));
       const FrictionalResult f = solve_frictional(b.problem, Solver::kPgs);
       CHECK_FALSE(f.ok());  // the fallback cannot succeed either
       CHECK(f.used_fallback);
