@@ -14,9 +14,9 @@ void Problem::validate() const {
       << "; M must be " << n << " x " << n;
     throw std::invalid_argument(s.str());
   }
-  // Fast path: x - x is 0 for a finite x and NaN for NaN or +-inf, so one vectorised pass
+  // Fast path: 0 x is 0 for a finite x and NaN for NaN or +-inf, so one vectorised sum
   // decides; only a non-finite problem is searched entry by entry for the message.
-  if (!(M - M).hasNaN() && !(q - q).hasNaN()) return;
+  if ((M.array() * 0.0).sum() == 0.0 && (q.array() * 0.0).sum() == 0.0) return;
   for (Eigen::Index j = 0; j < n; ++j) {
     for (Eigen::Index i = 0; i < n; ++i) {
       if (!std::isfinite(M(i, j))) {

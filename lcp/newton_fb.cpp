@@ -10,6 +10,7 @@ namespace {
 // Newton direction would carry no correct digits.
 constexpr double kSingularRcond = 1e-14;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr bool kEveryStep = true;
 
 // Every vector and matrix one solve needs, sized once per solve. With Max = kSmall the
 // storage is inside the object (no heap), with Max = Eigen::Dynamic on the heap.
@@ -22,6 +23,7 @@ struct Workspace {
   Index active, previous, tried;
   Mat H, A;
   Eigen::PartialPivLU<Mat> lu, lu_active;
+  Eigen::CompleteOrthogonalDecomposition<Mat> cod_active;
   Eigen::Index tried_size = -1;
 
   void resize(Eigen::Index n) {
@@ -108,7 +110,7 @@ bool active_set_trial(const Problem& p, Workspace<Max>& ws) {
     ws.previous(i) = a;
     if (a) ws.active(k++) = i;
   }
-  if (!same) return false;
+  if (!same && !kEveryStep) return false;
   if (k == ws.tried_size && ws.active.head(k) == ws.tried.head(k)) return false;
   ws.tried.head(k) = ws.active.head(k);
   ws.tried_size = k;
@@ -120,7 +122,14 @@ bool active_set_trial(const Problem& p, Workspace<Max>& ws) {
       for (Eigen::Index r = 0; r < k; ++r) ws.A(r, c) = p.M(ws.active(r), ws.active(c));
     }
     ws.lu_active.compute(ws.A);
-    ws.x.head(k) = ws.lu_active.solve(ws.b.head(k));
+    if (ws.lu_active.rcond() > kSingularRcond) {
+      ws.x.head(k) = ws.lu_active.solve(ws.b.head(k));
+    } else {
+      // A singular block (eq. 6 with more contacts than the body has degrees of freedom):
+      // the least-norm solution, consistent if the support is right.
+      ws.cod_active.compute(ws.A);
+      ws.x.head(k) = ws.cod_active.solve(ws.b.head(k));
+    }
     for (Eigen::Index c = 0; c < k; ++c) {
       if (!std::isfinite(ws.x(c))) return false;
       ws.trial(ws.active(c)) = std::max(0.0, ws.x(c));
