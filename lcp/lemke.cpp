@@ -353,6 +353,10 @@ void Lemke::solve(const Problem& p, const LemkeOptions& options, Result& r) {
   const Eigen::Index n = p.size();
   if (options.covering.size() != 0 && options.covering.size() != n)
     throw std::invalid_argument("LemkeOptions::covering must be empty or of size n");
+  // A reused Result keeps nothing of an earlier solve (clear() frees no memory).
+  r.message.clear();
+  r.wall_time = 0.0;
+  r.history.clear();
   r.z.resize(n);
   r.status = run(p.M, p.q, options, r.z);
   r.iterations = pivots_;

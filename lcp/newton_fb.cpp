@@ -10,7 +10,6 @@ namespace {
 // Newton direction would carry no correct digits.
 constexpr double kSingularRcond = 1e-14;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr bool kEveryStep = true;
 
 // Every vector and matrix one solve needs, sized once per solve. With Max = kSmall the
 // storage is inside the object (no heap), with Max = Eigen::Dynamic on the heap.
@@ -19,18 +18,17 @@ struct Workspace {
   using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, Max, Max>;
   using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, Max, 1>;
   using Index = Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1, 0, Max, 1>;
-  Vec z, w, phi, grad, d, trial, w_trial, phi_trial, da, db, x, b;
-  Index active, previous, tried;
+  Vec z, w, z_full, w_full, phi, grad, d, trial, w_trial, phi_trial, da, db, x, b;
+  Index active, tried;
   Mat H, A;
   Eigen::PartialPivLU<Mat> lu, lu_active;
   Eigen::CompleteOrthogonalDecomposition<Mat> cod_active;
   Eigen::Index tried_size = -1;
 
   void resize(Eigen::Index n) {
-    for (Vec* v : {&z, &w, &phi, &grad, &d, &trial, &w_trial, &phi_trial, &da, &db, &x, &b})
+    for (Vec* v : {&z, &w, &z_full, &w_full, &phi, &grad, &d, &trial, &w_trial, &phi_trial, &da, &db, &x, &b})
       v->resize(n);
     active.resize(n);
-    previous.resize(n);
     tried.resize(n);
     H.resize(n, n);
     tried_size = -1;
@@ -95,22 +93,15 @@ void jacobian_diagonals(const Problem& p, const V& z, Workspace<Max>& ws) {
   }
 }
 
-// The active-set trial: A = {i : z_i > w_i}. When A is stable (the same as after the previous
-// step) and not yet tried, solve M_AA x = -q_A and take z_A = max(0, x), z_rest = 0 into
-// ws.trial / ws.w_trial. Returns true if a trial point was formed.
-template <int Max>
-bool active_set_trial(const Problem& p, Workspace<Max>& ws) {
-  const auto& z = ws.z;
+// The active-set trial: A = {i : z_i > w_i} for the given (z, w). If A differs from the last
+// set tried, solve M_AA x = -q_A and form z_A = max(0, x), z_rest = 0 in ws.trial, with its w
+// in ws.w_trial. Returns true if a trial point was formed.
+template <int Max, class V>
+bool active_set_trial(const Problem& p, const V& z, const V& w, Workspace<Max>& ws) {
   const Eigen::Index n = p.size();
   Eigen::Index k = 0;
-  bool same = true;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Index a = z(i) > ws.w(i) ? 1 : 0;
-    if (a != ws.previous(i)) same = false;
-    ws.previous(i) = a;
-    if (a) ws.active(k++) = i;
-  }
-  if (!same && !kEveryStep) return false;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (z(i) > w(i)) ws.active(k++) = i;
   if (k == ws.tried_size && ws.active.head(k) == ws.tried.head(k)) return false;
   ws.tried.head(k) = ws.active.head(k);
   ws.tried_size = k;
@@ -156,7 +147,6 @@ template <int Max>
 Status iterate(const Problem& p, const NewtonFbOptions& options, Result& r, Workspace<Max>& ws) {
   const Eigen::Index n = p.size();
   ws.resize(n);
-  ws.previous.setConstant(2);  // 2: no estimate yet
   const double scale = 1.0 + p.q.lpNorm<Eigen::Infinity>();
   // The iterate lives in the workspace (possibly inside the object) and goes back to r.z,
   // with its w, at the end.
@@ -193,6 +183,10 @@ Status iterate(const Problem& p, const NewtonFbOptions& options, Result& r, Work
         ws.trial = x + t * ws.d;
         product(p, ws.trial, ws.w_trial);
         psi_trial = merit(ws.trial, ws.w_trial, ws.phi_trial);
+        if (b == 0 && attempt == 0) {
+          ws.z_full = ws.trial;
+          ws.w_full = ws.w_trial;
+        }
         if (psi_trial <= psi + options.armijo * t * slope) {
           accepted = true;
           break;
@@ -212,9 +206,14 @@ Status iterate(const Problem& p, const NewtonFbOptions& options, Result& r, Work
     ws.phi = ws.phi_trial;
     psi = psi_trial;
     res = natural(x, ws.w, scale);
-    if (options.polish && res > options.tolerance && active_set_trial(p, ws)) {
-      // Accept the active-set point if it lowers the merit function: the method stays
-      // monotone in Psi, and with the right support this point is the solution.
+    // Active-set points: from the support estimate of the iterate, then from that of the
+    // full (undamped) step, which identifies the support before the damped iterates do.
+    // Either is accepted if it lowers the merit function: the method stays monotone in Psi,
+    // and with the right support the point is the solution.
+    for (int source = 0; source < 2 && options.polish && res > options.tolerance; ++source) {
+      const bool formed = source == 0 ? active_set_trial(p, x, ws.w, ws)
+                                      : active_set_trial(p, ws.z_full, ws.w_full, ws);
+      if (!formed) continue;
       const double psi_a = merit(ws.trial, ws.w_trial, ws.phi_trial);
       if (psi_a < psi) {
         x = ws.trial;
@@ -272,8 +271,11 @@ void NewtonFb::solve(const Problem& p, const NewtonFbOptions& options, Result& r
   p.validate();
   options.validate();
   const Eigen::Index n = p.size();
-  r.iterations = 0;
+  // A reused Result keeps nothing of an earlier solve (clear() frees no memory).
+  r.message.clear();
+  r.wall_time = 0.0;
   r.history.clear();
+  r.iterations = 0;
   if (warm_start.size() == n) {
     r.z = warm_start;
   } else {

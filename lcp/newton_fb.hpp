@@ -18,13 +18,14 @@
 // backtracking search on Psi then fixes the step length. On nondegenerate problems with a
 // P-matrix, the unit step is accepted near the solution and convergence is quadratic.
 //
-// Active-set steps (option `polish`): when the estimate A = {i : z_i > w_i} of the support is
-// the same after two consecutive steps and has not been tried yet, the method forms
-// z_A = max(0, -M_AA^-1 q_A), z_rest = 0 (the exact solution if A is the true support;
-// identification of the active set, Facchinei, Fischer & Kanzow 1998) and takes it as the next
-// iterate if it lowers Psi. The iteration stays monotone in Psi, so the global behaviour of the
-// damped Newton method is kept, while the slow middle phase of ill-conditioned problems, where
-// Armijo steps crawl although the support is already known, is cut short.
+// Active-set steps (option `polish`): after each damped step, the support estimates
+// A = {i : z_i > w_i} of the new iterate and of the full (undamped) Newton point give trial
+// points z_A = max(0, -M_AA^-1 q_A), z_rest = 0 (the exact solution if A is the true support;
+// identification of the active set, Facchinei, Fischer & Kanzow 1998; a singular M_AA is
+// solved in the least-norm sense). A trial is taken as the next iterate if it lowers Psi, so
+// the iteration stays monotone in Psi and keeps the global behaviour of the damped Newton
+// method, while the slow middle phase of ill-conditioned problems, where Armijo steps crawl
+// although the support is already known, is cut short. A set already tried is not re-solved.
 #pragma once
 
 #include "lcp/lcp.hpp"

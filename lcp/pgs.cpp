@@ -79,8 +79,11 @@ void pgs(const Problem& p, const PgsOptions& options, Result& r) {
   p.validate();
   options.validate();
   const Eigen::Index n = p.size();
-  r.iterations = 0;
+  // A reused Result keeps nothing of an earlier solve (clear() frees no memory).
+  r.message.clear();
+  r.wall_time = 0.0;
   r.history.clear();
+  r.iterations = 0;
   r.z.resize(n);
   r.z.setZero();
   // The refusal is decided before any other work: a problem with M_ii <= 0 costs n reads.
