@@ -24,6 +24,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <map>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -33,6 +35,10 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include <ctime>
+#include <fcntl.h>
+#include <unistd.h>
 
 using namespace nsb::lcp;
 
@@ -57,12 +63,15 @@ struct Row {
 
 std::vector<Row> rows;
 
+// CPU time of this thread: on a machine shared with other jobs, wall time counts the time the
+// thread waits for a core, which is noise for a ratio of two solvers' work.
 double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// Median over `batches` of the mean time of one call, each batch long enough (>= min_time)
+// Median over `batches` of the mean CPU time of one call, each batch long enough (>= min_time)
 // for the clock's resolution not to matter.
 double median_time(const std::function<void()>& f, int batches, double min_time) {
   f();  // warm up (page in code and data)
@@ -88,6 +97,36 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
+
+// Siconos prints diagnostics (e.g. each failed LU of its Newton–FB) on stdout and stderr;
+// while one of its solvers runs, both go to /dev/null.
+class Silence {
+ public:
+  Silence() {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    out_ = dup(1);
+    err_ = dup(2);
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    close(null);
+  }
+  ~Silence() {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    dup2(out_, 1);
+    dup2(err_, 2);
+    close(out_);
+    close(err_);
+  }
+  Silence(const Silence&) = delete;
+  Silence& operator=(const Silence&) = delete;
+
+ private:
+  int out_ = -1;
+  int err_ = -1;
+};
 
 #ifdef NSB_HAVE_SICONOS
 // One Siconos problem and solver options, owning their memory.
@@ -139,37 +178,38 @@ const std::pair<int, const char*> kSiconosSolvers[] = {
 // Runs our solvers (and Siconos's) on one problem; records one row per solver.
 void run_all(const std::string& set, const std::string& name, const Problem& p, int batches,
              double min_time) {
+  // Our solvers through their in-place forms: the workspace and the Result are reused, as an
+  // integrator does; no clock, no message (Siconos's functions also write into the caller's
+  // z and w).
   Lemke lemke_solver(p.size());
+  NewtonFb nfb_solver;
+  LemkeOptions lemke_options;
+  lemke_options.tolerance = kTolerance;
+  PgsOptions pgs_options;
+  pgs_options.tolerance = kTolerance;
+  NewtonFbOptions nfb_options;
+  nfb_options.tolerance = kTolerance;
+  Result r;
   const struct {
     const char* label;
-    std::function<Result()> run;
+    std::function<void()> run;
   } ours[] = {
-      {"lemke", [&] { return lemke_solver.solve(p); }},
-      {"pgs",
-       [&] {
-         PgsOptions o;
-         o.tolerance = kTolerance;
-         return pgs(p, o);
-       }},
-      {"nfb",
-       [&] {
-         NewtonFbOptions o;
-         o.tolerance = kTolerance;
-         return newton_fb(p, o);
-       }},
+      {"lemke", [&] { lemke_solver.solve(p, lemke_options, r); }},
+      {"pgs", [&] { pgs(p, pgs_options, r); }},
+      {"nfb", [&] { nfb_solver.solve(p, nfb_options, r); }},
   };
   for (const auto& s : ours) {
-    Result r = s.run();
+    s.run();
     Row row{set, name, static_cast<int>(p.size()), s.label, 0.0, std::string(to_string(r.status)),
             r.iterations, r.residual, r.siconos_error};
-    row.median_us = 1e6 * median_time([&] { r = s.run(); }, batches, min_time);
+    row.median_us = 1e6 * median_time(s.run, batches, min_time);
     rows.push_back(row);
   }
 #ifdef NSB_HAVE_SICONOS
   for (const auto& [id, label] : kSiconosSolvers) {
+    const Silence quiet;
     SiconosRun run(p, id);
     run.solve();
-    Result r;
     r.z = Eigen::Map<const Vector>(run.z.data(), p.size());
     evaluate(p, r);
     // Siconos's info = 0 is not always a solution (its Lemke reports 0 after a ray, e.g. on
@@ -198,21 +238,35 @@ void print_rows(const std::string& set) {
 }
 
 #ifdef NSB_HAVE_SICONOS
+// Ratios ours / Siconos of the median times on the same problem, with the outcome of ours:
+// "solved", or "refused" for a status decided before any iteration (zero diagonal), or
+// "failed". The largest ratio per solver and outcome closes the table.
 void print_ratios(const std::string& set) {
-  std::printf("\nratio ours / Siconos (median times, same problem):\n");
+  std::printf("\nratio ours / Siconos (median times, same problem, same run):\n");
   const std::pair<const char*, const char*> pairs[] = {{"lemke", "siconos_lexicolemke"},
                                                        {"pgs", "siconos_pgs"},
                                                        {"nfb", "siconos_newton_fb"}};
+  std::map<std::string, std::pair<double, std::string>> worst;
   for (const Row& a : rows) {
     if (a.set != set) continue;
     for (const auto& [ours, theirs] : pairs) {
       if (a.solver != ours) continue;
-      for (const Row& b : rows)
-        if (b.set == set && b.problem == a.problem && b.solver == theirs)
-          std::printf("  %-28s %-6s / %-20s = %8.3f\n", a.problem.c_str(), ours, theirs,
-                      a.median_us / b.median_us);
+      for (const Row& b : rows) {
+        if (b.set != set || b.problem != a.problem || b.solver != theirs) continue;
+        const std::string outcome = a.status == "solved"          ? "solved"
+                                    : a.status == "zero_diagonal" ? "refused"
+                                                                  : "failed";
+        const double ratio = a.median_us / b.median_us;
+        std::printf("  %-32s %-6s / %-20s = %8.3f  (%s)\n", a.problem.c_str(), ours, theirs,
+                    ratio, outcome.c_str());
+        auto& w = worst[std::string(ours) + " " + outcome];
+        if (ratio > w.first) w = {ratio, a.problem};
+      }
     }
   }
+  for (const auto& [key, value] : worst)
+    std::printf("  largest ratio, %-16s %8.3f  (%s)\n", key.c_str(), value.first,
+                value.second.c_str());
 }
 #endif
 
@@ -272,8 +326,6 @@ int main(int argc, char** argv) {
         worst_res = std::max(worst_res, o.second.second);
       }
       const double med = 1e6 * median(t);
-      std::printf("%-9d %4d %-22s %12.3f %6d/%-3zu %10d %12.2e\n", m, n, label, med, solved,
-                  problems.size(), worst_iter, worst_res);
       rows.push_back(Row{"eq6", "contacts=" + std::to_string(m), n, label, med,
                          std::to_string(solved) + "/" + std::to_string(problems.size()),
                          worst_iter, worst_res, 0.0});
@@ -287,34 +339,74 @@ int main(int argc, char** argv) {
             return std::make_pair(out.ok(), std::make_pair(out.iterations, out.residual));
           });
     }
+    // The LCP solvers on the LCP of eq. (6), in-place forms (workspace and Result reused).
     Lemke lemke_solver(12);
-    Vector z(n);
+    NewtonFb nfb_solver;
+    Result r;
+    const auto lcp_outcome = [&](std::size_t) {
+      return std::make_pair(r.ok(), std::make_pair(r.iterations, r.residual));
+    };
     measure(
-        "lemke_core_eq6",
-        [&](std::size_t k) { lemke_solver.run(lcps[k].M, lcps[k].q, LemkeOptions{}, z); },
+        "lemke_eq6", [&](std::size_t k) { lemke_solver.solve(lcps[k], LemkeOptions{}, r); },
         [&](std::size_t k) {
-          const Status s = lemke_solver.run(lcps[k].M, lcps[k].q, LemkeOptions{}, z);
-          return std::make_pair(s == Status::kSolved,
-                                std::make_pair(lemke_solver.pivots(), lemke_solver.last_residual()));
+          lemke_solver.solve(lcps[k], LemkeOptions{}, r);
+          return lcp_outcome(k);
+        });
+    measure(
+        "pgs_eq6 (refuses)", [&](std::size_t k) { pgs(lcps[k], PgsOptions{}, r); },
+        [&](std::size_t k) {
+          pgs(lcps[k], PgsOptions{}, r);
+          return std::make_pair(r.status == Status::kZeroDiagonal,
+                                std::make_pair(r.iterations, 0.0));
+        });
+    measure(
+        "nfb_eq6", [&](std::size_t k) { nfb_solver.solve(lcps[k], NewtonFbOptions{}, r); },
+        [&](std::size_t k) {
+          nfb_solver.solve(lcps[k], NewtonFbOptions{}, r);
+          return lcp_outcome(k);
         });
 #ifdef NSB_HAVE_SICONOS
-    std::vector<std::unique_ptr<SiconosRun>> runs;
-    for (const auto& p : lcps) runs.push_back(std::make_unique<SiconosRun>(p, SICONOS_LCP_LEMKE));
-    measure(
-        "siconos_lexicolemke", [&](std::size_t k) { runs[k]->solve(); },
-        [&](std::size_t k) {
-          runs[k]->solve();
-          const Vector zz = Eigen::Map<const Vector>(runs[k]->z.data(), n);
-          const double res = residual(lcps[k].M, lcps[k].q, zz);
-          return std::make_pair(runs[k]->info == 0 && res <= kAcceptSiconos,
-                                std::make_pair(runs[k]->iterations(), res));
-        });
+    for (const auto& [id, label] : kSiconosSolvers) {
+      const Silence quiet;
+      std::vector<std::unique_ptr<SiconosRun>> runs;
+      for (const auto& p : lcps) runs.push_back(std::make_unique<SiconosRun>(p, id));
+      const bool refusal = id == SICONOS_LCP_PGS;
+      measure(
+          label, [&](std::size_t k) { runs[k]->solve(); },
+          [&](std::size_t k) {
+            runs[k]->solve();
+            const Vector zz = Eigen::Map<const Vector>(runs[k]->z.data(), n);
+            const double res = residual(lcps[k].M, lcps[k].q, zz);
+            const bool ok = refusal ? runs[k]->info != 0 : runs[k]->info == 0 && res <= kAcceptSiconos;
+            return std::make_pair(ok, std::make_pair(runs[k]->iterations(), res));
+          });
+    }
 #endif
+    // Printed after the Siconos runs, whose output is silenced.
+    for (const Row& row : rows)
+      if (row.set == "eq6" && row.problem == "contacts=" + std::to_string(m))
+        std::printf("%-9d %4d %-22s %12.3f %10s %10d %12.2e\n", m, n, row.solver.c_str(),
+                    row.median_us, row.status.c_str(), row.iterations, row.residual);
   }
+#ifdef NSB_HAVE_SICONOS
+  std::printf("\nratio ours / Siconos on the LCP of eq. (6) (medians over the bodies, same run):\n");
+  for (int m = 1; m <= 4; ++m) {
+    const std::string key = "contacts=" + std::to_string(m);
+    const auto find = [&](const std::string& solver) {
+      for (const Row& row : rows)
+        if (row.set == "eq6" && row.problem == key && row.solver == solver) return row.median_us;
+      return 0.0;
+    };
+    std::printf("  %d contacts: lemke %.3f   pgs refusal %.3f   nfb %.3f\n", m,
+                find("lemke_eq6") / find("siconos_lexicolemke"),
+                find("pgs_eq6 (refuses)") / find("siconos_pgs"),
+                find("nfb_eq6") / find("siconos_newton_fb"));
+  }
+#endif
 
   // 2. Dense SPD problems (cond 100, manufactured with complementary supports).
   std::printf("\n== dense SPD problems, cond(M) = 100 ==");
-  for (int n : {50, 200, 500}) {
+  for (int n : quick ? std::vector<int>{50, 200} : std::vector<int>{50, 200, 500}) {
     const auto m = testing::manufacture(rng, testing::spd(rng, n, 100.0), 0.0);
     run_all("spd", "spd_n" + std::to_string(n), m.problem, quick ? 3 : (n >= 500 ? 5 : 9),
             quick ? 1e-3 : 1e-2);

@@ -1,6 +1,5 @@
 #include "lcp/enumeration.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -19,9 +18,11 @@ Result enumerate(const Problem& p, const EnumerationOptions& options) {
   options.validate();
   const Eigen::Index n = p.size();
   Result r;
-  const SolveClock clock(p);
+  const SolveClock clock;
   const auto finish = [&](Status s, std::string message) {
-    return clock.finish(r, s, std::move(message));
+    r.status = s;
+    evaluate(p, r);
+    return clock.finish(r, std::move(message));
   };
   if (n > options.max_size) {
     std::ostringstream s;

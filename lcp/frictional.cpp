@@ -324,10 +324,10 @@ bool FrictionalSolver::run_lemke(const FrictionalProblem& fp, const SolveOptions
   o.max_pivots = own_limit ? 0 : options.max_iterations;
   result.status = lemke_.run(M, q, o, z);
   result.iterations = lemke_.pivots();
-  if (result.status == Status::kRayTermination) {
+  if (result.status == Status::kRayTermination || result.status == Status::kRoundOff) {
     // A body wedged between contacts whose impulses can balance (W d = 0, d >= 0) with
     // q^T d = 0 exactly (eps = 0, or no rebound along d) has an unbounded solution set, and
-    // round-off can then end Lemke's path on a secondary ray. Retry with M + delta I, which
+    // round-off can then end Lemke's path on a (spurious) secondary ray or lose it. Retry with M + delta I, which
     // makes the solution set bounded; accept the answer only if it solves the original
     // problem: delta z must stay below the tolerance, hence the tiny delta.
     double scale = 0.0;
@@ -378,25 +378,28 @@ void FrictionalSolver::solve(const FrictionalProblem& fp, Solver solver,
     }
     case Solver::kNewtonFb:
     case Solver::kEnumeration: {
-      const Problem p = build_eq6(fp);
-      Result r;
+      const Eigen::Index n = eq6_size(fp);
+      eq6_.M.resize(n, n);
+      eq6_.q.resize(n);
+      write_eq6(fp, eq6_.M.data(), eq6_.q.data());
+      Result& r = eq6_result_;
       if (solver == Solver::kNewtonFb) {
         NewtonFbOptions o;
         o.tolerance = options.tolerance;
         if (options.max_iterations > 0) o.max_iterations = options.max_iterations;
-        r = newton_fb(p, o);
+        newton_fb_.solve(eq6_, o, r);
       } else {
         EnumerationOptions o;
         o.tolerance = options.tolerance;
-        r = enumerate(p, o);
+        r = enumerate(eq6_, o);
       }
       result.solver_used = solver;
       result.status = r.status;
       result.iterations = r.iterations;
-      if (r.z.size() == p.size()) {
+      if (r.z.size() == n) {
         read_eq6_into(fp, r.z.data(), result);
       } else {
-        const Vector zero = Vector::Zero(p.size());
+        const Vector zero = Vector::Zero(n);
         read_eq6_into(fp, zero.data(), result);
         result.residual = std::numeric_limits<double>::infinity();
       }

@@ -21,6 +21,7 @@
 
 #include "lcp/lcp.hpp"
 #include "lcp/lemke.hpp"
+#include "lcp/newton_fb.hpp"
 #include "lcp/pgs.hpp"
 #include "lcp/solve.hpp"
 
@@ -83,7 +84,8 @@ double frictional_residual(const FrictionalProblem& fp, const Vector& lambda_n,
 // Solves fp: Lemke, Newton–FB and enumeration on eq. (6); PGS on the natural form
 // (normal impulses in [0, inf), tangential in [-mu Lambda_N, mu Lambda_N]). If the chosen
 // solver does not reach kSolved and fallback is true, Lemke runs (with its own pivot limit)
-// and used_fallback is set. When Lemke ends on a secondary ray, it is retried on eq. (6) with
+// and used_fallback is set. When Lemke ends on a secondary ray or reports round-off
+// (kRayTermination, kRoundOff), it is retried on eq. (6) with
 // a diagonal shift of 1e-14 to 1e-12 (relative to the diagonal); such an answer is accepted
 // only if it solves the unshifted LCP to options.tolerance. This handles a body wedged
 // between contacts whose impulses can balance each other, where the solution set is
@@ -105,7 +107,8 @@ FrictionalResult pgs_frictional(const FrictionalProblem& fp, const PgsOptions& o
 // integrators that solve one contact problem per step. After reserve(m) (or a first call with
 // m contacts), a call with at most m contacts allocates nothing for Lemke and PGS apart from
 // resizing the result's vectors, which Eigen does only when the contact count changes.
-// Newton–FB and enumeration allocate (they are not meant for the time-stepping hot path).
+// Newton–FB keeps its LCP and result between calls (allocation-free for m <= 4 once sized);
+// enumeration allocates (it is an oracle, not meant for the time-stepping hot path).
 class FrictionalSolver {
  public:
   explicit FrictionalSolver(Eigen::Index max_contacts = 0);
@@ -126,6 +129,9 @@ class FrictionalSolver {
   std::vector<double> z_;
   std::vector<double> lambda_;  // PGS: [Lambda_N; Lambda_T]
   Lemke lemke_;
+  NewtonFb newton_fb_;
+  Problem eq6_;                 // Newton–FB: the LCP of eq. (6)
+  Result eq6_result_;
 };
 
 }  // namespace nsb::lcp

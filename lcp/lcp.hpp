@@ -36,7 +36,14 @@ enum class Status {
   kSolved,           // residual <= tolerance; z is a solution.
   kMaxIterations,    // iteration or pivot limit reached; z is the last iterate, not a solution.
   kRayTermination,   // Lemke: secondary ray, no solution found (none exists or M is not
-                     // in a class Lemke processes); z is not usable.
+                     // in a class Lemke processes): the entering column has no positive
+                     // entry at all; z is not usable.
+  kRoundOff,         // Lemke: round-off lost the pivoting path: the path stopped on a ray
+                     // that does not verify on the original data (the basic point or the ray
+                     // direction violates w - M z - d z0 = q, or has a negative component, by
+                     // more than 1e-9 relative), or z0 left the basis but the residual stays
+                     // above the tolerance after the refinement. z is the last basic solution,
+                     // not usable; a slightly perturbed problem or another solver may succeed.
   kZeroDiagonal,     // PGS: a diagonal entry of M is <= 0; z is not usable.
   kSingularJacobian, // Newton–FB: the linear system of a Newton step is singular and the
                      // gradient step made no progress; z is the last iterate.
@@ -46,6 +53,10 @@ enum class Status {
 };
 
 std::string_view to_string(Status s);
+// A one-sentence description of what the status means for z, for messages. Solvers do not
+// build messages on their hot path; the by-value solve functions fill Result::message from
+// this (and add the detail they know, e.g. which diagonal entry is not positive).
+std::string_view describe(Status s);
 
 // One result type for every LCP solver, returned by value. Defaults mean "never ran".
 struct Result {
@@ -55,8 +66,10 @@ struct Result {
   int iterations = 0;                         // sweeps, Newton steps or pivots
   double residual = std::numeric_limits<double>::infinity();       // see lcp::residual
   double siconos_error = std::numeric_limits<double>::infinity();  // see lcp::siconos_error
-  double wall_time = 0.0;                     // seconds spent in the solver
-  std::string message;                        // a human-readable note on the outcome
+  double wall_time = 0.0;                     // seconds spent in the solver; measured only
+                                              // by the by-value solve functions, 0 otherwise
+  std::string message;                        // a human-readable note on the outcome; filled
+                                              // only by the by-value solve functions
   std::vector<double> history;                // residual per iteration, when requested
   bool ok() const { return status == Status::kSolved; }
 };
@@ -75,18 +88,23 @@ double residual(const Matrix& M, const Vector& q, const Vector& z);
 //   e(z) = || z - max(0, z - w) ||_2 / ||q||_2     (divided by 1 when ||q||_2 = 0)
 double siconos_error(const Matrix& M, const Vector& q, const Vector& z);
 
-// Fills r.w, r.residual and r.siconos_error from r.z.
+// Fills r.w, r.residual and r.siconos_error from r.z: one product w = M z + q, then both
+// measures in one pass over (z, w). No allocation when r.w already has size n.
 void evaluate(const Problem& p, Result& r);
+// The same when r.w already holds M z + q (a solver that computed it): both measures in one
+// pass, no product.
+void evaluate_measures(const Problem& p, Result& r);
 
-// Times one solve and closes its result: every solver ends through finish(), which sets the
-// status, the message and the wall time, and evaluates w and both residuals from r.z.
+// The wall clock of a by-value solve: started at construction, read by finish(), which sets
+// the status, the message (describe(s) unless one is given) and the wall time. The in-place
+// solvers (Lemke::solve(p, o, r), pgs(p, o, r), NewtonFb::solve) never read the clock.
 class SolveClock {
  public:
-  explicit SolveClock(const Problem& p);
-  Result& finish(Result& r, Status s, std::string message) const;
+  SolveClock();
+  Result& finish(Result& r) const;                       // message = describe(r.status)
+  Result& finish(Result& r, std::string message) const;  // a message with more detail
 
  private:
-  const Problem& problem_;
   std::chrono::steady_clock::time_point start_;
 };
 

@@ -9,6 +9,14 @@
 // complement of the variable that just left, until z0 leaves (a solution) or the entering
 // column has no positive entry (a secondary ray: no solution found).
 //
+// Round-off is told apart from a ray (Status::kRoundOff). A ray termination is reported only
+// if the basic point and the ray direction, read from the tableau, satisfy w - M z - d z0 = q
+// (and = 0 for the direction) with nonnegative components on the original data to a relative
+// 1e-9; otherwise the tableau has lost the path to round-off (tiny pivots that spoilt it). If
+// z0 has reached zero to round-off when the path stops on a ray, z is a solution and is
+// reported as one. When z0 leaves the basis but the residual stays above the tolerance even
+// after the refinement below, the status is also kRoundOff.
+//
 // Degeneracy: ties in the ratio test are broken lexicographically on the rows of
 // [B^-1 q, B^-1] divided by the pivot column (Cottle, Pang & Stone §4.9). This is the
 // perturbation q + (eps, eps^2, ..., eps^n), so no basis repeats and the method cannot cycle.
@@ -50,13 +58,26 @@ class Lemke {
              const LemkeOptions& options, Eigen::Ref<Vector> z);
   int pivots() const { return pivots_; }
   double last_residual() const { return residual_; }
+  // M z + q of the last run (size n), computed once for the residual.
+  const double* last_w() const { return w_.data(); }
 
-  // The same, with the shared result type (z, w, both residuals, wall time, message).
+  // The shared result type without clock or message: validates p and the options, then
+  // fills r.z, r.w, both residuals, the status and the pivot count. r's vectors are resized
+  // only when n changes, so a reused Result makes this allocation-free.
+  void solve(const Problem& p, const LemkeOptions& options, Result& r);
+  // The same into a new Result, with the wall time and Result::message (describe(status)).
   Result solve(const Problem& p, const LemkeOptions& options = {});
 
  private:
   void pivot(Eigen::Index row, Eigen::Index entering);
+  // Leaving row for the entering variable; -1: no entry above the pivot tolerance.
   Eigen::Index ratio_test(Eigen::Index entering, bool initial);
+  void check(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+             Eigen::Index z_size) const;
+  bool ray_verified(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+                    const LemkeOptions& options, Eigen::Index entering);
+  double natural_residual(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+                          const Eigen::Ref<const Vector>& z);
   bool refine(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
               Eigen::Ref<Vector> z);
 
@@ -66,6 +87,7 @@ class Lemke {
   std::vector<double> column_;    // copy of the entering column
   std::vector<double> lu_;        // k x k for the refinement
   std::vector<double> rhs_;
+  std::vector<double> w_;         // M z + q of the last run
   std::vector<Eigen::Index> basis_;     // basic variable of each row
   std::vector<Eigen::Index> position_;  // row of each variable, -1 when non-basic
   std::vector<Eigen::Index> candidates_;

@@ -1,9 +1,7 @@
 #include "lcp/newton_fb.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
-#include <vector>
 
 namespace nsb::lcp {
 
@@ -11,40 +9,224 @@ namespace {
 // A Jacobian whose reciprocal condition estimate is below this is treated as singular: the
 // Newton direction would carry no correct digits.
 constexpr double kSingularRcond = 1e-14;
-// The active-set trial: A = {i : z_i > w_i}. If A equals the previous estimate, solve
-// M_AA z_A = -q_A and, if that z meets the tolerance, replace z and res and return true.
-bool polish_step(const Problem& p, Vector& z, std::vector<char>& active,
-                 std::vector<char>& previous, double& res, double tolerance) {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Every vector and matrix one solve needs, sized once per solve. With Max = kSmall the
+// storage is inside the object (no heap), with Max = Eigen::Dynamic on the heap.
+template <int Max>
+struct Workspace {
+  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, Max, Max>;
+  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, Max, 1>;
+  using Index = Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1, 0, Max, 1>;
+  Vec z, w, z_full, w_full, phi, grad, d, trial, w_trial, phi_trial, da, db, x, b;
+  Index active, tried;
+  Mat H, A;
+  Eigen::PartialPivLU<Mat> lu, lu_active;
+  Eigen::CompleteOrthogonalDecomposition<Mat> cod_active;
+  Eigen::Index tried_size = -1;
+
+  void resize(Eigen::Index n) {
+    for (Vec* v : {&z, &w, &z_full, &w_full, &phi, &grad, &d, &trial, &w_trial, &phi_trial, &da, &db, &x, &b})
+      v->resize(n);
+    active.resize(n);
+    tried.resize(n);
+    H.resize(n, n);
+    tried_size = -1;
+  }
+};
+
+// out = M z + q, column by column.
+template <class V>
+void product(const Problem& p, const V& z, V& out) {
   const Eigen::Index n = p.size();
-  const Vector w = p.M * z + p.q;
-  std::vector<Eigen::Index> index;
+  out = p.q;
+  for (Eigen::Index j = 0; j < n; ++j)
+    if (z(j) != 0.0) out += z(j) * p.M.col(j);
+}
+
+// Phi from (z, w) and Psi = 1/2 ||Phi||^2.
+template <class V>
+double merit(const V& z, const V& w, V& phi) {
+  double psi = 0.0;
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    phi(i) = std::hypot(z(i), w(i)) - z(i) - w(i);
+    psi += phi(i) * phi(i);
+  }
+  return 0.5 * psi;
+}
+
+// lcp::residual from (z, w).
+template <class V>
+double natural(const V& z, const V& w, double scale) {
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    const double v = std::abs(std::min(z(i), w(i)));
+    if (!(v <= worst)) worst = std::isnan(v) ? kInf : v;
+  }
+  return worst / scale;
+}
+
+// D_a, D_b of the header at (z, w), the degenerate (0, 0) pairs by the limit along c.
+template <int Max, class V>
+void jacobian_diagonals(const Problem& p, const V& z, Workspace<Max>& ws) {
+  const Eigen::Index n = p.size();
+  bool degenerate = false;
   for (Eigen::Index i = 0; i < n; ++i) {
-    active[static_cast<std::size_t>(i)] = z(i) > w(i) ? 1 : 0;
-    if (active[static_cast<std::size_t>(i)]) index.push_back(i);
-  }
-  const bool same = active == previous;
-  previous = active;
-  if (!same) return false;
-  const auto k = static_cast<Eigen::Index>(index.size());
-  Vector trial = Vector::Zero(n);
-  if (k > 0) {
-    Matrix A(k, k);
-    Vector b(k);
-    for (Eigen::Index c = 0; c < k; ++c) {
-      b(c) = -p.q(index[static_cast<std::size_t>(c)]);
-      for (Eigen::Index r = 0; r < k; ++r)
-        A(r, c) = p.M(index[static_cast<std::size_t>(r)], index[static_cast<std::size_t>(c)]);
+    const double r = std::hypot(z(i), ws.w(i));
+    if (r > 0.0) {
+      ws.da(i) = z(i) / r - 1.0;
+      ws.db(i) = ws.w(i) / r - 1.0;
+    } else {
+      degenerate = true;
     }
-    const Eigen::PartialPivLU<Matrix> lu(A);
-    const Vector x = lu.solve(b);
-    if (!x.allFinite()) return false;
-    for (Eigen::Index c = 0; c < k; ++c) trial(index[static_cast<std::size_t>(c)]) = std::max(0.0, x(c));
   }
-  const double r = residual(p.M, p.q, trial);
-  if (!(r <= tolerance)) return false;
-  z = trial;
-  res = r;
+  if (!degenerate) return;
+  // c = indicator of the degenerate set; (M c)_i and s_i = sqrt(1 + (M c)_i^2) with c_i = 1.
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (std::hypot(z(i), ws.w(i)) > 0.0) continue;
+    double mc = 0.0;
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (std::hypot(z(j), ws.w(j)) == 0.0) mc += p.M(i, j);
+    const double s = std::hypot(1.0, mc);
+    ws.da(i) = 1.0 / s - 1.0;
+    ws.db(i) = mc / s - 1.0;
+  }
+}
+
+// The active-set trial: A = {i : z_i > w_i} for the given (z, w). If A differs from the last
+// set tried, solve M_AA x = -q_A and form z_A = max(0, x), z_rest = 0 in ws.trial, with its w
+// in ws.w_trial. Returns true if a trial point was formed.
+template <int Max, class V>
+bool active_set_trial(const Problem& p, const V& z, const V& w, Workspace<Max>& ws) {
+  const Eigen::Index n = p.size();
+  Eigen::Index k = 0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (z(i) > w(i)) ws.active(k++) = i;
+  if (k == ws.tried_size && ws.active.head(k) == ws.tried.head(k)) return false;
+  ws.tried.head(k) = ws.active.head(k);
+  ws.tried_size = k;
+  ws.trial.setZero();
+  if (k > 0) {
+    ws.A.resize(k, k);
+    for (Eigen::Index c = 0; c < k; ++c) {
+      ws.b(c) = -p.q(ws.active(c));
+      for (Eigen::Index r = 0; r < k; ++r) ws.A(r, c) = p.M(ws.active(r), ws.active(c));
+    }
+    ws.lu_active.compute(ws.A);
+    if (ws.lu_active.rcond() > kSingularRcond) {
+      ws.x.head(k) = ws.lu_active.solve(ws.b.head(k));
+    } else {
+      // A singular block (eq. 6 with more contacts than the body has degrees of freedom):
+      // the least-norm solution, consistent if the support is right.
+      ws.cod_active.compute(ws.A);
+      ws.x.head(k) = ws.cod_active.solve(ws.b.head(k));
+    }
+    for (Eigen::Index c = 0; c < k; ++c) {
+      if (!std::isfinite(ws.x(c))) return false;
+      ws.trial(ws.active(c)) = std::max(0.0, ws.x(c));
+    }
+  }
+  product(p, ws.trial, ws.w_trial);
   return true;
+}
+
+template <int Max>
+Status iterate(const Problem& p, const NewtonFbOptions& options, Result& r, Workspace<Max>& ws);
+
+// Runs the iteration and copies the iterate and its w into r.
+template <int Max>
+Status solve_with(const Problem& p, const NewtonFbOptions& options, Result& r,
+                  Workspace<Max>& ws) {
+  const Status s = iterate(p, options, r, ws);
+  r.z = ws.z;
+  r.w = ws.w;
+  return s;
+}
+
+template <int Max>
+Status iterate(const Problem& p, const NewtonFbOptions& options, Result& r, Workspace<Max>& ws) {
+  const Eigen::Index n = p.size();
+  ws.resize(n);
+  const double scale = 1.0 + p.q.lpNorm<Eigen::Infinity>();
+  // The iterate lives in the workspace (possibly inside the object) and goes back to r.z,
+  // with its w, at the end.
+  auto& x = ws.z;
+  x = r.z;
+  product(p, x, ws.w);
+  double psi = merit(x, ws.w, ws.phi);
+  double res = natural(x, ws.w, scale);
+  if (options.record_history) r.history.push_back(res);
+  if (res <= options.tolerance) return Status::kSolved;
+  for (int k = 1; k <= options.max_iterations; ++k) {
+    r.iterations = k;
+    jacobian_diagonals(p, x, ws);
+    ws.H.noalias() = ws.db.asDiagonal() * p.M;
+    ws.H.diagonal() += ws.da;
+    ws.grad.noalias() = ws.H.transpose() * ws.phi;
+    bool newton = false;
+    ws.lu.compute(ws.H);
+    const bool regular = ws.lu.rcond() > kSingularRcond;
+    if (regular) {
+      ws.d = ws.lu.solve(-ws.phi);
+      newton = ws.d.allFinite() &&
+               ws.grad.dot(ws.d) <= -options.descent_angle * ws.grad.norm() * ws.d.norm();
+    }
+    if (!newton) ws.d = -ws.grad;
+    if (!(ws.d.norm() > 0.0)) return Status::kSingularJacobian;
+    // Armijo backtracking on Psi; the gradient step is tried when the Newton step fails.
+    bool accepted = false;
+    double psi_trial = kInf;
+    for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
+      const double slope = ws.grad.dot(ws.d);
+      double t = 1.0;
+      for (int b = 0; b < options.max_backtracks; ++b) {
+        ws.trial = x + t * ws.d;
+        product(p, ws.trial, ws.w_trial);
+        psi_trial = merit(ws.trial, ws.w_trial, ws.phi_trial);
+        if (b == 0 && attempt == 0) {
+          ws.z_full = ws.trial;
+          ws.w_full = ws.w_trial;
+        }
+        if (psi_trial <= psi + options.armijo * t * slope) {
+          accepted = true;
+          break;
+        }
+        t *= options.backtrack;
+      }
+      if (!accepted && newton) {
+        ws.d = -ws.grad;
+        newton = false;
+      } else {
+        break;
+      }
+    }
+    if (!accepted) return regular ? Status::kLineSearchFailed : Status::kSingularJacobian;
+    x = ws.trial;
+    ws.w = ws.w_trial;
+    ws.phi = ws.phi_trial;
+    psi = psi_trial;
+    res = natural(x, ws.w, scale);
+    // Active-set points: from the support estimate of the iterate, then from that of the
+    // full (undamped) step, which identifies the support before the damped iterates do.
+    // Either is accepted if it lowers the merit function: the method stays monotone in Psi,
+    // and with the right support the point is the solution.
+    for (int source = 0; source < 2 && options.polish && res > options.tolerance; ++source) {
+      const bool formed = source == 0 ? active_set_trial(p, x, ws.w, ws)
+                                      : active_set_trial(p, ws.z_full, ws.w_full, ws);
+      if (!formed) continue;
+      const double psi_a = merit(ws.trial, ws.w_trial, ws.phi_trial);
+      if (psi_a < psi) {
+        x = ws.trial;
+        ws.w = ws.w_trial;
+        ws.phi = ws.phi_trial;
+        psi = psi_a;
+        res = natural(x, ws.w, scale);
+      }
+    }
+    if (options.record_history) r.history.push_back(res);
+    if (res <= options.tolerance) return Status::kSolved;
+  }
+  return Status::kMaxIterations;
 }
 
 }  // namespace
@@ -66,121 +248,56 @@ void NewtonFbOptions::validate() const {
 
 void fischer_burmeister(const Problem& p, const Vector& z, Vector& phi, Matrix& H) {
   const Eigen::Index n = p.size();
-  const Vector w = p.M * z + p.q;
+  Workspace<Eigen::Dynamic> ws;
+  ws.resize(n);
+  ws.z = z;
+  product(p, ws.z, ws.w);
   phi.resize(n);
-  H.resize(n, n);
-  Vector c = Vector::Zero(n);
-  bool degenerate = false;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double r = std::hypot(z(i), w(i));
-    phi(i) = r - z(i) - w(i);
-    if (r == 0.0) {
-      c(i) = 1.0;
-      degenerate = true;
-    }
-  }
-  const Vector Mc = degenerate ? Vector(p.M * c) : Vector::Zero(n);
-  Vector da(n);
-  Vector db(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double r = std::hypot(z(i), w(i));
-    if (r > 0.0) {
-      da(i) = z(i) / r - 1.0;
-      db(i) = w(i) / r - 1.0;
-    } else {
-      // (0, 0): the limit along z + t c, with c_i = 1: s = sqrt(1 + (M c)_i^2).
-      const double s = std::hypot(c(i), Mc(i));
-      da(i) = c(i) / s - 1.0;
-      db(i) = Mc(i) / s - 1.0;
-    }
-  }
-  H.noalias() = db.asDiagonal() * p.M;
-  H.diagonal() += da;
+  for (Eigen::Index i = 0; i < n; ++i) phi(i) = std::hypot(z(i), ws.w(i)) - z(i) - ws.w(i);
+  jacobian_diagonals(p, z, ws);
+  H.noalias() = ws.db.asDiagonal() * p.M;
+  H.diagonal() += ws.da;
 }
 
-Result newton_fb(const Problem& p, const NewtonFbOptions& options, const Vector& warm_start) {
+struct NewtonFb::Large : Workspace<Eigen::Dynamic> {};
+
+NewtonFb::NewtonFb() = default;
+NewtonFb::~NewtonFb() = default;
+NewtonFb::NewtonFb(NewtonFb&&) noexcept = default;
+NewtonFb& NewtonFb::operator=(NewtonFb&&) noexcept = default;
+
+void NewtonFb::solve(const Problem& p, const NewtonFbOptions& options, Result& r,
+                     const Vector& warm_start) {
   p.validate();
   options.validate();
   const Eigen::Index n = p.size();
-  Result r;
-  const SolveClock clock(p);
-  const auto finish = [&](Status s, std::string message) {
-    return clock.finish(r, s, std::move(message));
-  };
-  r.z = warm_start.size() == n ? warm_start : Vector::Zero(n);
-  Vector phi(n);
-  Matrix H(n, n);
-  Vector d(n);
-  Vector trial(n);
-  Vector phi_trial(n);
-  Eigen::PartialPivLU<Matrix> lu(n);
-  Vector w_trial(n);
-  const auto merit = [&](const Vector& z, Vector& out) {
-    Vector& w = w_trial;
-    w.noalias() = p.M * z;
-    w += p.q;
-    for (Eigen::Index i = 0; i < n; ++i) out(i) = std::hypot(z(i), w(i)) - z(i) - w(i);
-    return 0.5 * out.squaredNorm();
-  };
-
-  double res = residual(p.M, p.q, r.z);
-  if (options.record_history) r.history.push_back(res);
-  if (res <= options.tolerance) return finish(Status::kSolved, "the start point solves it");
-  std::vector<char> active(static_cast<std::size_t>(n), 0);
-  std::vector<char> previous(static_cast<std::size_t>(n), 2);  // 2: no estimate yet
-  for (int k = 1; k <= options.max_iterations; ++k) {
-    fischer_burmeister(p, r.z, phi, H);
-    const double psi = 0.5 * phi.squaredNorm();
-    const Vector grad = H.transpose() * phi;
-    bool newton = false;
-    lu.compute(H);
-    if (lu.rcond() > kSingularRcond) {
-      d = lu.solve(-phi);
-      newton = d.allFinite() &&
-               grad.dot(d) <= -options.descent_angle * grad.norm() * d.norm();
-    }
-    if (!newton) d = -grad;
-    if (!(d.norm() > 0.0)) {
-      r.iterations = k;
-      return finish(Status::kSingularJacobian,
-                    "stationary point of the merit function with Phi != 0: H^T Phi = 0");
-    }
-    // Armijo backtracking on Psi; the gradient step is tried when the Newton step fails.
-    bool accepted = false;
-    for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
-      const double slope = grad.dot(d);
-      double t = 1.0;
-      for (int b = 0; b < options.max_backtracks; ++b) {
-        trial = r.z + t * d;
-        if (merit(trial, phi_trial) <= psi + options.armijo * t * slope) {
-          accepted = true;
-          break;
-        }
-        t *= options.backtrack;
-      }
-      if (!accepted && newton) {
-        d = -grad;
-        newton = false;
-      } else {
-        break;
-      }
-    }
-    r.iterations = k;
-    if (!accepted) {
-      return finish(lu.rcond() > kSingularRcond ? Status::kLineSearchFailed
-                                                : Status::kSingularJacobian,
-                    "no step length gives sufficient decrease of 1/2 ||Phi||^2");
-    }
-    r.z = trial;
-    res = residual(p.M, p.q, r.z);
-    bool polished = false;
-    if (options.polish && res > options.tolerance)
-      polished = polish_step(p, r.z, active, previous, res, options.tolerance);
-    if (options.record_history) r.history.push_back(res);
-    if (polished) return finish(Status::kSolved, "converged (active-set solution)");
-    if (res <= options.tolerance) return finish(Status::kSolved, "converged");
+  // A reused Result keeps nothing of an earlier solve (clear() frees no memory).
+  r.message.clear();
+  r.wall_time = 0.0;
+  r.history.clear();
+  r.iterations = 0;
+  if (warm_start.size() == n) {
+    r.z = warm_start;
+  } else {
+    r.z.resize(n);
+    r.z.setZero();
   }
-  return finish(Status::kMaxIterations, "Newton step limit reached");
+  if (n <= kSmall) {
+    Workspace<kSmall> ws;
+    r.status = solve_with(p, options, r, ws);
+  } else {
+    if (!large_) large_ = std::make_unique<Large>();
+    r.status = solve_with(p, options, r, *large_);
+  }
+  evaluate_measures(p, r);
+}
+
+Result newton_fb(const Problem& p, const NewtonFbOptions& options, const Vector& warm_start) {
+  const SolveClock clock;
+  NewtonFb solver;
+  Result r;
+  solver.solve(p, options, r, warm_start);
+  return clock.finish(r);
 }
 
 }  // namespace nsb::lcp

@@ -18,14 +18,19 @@
 // backtracking search on Psi then fixes the step length. On nondegenerate problems with a
 // P-matrix, the unit step is accepted near the solution and convergence is quadratic.
 //
-// Active-set polishing (option `polish`): when the estimate A = {i : z_i > w_i} of the support
-// is the same after two consecutive steps, the method tries z_A = -M_AA^-1 q_A, z_rest = 0
-// (the exact solution if A is the true support) and stops there if it meets the tolerance
-// (identification of the active set, Facchinei, Fischer & Kanzow 1998). This shortens the slow
-// middle phase of ill-conditioned problems; an unsuccessful trial changes nothing.
+// Active-set steps (option `polish`): after each damped step, the support estimates
+// A = {i : z_i > w_i} of the new iterate and of the full (undamped) Newton point give trial
+// points z_A = max(0, -M_AA^-1 q_A), z_rest = 0 (the exact solution if A is the true support;
+// identification of the active set, Facchinei, Fischer & Kanzow 1998; a singular M_AA is
+// solved in the least-norm sense). A trial is taken as the next iterate if it lowers Psi, so
+// the iteration stays monotone in Psi and keeps the global behaviour of the damped Newton
+// method, while the slow middle phase of ill-conditioned problems, where Armijo steps crawl
+// although the support is already known, is cut short. A set already tried is not re-solved.
 #pragma once
 
 #include "lcp/lcp.hpp"
+
+#include <memory>
 
 namespace nsb::lcp {
 
@@ -41,7 +46,27 @@ struct NewtonFbOptions {
   void validate() const;        // throws std::invalid_argument naming the field
 };
 
-// Solves p starting from warm_start (if its size is n; otherwise from z = 0).
+// A reusable Newton–FB solver: problems with n <= kSmall use a workspace inside the call
+// (no heap), larger ones a workspace kept between calls. solve() fills r without clock or
+// message; r's vectors are resized only when n changes.
+class NewtonFb {
+ public:
+  static constexpr int kSmall = 12;  // the largest eq. (6) problem of the bridge (4 contacts)
+  NewtonFb();
+  ~NewtonFb();
+  NewtonFb(NewtonFb&&) noexcept;
+  NewtonFb& operator=(NewtonFb&&) noexcept;
+  // Starts from warm_start if its size is n, otherwise from z = 0.
+  void solve(const Problem& p, const NewtonFbOptions& options, Result& r,
+             const Vector& warm_start = {});
+
+ private:
+  struct Large;
+  std::unique_ptr<Large> large_;
+};
+
+// Solves p starting from warm_start (if its size is n; otherwise from z = 0), with the wall
+// time and Result::message.
 Result newton_fb(const Problem& p, const NewtonFbOptions& options = {},
                  const Vector& warm_start = {});
 

@@ -7,6 +7,10 @@
 // which is the exact minimiser of the i-th coordinate problem when omega = 1. It converges
 // for symmetric positive definite M with 0 < omega < 2, and in general needs M_ii > 0: a
 // zero or negative diagonal entry is reported as kZeroDiagonal before any sweep.
+//
+// w = M z + q is kept up to date through the sweep (a coordinate step that changes z_i by
+// delta adds delta M_.i to w), so a sweep costs one pass over M and the residual after it
+// O(n); w is recomputed from z before a solution is reported.
 #pragma once
 
 #include "lcp/lcp.hpp"
@@ -21,7 +25,12 @@ struct PgsOptions {
   void validate() const;        // throws std::invalid_argument naming the field
 };
 
-// Solves p starting from warm_start (if its size is n; otherwise from z = 0).
+// Solves p from z = 0 into r (no clock, no message): r's vectors are resized only when n
+// changes, so a reused Result makes the solve allocation-free (unless record_history).
+void pgs(const Problem& p, const PgsOptions& options, Result& r);
+
+// Solves p starting from warm_start (if its size is n; otherwise from z = 0), with the wall
+// time and Result::message.
 Result pgs(const Problem& p, const PgsOptions& options = {}, const Vector& warm_start = {});
 
 }  // namespace nsb::lcp

@@ -203,7 +203,8 @@ TEST_CASE("expected failure: restitution with a wedged frictional body has no so
   // (an impulse d >= 0 in the friction cones with W d = 0), and the rebound that Newton's law
   // asks for (the eps gdot_N- part of q) makes q^T d < 0. By Farkas' lemma the LCP is then
   // infeasible along d. Enumeration confirms there is no complementary solution; Lemke must
-  // report a ray termination, never success.
+  // report a failure, never success: a verified secondary ray, or kRoundOff when pivots on
+  // near-zero entries spoilt the tableau so that the ray does not verify.
   std::mt19937 rng(2017);
   int infeasible = 0;
   for (int trial = 0; trial < 60; ++trial) {
@@ -213,7 +214,7 @@ TEST_CASE("expected failure: restitution with a wedged frictional body has no so
     const Result l = lemke(p);
     if (e.status == Status::kNoSolution) {
       ++infeasible;
-      CHECK(l.status == Status::kRayTermination);
+      CHECK((l.status == Status::kRayTermination || l.status == Status::kRoundOff));
       const FrictionalResult f = solve_frictional(b.problem, Solver::kPgs);
       CHECK_FALSE(f.ok());  // the fallback cannot succeed either
       CHECK(f.used_fallback);
@@ -338,14 +339,15 @@ TEST_CASE("validation names the field; read_eq6 checks the size") {
   CHECK(r.lambda_n.size() == 0);
 }
 
-TEST_CASE("FrictionalSolver: no heap allocation per call once sized (Lemke and PGS)") {
+TEST_CASE("FrictionalSolver: no heap allocation per call once sized (Lemke, PGS, Newton-FB)") {
   std::mt19937 rng(71);
   std::vector<FrictionalProblem> problems;
   for (int k = 0; k < 50; ++k) problems.push_back(testing::rigid_body_impact(rng, 3, 0.0, 0.5).problem);
   FrictionalSolver solver(4);
   FrictionalResult result;
   solver.solve(problems[0], Solver::kLemke, {}, true, result);  // sizes the result vectors
-  for (Solver s : {Solver::kLemke, Solver::kPgs}) {
+  solver.solve(problems[0], Solver::kNewtonFb, {}, true, result);  // sizes its eq. (6) LCP
+  for (Solver s : {Solver::kLemke, Solver::kPgs, Solver::kNewtonFb}) {
     const long before = g_allocations.load();
     int solved = 0;
     for (const auto& fp : problems) {
@@ -356,5 +358,45 @@ TEST_CASE("FrictionalSolver: no heap allocation per call once sized (Lemke and P
     INFO("solver " << to_string(s));
     CHECK(allocations == 0);
     CHECK(solved == 50);
+  }
+}
+
+TEST_CASE("in-place LCP solvers: the by-value answer, no clock, no message, no allocation") {
+  // The in-place forms (Lemke::solve(p, o, r), pgs(p, o, r), NewtonFb::solve) must give the
+  // same z as the by-value forms, which add only the wall time and the message; once the
+  // Result has size n they allocate nothing (n <= NewtonFb::kSmall for Newton-FB).
+  std::mt19937 rng(72);
+  std::vector<Problem> problems;
+  for (int k = 0; k < 20; ++k)
+    problems.push_back(testing::manufacture(rng, testing::spd(rng, 8, 100.0)).problem);
+  Lemke lemke_solver(8);
+  NewtonFb nfb_solver;
+  Result r;
+  lemke_solver.solve(problems[0], LemkeOptions{}, r);  // sizes r
+  const long before = g_allocations.load();
+  for (const Problem& p : problems) {
+    lemke_solver.solve(p, LemkeOptions{}, r);
+    CHECK(r.ok());
+    pgs(p, PgsOptions{}, r);
+    CHECK(r.ok());
+    nfb_solver.solve(p, NewtonFbOptions{}, r);
+    CHECK(r.ok());
+  }
+  CHECK(g_allocations.load() - before == 0);
+  for (const Problem& p : problems) {
+    const Result a = lemke(p);
+    lemke_solver.solve(p, LemkeOptions{}, r);
+    CHECK(r.z == a.z);
+    CHECK(r.residual == a.residual);
+    CHECK(r.wall_time == 0.0);
+    CHECK(r.message.empty());
+    CHECK(a.message == describe(a.status));
+    const Result b = pgs(p);
+    pgs(p, PgsOptions{}, r);
+    CHECK(r.z == b.z);
+    const Result c = newton_fb(p);
+    nfb_solver.solve(p, NewtonFbOptions{}, r);
+    CHECK(r.z == c.z);
+    CHECK(r.iterations == c.iterations);
   }
 }

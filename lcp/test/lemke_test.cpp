@@ -1,6 +1,7 @@
 // Lemke's method: hand-solved problems, degeneracy, ray termination, Murty's exponential
 // example, the pivot limit, workspace reuse and the edges.
 #include "lcp/enumeration.hpp"
+#include "lcp/frictional.hpp"
 #include "lcp/lemke.hpp"
 #include "lcp/test/problems.hpp"
 
@@ -35,6 +36,35 @@ Problem murty(int n) {
     for (int j = i + 1; j < n; ++j) p.M(i, j) = 2.0;
   p.q.resize(n);
   for (int i = 1; i <= n; ++i) p.q(i - 1) = -(std::ldexp(1.0, n + 1) - std::ldexp(1.0, i));
+  return p;
+}
+
+// Two eq. (6) problems of a deck wedged between two abutments (2 contacts with opposite
+// normals at both ends, lever arms 1e-2 apart, mu = 0.5, eps = 0): G = W^T M^-1 W has rank 3 of
+// 4, and the impulses of the two ends nearly balance, so the pivoting path runs through
+// near-ties. Data printed exactly (hexadecimal) from the generator that found them.
+Problem wedged_deck(bool second) {
+  Problem p;
+  p.M.resize(6, 6);
+  if (!second) {
+    p.M << 0x1.9244e085ff996p-1, -0x1.926c93c32d582p-1, 0x1.3d9899d31604cp-12, 0x1.3d9899d31604cp-12, 0, 0,
+        -0x1.92426485c22d3p-1, 0x1.926f101c91f6p-1, -0x1.655b3cdf994b3p-12, -0x1.655b3cdf994b3p-12, 0, 0,
+        -0x1.9185dd20ac383p+0, -0x1.91075ffba9811p-1, 0x1.9199b6aa49699p+1, 0x1.90dab4940d8dep+0, 1, 0,
+        -0x1.90b30180d32b2p-1, -0x1.91b00c5e17632p+0, 0x1.90dab4940d8dep+0, 0x1.9199b6aa49699p+1, 0, 1,
+        1, 0, -1, 0, 0, 0,
+        0, 1, 0, -1, 0, 0;
+    p.q.resize(6);
+    p.q << -0x1.d67a0189c48dap-2, 0x1.d67a76da88dd9p-2, -0x1.bd7a9e2fe9608p-2, 0x1.bee083d726f19p-3, 0, 0;
+  } else {
+    p.M << 0x1.261267ad88e27p-1, -0x1.26219ceb38584p-1, 0x1.e6c255049a0eep-14, 0x1.e6c255049a0eep-14, 0, 0,
+        -0x1.262a7e6d12edp-1, 0x1.260987245cc8bp-1, 0x1.07c8b2ea7285fp-12, 0x1.07c8b2ea7285fp-12, 0, 0,
+        -0x1.25c06962bf7dcp+0, -0x1.25550d4e28701p-1, 0x1.25c8046c13903p+1, 0x1.2576066485be6p+0, 1, 0,
+        -0x1.2566d051dd999p-1, -0x1.25b787e0e4e9p+0, 0x1.2576066485be6p+0, 0x1.25c8046c13903p+1, 0, 1,
+        1, 0, -1, 0, 0, 0,
+        0, 1, 0, -1, 0, 0;
+    p.q.resize(6);
+    p.q << 0x1.2d059f7f6836ap-3, -0x1.2d3ba6bb3d458p-3, -0x1.963d1dcd29a24p-3, -0x1.886137b79f447p-1, 0, 0;
+  }
   return p;
 }
 }  // namespace
@@ -89,6 +119,58 @@ TEST_CASE("no solution: M = -I, q = -e ends in ray termination") {
   CHECK(r.status == Status::kRayTermination);
   CHECK_FALSE(r.ok());
   CHECK(enumerate(p).status == Status::kNoSolution);
+}
+
+TEST_CASE("round-off: a stop with z0 at zero to round-off is a solution, not a ray") {
+  // This input used to be reported as kRayTermination, with a z that solves the LCP: z0 had
+  // reached zero to round-off when the entering column showed no blocking row. The LCP
+  // conditions are checked here from M and q directly.
+  const Problem p = wedged_deck(false);
+  const Result r = lemke(p);
+  CHECK(r.status == Status::kSolved);
+  const Vector w = p.M * r.z + p.q;
+  const double scale = 1.0 + p.q.lpNorm<Eigen::Infinity>();
+  CHECK(r.z.minCoeff() >= 0.0);
+  CHECK(w.minCoeff() >= -1e-12 * scale);
+  CHECK(r.z.cwiseProduct(w).cwiseAbs().maxCoeff() <= 1e-12 * scale * scale);
+}
+
+TEST_CASE("round-off: a lost path has its own status, and the problem has a solution") {
+  // z0 leaves the basis (in exact arithmetic z solves the LCP), but the tableau's round-off
+  // leaves r = 1.8e-12 > 1e-12 even after the refinement. This input used to be reported as
+  // kMaxIterations after 8 of 5000 pivots. Enumeration, an independent method, solves it.
+  const Problem p = wedged_deck(true);
+  const Result r = lemke(p);
+  CHECK(r.status == Status::kRoundOff);
+  CHECK(r.iterations < LemkeOptions::default_max_pivots(p.size()));
+  CHECK(r.residual > 1e-12);
+  CHECK(r.residual < 1e-10);  // measured 1.8e-12: round-off, not a wrong basis
+  const Result e = enumerate(p);
+  REQUIRE(e.ok());
+  CHECK(residual(p.M, p.q, e.z) <= 1e-12);
+  CHECK_FALSE(describe(Status::kRoundOff).empty());
+}
+
+TEST_CASE("round-off: a ray from a spoilt tableau is not reported as a secondary ray") {
+  // Genuine rays verify on the original data (M = -I, CPS_3-like data): each is still
+  // kRayTermination. A ray whose basic point or direction violates w - M z - d z0 = q by more
+  // than 1e-9 relative is kRoundOff: random wedged bodies with restitution (infeasible, see
+  // frictional_test) produce both kinds; both are failures, never kSolved.
+  const Problem ray = make(-Matrix::Identity(4, 4), -Vector::Ones(4));
+  CHECK(lemke(ray).status == Status::kRayTermination);
+  std::mt19937 rng(2017);
+  int verified = 0;
+  int spoilt = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const auto b = testing::rigid_body_impact(rng, 4, 0.5, 0.5);
+    const Problem p = build_eq6(b.problem);
+    const Result r = lemke(p);
+    if (r.status == Status::kRayTermination) ++verified;
+    if (r.status == Status::kRoundOff) ++spoilt;
+    if (r.ok()) CHECK(r.residual <= 1e-12);
+  }
+  CHECK(verified > 0);
+  CHECK(spoilt > 0);
 }
 
 TEST_CASE("Murty's example needs 2^n pivots") {
