@@ -640,11 +640,17 @@ bool EventDriven::impact_problem(double t, Vector& u, bool forced, int trigger_c
 // closing_velocity; each is a stick candidate when frictional and slower than stick_velocity,
 // else sliding in the direction of its slip velocity.
 void EventDriven::closure_candidates(const Vector& u) {
+  // A slip event is located where s gdot_T + velocity_shift_ turns negative, so the slip
+  // velocity there is velocity_shift_ (plus the Brent bracket's overshoot, far smaller):
+  // a stick threshold below it (stick_velocity = 10 tolerance is 1e-10 m/s at tolerance
+  // 1e-11, the shift 3e-10 m/s at 2 m/s) would take the contact for sliding the other way
+  // and fire the reversal again at once. Twice the shift covers the overshoot.
+  const double stick = std::max(stick_velocity_, 2.0 * velocity_shift_);
   for (auto& md : modes_) md = ContactMode{};
   for (int i : touching_) {
     const auto& c = cbuf_[idx(i)];
     if (c.gap_rate(u) > closing_velocity_) continue;
-    if (c.friction > 0.0 && std::abs(c.slip_rate(u)) <= stick_velocity_) {
+    if (c.friction > 0.0 && std::abs(c.slip_rate(u)) <= stick) {
       modes_[idx(i)] = ContactMode{Mode::kStick, 0.0};
     } else {
       const double sgn = c.friction > 0.0 ? (c.slip_rate(u) > 0.0 ? 1.0 : -1.0) : 0.0;
