@@ -54,13 +54,13 @@ using State = std::vector<double>;
 using Dopri = odeint::runge_kutta_dopri5<State>;
 using Dense = odeint::result_of::make_dense_output<Dopri>::type;
 
-// Mode of one contact during a smooth phase.
-enum class Mode { kOpen, kStick, kSlip };
-
-struct ContactMode {
-  Mode mode = Mode::kOpen;
-  double slip_sign = 0.0;  // sgn(gdot_T) while sliding; 0 for a frictionless closed contact
-};
+// The mode of one contact during a smooth phase is an integrators::ContactState
+// (contact_stage.hpp), shared with Moreau–Jean. A closed contact slides with the sign of its
+// slip velocity (kSlipPositive / kSlipNegative), or is kClosed when frictionless.
+ContactState slip_state(double sign) {
+  return sign > 0.0 ? ContactState::kSlipPositive
+                    : sign < 0.0 ? ContactState::kSlipNegative : ContactState::kClosed;
+}
 
 // Integrated energy terms appended to (q, u) in the Odeint state, so that the energy balance
 // is integrated to the same tolerance as the motion.
@@ -103,7 +103,7 @@ class EventDriven {
     gap_shift_ = 1e-2 * gap_tolerance_;
     minv_ = checked_inverse_mass(sys_, "event_driven");
     cbuf_ = sys_.make_contact_buffer();
-    modes_.assign(static_cast<std::size_t>(m_), ContactMode{});
+    modes_.assign(static_cast<std::size_t>(m_), ContactState::kOpen);
     f_ = Vector::Zero(n_);
     q_ = Vector::Zero(n_);
     u_ = Vector::Zero(n_);
@@ -154,8 +154,8 @@ class EventDriven {
     lambda_t_.setZero();
     int k = 0;
     for (const auto& md : modes_) {
-      if (md.mode != Mode::kOpen) ++k;
-      if (md.mode == Mode::kStick) ++k;
+      if (closed(md)) ++k;
+      if (md == ContactState::kStick) ++k;
     }
     if (k == 0) {
       udot_.noalias() = minv_ * f_;
@@ -168,15 +168,15 @@ class EventDriven {
     for (int i = 0; i < m_; ++i) {
       const auto& md = modes_[idx(i)];
       const auto& c = cbuf_[idx(i)];
-      if (md.mode == Mode::kOpen) continue;
+      if (!closed(md)) continue;
       R.col(j) = c.w_normal;
       B.col(j) = c.w_normal;
-      if (md.mode == Mode::kSlip && md.slip_sign != 0.0) {
-        B.col(j) -= c.friction * md.slip_sign * c.w_tangent;
+      if (sliding(md)) {
+        B.col(j) -= c.friction * slip_sign(md) * c.w_tangent;
       }
       wbar[j] = c.wbar_normal;
       ++j;
-      if (md.mode == Mode::kStick) {
+      if (md == ContactState::kStick) {
         R.col(j) = c.w_tangent;
         B.col(j) = c.w_tangent;
         wbar[j] = c.wbar_tangent;
@@ -191,12 +191,12 @@ class EventDriven {
     j = 0;
     for (int i = 0; i < m_; ++i) {
       const auto& md = modes_[idx(i)];
-      if (md.mode == Mode::kOpen) continue;
+      if (!closed(md)) continue;
       lambda_n_[i] = lam[j++];
-      if (md.mode == Mode::kStick) {
+      if (md == ContactState::kStick) {
         lambda_t_[i] = lam[j++];
-      } else if (md.mode == Mode::kSlip) {
-        lambda_t_[i] = -cbuf_[idx(i)].friction * md.slip_sign * lambda_n_[i];
+      } else if (sliding(md)) {
+        lambda_t_[i] = -cbuf_[idx(i)].friction * slip_sign(md) * lambda_n_[i];
       }
     }
   }
@@ -223,10 +223,10 @@ class EventDriven {
     // which is energy put in through support motion.
     double normal = 0.0, friction = 0.0, seat = 0.0;
     bool any_closed = false;
-    for (const auto& md : modes_) any_closed = any_closed || md.mode != Mode::kOpen;
+    for (const auto& md : modes_) any_closed = any_closed || closed(md);
     if (any_closed) {
       for (int i = 0; i < m_; ++i) {
-        if (modes_[idx(i)].mode == Mode::kOpen) continue;
+        if (!closed(modes_[idx(i)])) continue;
         const auto& c = cbuf_[idx(i)];
         normal += lambda_n_[i] * c.gap_rate(u_);
         friction += lambda_t_[i] * c.slip_rate(u_);
@@ -254,20 +254,23 @@ class EventDriven {
     for (int i = 0; i < m_; ++i) {
       const auto& c = cbuf_[idx(i)];
       const auto& md = modes_[idx(i)];
-      switch (md.mode) {
-        case Mode::kOpen:
+      switch (md) {
+        case ContactState::kOpen:
           h_[2 * i] = c.gap_normal;
           h_[2 * i + 1] = 1.0;
           break;
-        case Mode::kStick:
+        case ContactState::kStick:
           h_[2 * i] = lambda_n_[i] + force_shift_;
           h_[2 * i + 1] = c.friction * lambda_n_[i] - std::abs(lambda_t_[i]) + force_shift_;
           break;
-        case Mode::kSlip:
+        case ContactState::kClosed:
           h_[2 * i] = lambda_n_[i] + force_shift_;
-          h_[2 * i + 1] = md.slip_sign != 0.0
-                              ? md.slip_sign * c.slip_rate(u_) + velocity_shift_
-                              : 1.0;
+          h_[2 * i + 1] = 1.0;
+          break;
+        case ContactState::kSlipPositive:
+        case ContactState::kSlipNegative:
+          h_[2 * i] = lambda_n_[i] + force_shift_;
+          h_[2 * i + 1] = slip_sign(md) * c.slip_rate(u_) + velocity_shift_;
           break;
       }
     }
@@ -316,7 +319,7 @@ class EventDriven {
   double locate(int k, double ta, double tb, double ha, double hb) {
     const double inf = std::numeric_limits<double>::infinity();
     const int i = k / 2;
-    const bool gap = (k % 2 == 0) && modes_[idx(i)].mode == Mode::kOpen;
+    const bool gap = (k % 2 == 0) && !closed(modes_[idx(i)]);
     auto h = [this, k](double t) { return indicator_at(t, k); };
     if (!gap) {
       if (hb >= 0.0) return inf;
@@ -371,7 +374,7 @@ class EventDriven {
   bool impact_problem(double t, Vector& u, bool forced, int trigger_contact);
   void closure_candidates(const Vector& u);
   bool contact_problem(double t, Vector& q, Vector& u);
-  void record_mode_changes(double t, const std::vector<ContactMode>& old);
+  void record_mode_changes(double t, const std::vector<ContactState>& old);
   bool handle_event(double t, State& x, int trigger_contact, bool initial);
   void finish_counts();
   void record_sample(double t, const State& x, bool force);
@@ -389,7 +392,7 @@ class EventDriven {
   ContactStage stage_;
   std::vector<int> touching_, candidates_;  // index sets of the impact and contact problems
   std::vector<double> slip_coupling_;       // -mu s of the contact problem's sliding contacts
-  std::vector<ContactMode> old_modes_;
+  std::vector<ContactState> old_modes_;
   Vector u_plus_, a_free_, q_event_, u_event_;
   bool diverged_ = false, stalled_ = false;
   int n_ = 0, m_ = 0;
@@ -398,7 +401,7 @@ class EventDriven {
   double force_shift_ = 0.0, velocity_shift_ = 0.0;
   Matrix minv_;
   std::vector<ContactData> cbuf_;
-  std::vector<ContactMode> modes_;
+  std::vector<ContactState> modes_;
   Vector f_, q_, u_, udot_, lambda_n_, lambda_t_, h_;
   State xs_;
   Dense dense_ = odeint::make_dense_output(1e-8, 1e-8, Dopri());
@@ -454,19 +457,19 @@ void EventDriven::book_stage_impulses(const std::vector<int>& index, const Vecto
 void EventDriven::project_positions(double t, Vector& q, const Vector& u) {
   // Closest point in the kinetic metric on g_N,i(q) = 0 for every closed contact:
   //   dq = -M^-1 W (W^T M^-1 W)^+ g      (Newton iterations on the gap functions).
-  std::vector<int> closed;
+  std::vector<int> closed_set;
   for (int i = 0; i < m_; ++i) {
-    if (modes_[idx(i)].mode != Mode::kOpen) closed.push_back(i);
+    if (closed(modes_[idx(i)])) closed_set.push_back(i);
   }
-  if (closed.empty()) return;
-  const int k = static_cast<int>(closed.size());
+  if (closed_set.empty()) return;
+  const int k = static_cast<int>(closed_set.size());
   Matrix W(n_, k);
   Vector g(k);
   for (int it = 0; it < kProjectionIterations; ++it) {
     sys_.contact_data(t, q, u, cbuf_);
     for (int j = 0; j < k; ++j) {
-      W.col(j) = cbuf_[idx(closed[idx(j)])].w_normal;
-      g[j] = cbuf_[idx(closed[idx(j)])].gap_normal;
+      W.col(j) = cbuf_[idx(closed_set[idx(j)])].w_normal;
+      g[j] = cbuf_[idx(closed_set[idx(j)])].gap_normal;
     }
     if (g.cwiseAbs().maxCoeff() <= 1e-15) break;
     const Matrix G = W.transpose() * minv_ * W;
@@ -481,8 +484,8 @@ void EventDriven::project_velocities(double t, const Vector& q, Vector& u) {
   sys_.contact_data(t, q, u, cbuf_);
   int k = 0;
   for (const auto& md : modes_) {
-    if (md.mode != Mode::kOpen) ++k;
-    if (md.mode == Mode::kStick) ++k;
+    if (closed(md)) ++k;
+    if (md == ContactState::kStick) ++k;
   }
   if (k == 0) return;
   Matrix R(n_, k);
@@ -492,11 +495,11 @@ void EventDriven::project_velocities(double t, const Vector& q, Vector& u) {
   for (int i = 0; i < m_; ++i) {
     const auto& c = cbuf_[idx(i)];
     const auto& md = modes_[idx(i)];
-    if (md.mode == Mode::kOpen) continue;
+    if (!closed(md)) continue;
     R.col(j) = c.w_normal;
     what[j] = c.what_normal;
     r[j++] = c.gap_rate(u);
-    if (md.mode == Mode::kStick) {
+    if (md == ContactState::kStick) {
       R.col(j) = c.w_tangent;
       what[j] = c.what_tangent;
       tangential[idx(j)] = true;
@@ -594,7 +597,7 @@ void EventDriven::find_touching(double t, const Vector& q, const Vector& u, bool
   any_impact = false;
   for (int i = 0; i < m_; ++i) {
     const auto& c = cbuf_[idx(i)];
-    const bool is_touching = modes_[idx(i)].mode != Mode::kOpen || c.gap_normal <= gap_tolerance_;
+    const bool is_touching = closed(modes_[idx(i)]) || c.gap_normal <= gap_tolerance_;
     if (!is_touching) continue;
     touching_.push_back(i);
     if (c.gap_rate(u) < -closing_velocity_) any_impact = true;
@@ -646,15 +649,15 @@ void EventDriven::closure_candidates(const Vector& u) {
   // 1e-11, the shift 3e-10 m/s at 2 m/s) would take the contact for sliding the other way
   // and fire the reversal again at once. Twice the shift covers the overshoot.
   const double stick = std::max(stick_velocity_, 2.0 * velocity_shift_);
-  for (auto& md : modes_) md = ContactMode{};
+  for (auto& md : modes_) md = ContactState::kOpen;
   for (int i : touching_) {
     const auto& c = cbuf_[idx(i)];
     if (c.gap_rate(u) > closing_velocity_) continue;
     if (c.friction > 0.0 && std::abs(c.slip_rate(u)) <= stick) {
-      modes_[idx(i)] = ContactMode{Mode::kStick, 0.0};
+      modes_[idx(i)] = ContactState::kStick;
     } else {
       const double sgn = c.friction > 0.0 ? (c.slip_rate(u) > 0.0 ? 1.0 : -1.0) : 0.0;
-      modes_[idx(i)] = ContactMode{Mode::kSlip, sgn};
+      modes_[idx(i)] = slip_state(sgn);
     }
   }
 }
@@ -666,7 +669,7 @@ void EventDriven::closure_candidates(const Vector& u) {
 bool EventDriven::contact_problem(double t, Vector& q, Vector& u) {
   candidates_.clear();
   for (int i = 0; i < m_; ++i) {
-    if (modes_[idx(i)].mode != Mode::kOpen) candidates_.push_back(i);
+    if (closed(modes_[idx(i)])) candidates_.push_back(i);
   }
   if (candidates_.empty()) return true;
   sys_.forces(t, q, u, f_);
@@ -675,15 +678,15 @@ bool EventDriven::contact_problem(double t, Vector& q, Vector& u) {
   for (std::size_t j = 0; j < candidates_.size(); ++j) {
     const auto& c = cbuf_[idx(candidates_[j])];
     const auto& md = modes_[idx(candidates_[j])];
-    tangential = tangential || md.mode == Mode::kStick;
-    slip_coupling_[j] = md.mode == Mode::kSlip ? -c.friction * md.slip_sign : 0.0;
+    tangential = tangential || md == ContactState::kStick;
+    slip_coupling_[j] = -c.friction * slip_sign(md);
   }
   a_free_.noalias() = minv_ * f_;
   lcp::FrictionalProblem& fp = stage_.build(cbuf_, candidates_, tangential, minv_, a_free_,
                                             ContactLevel::kAcceleration, slip_coupling_.data());
   for (std::size_t j = 0; j < candidates_.size(); ++j) {
     const auto& md = modes_[idx(candidates_[j])];
-    if (tangential && md.mode == Mode::kStick) {
+    if (tangential && md == ContactState::kStick) {
       fp.friction[static_cast<Eigen::Index>(j)] = cbuf_[idx(candidates_[j])].friction;
     }
   }
@@ -702,10 +705,10 @@ bool EventDriven::contact_problem(double t, Vector& q, Vector& u) {
     // pass through 0, and keeping a contact closed on gddot_N = 0 would fire the lift-off
     // again at once.
     if (!(r.lambda_n[jj] > kClosedForce * force_scale)) {
-      md = ContactMode{};
+      md = ContactState::kOpen;
       continue;
     }
-    if (md.mode != Mode::kStick) continue;
+    if (md != ContactState::kStick) continue;
     // Stick while the friction force is inside the cone; on its boundary the contact slips
     // against the friction force, lambda_T = -mu s lambda_N (eq. 5). Deciding on the force
     // rather than on the sign of gddot_T, which is round-off at a stick-slip transition,
@@ -715,22 +718,21 @@ bool EventDriven::contact_problem(double t, Vector& q, Vector& u) {
     const double at = r.gdot_t_plus[jj];
     if (saturated || std::abs(at) > acc_scale) {
       const double sgn = saturated && lt != 0.0 ? (lt > 0.0 ? -1.0 : 1.0) : (at > 0.0 ? 1.0 : -1.0);
-      md = ContactMode{Mode::kSlip, sgn};
+      md = slip_state(sgn);
     }
   }
   return true;
 }
 
 // Step 5: events for the mode changes.
-void EventDriven::record_mode_changes(double t, const std::vector<ContactMode>& old) {
+void EventDriven::record_mode_changes(double t, const std::vector<ContactState>& old) {
   for (int i = 0; i < m_; ++i) {
     const auto& a = old[idx(i)];
     const auto& b = modes_[idx(i)];
-    if (a.mode == Mode::kOpen && b.mode != Mode::kOpen) rec_.event(t, i + 1, EventKind::kClose);
-    if (a.mode != Mode::kOpen && b.mode == Mode::kOpen) rec_.event(t, i + 1, EventKind::kOpen);
-    if (b.mode == Mode::kStick && a.mode != Mode::kStick) rec_.event(t, i + 1, EventKind::kStick);
-    if (b.mode == Mode::kSlip && b.slip_sign != 0.0 &&
-        (a.mode != Mode::kSlip || a.slip_sign != b.slip_sign)) {
+    if (!closed(a) && closed(b)) rec_.event(t, i + 1, EventKind::kClose);
+    if (closed(a) && !closed(b)) rec_.event(t, i + 1, EventKind::kOpen);
+    if (b == ContactState::kStick && a != ContactState::kStick) rec_.event(t, i + 1, EventKind::kStick);
+    if (sliding(b) && a != b) {
       rec_.event(t, i + 1, EventKind::kSlip);
     }
   }
@@ -768,7 +770,7 @@ bool EventDriven::handle_event(double t, State& x, int trigger_contact, bool ini
   project_positions(t, q, u);
   project_velocities(t, q, u);
   bool any_candidate = false;
-  for (const auto& md : modes_) any_candidate = any_candidate || md.mode != Mode::kOpen;
+  for (const auto& md : modes_) any_candidate = any_candidate || closed(md);
   if (any_candidate) {
     solved_lcp = true;
     if (!contact_problem(t, q, u)) return false;
@@ -943,7 +945,7 @@ RunResult EventDriven::run() {
     bool drift = false;
     sys_.contact_data(t, q_, u_, cbuf_);
     for (int i = 0; i < m_; ++i) {
-      if (modes_[idx(i)].mode == Mode::kOpen) continue;
+      if (!closed(modes_[idx(i)])) continue;
       const auto& c = cbuf_[idx(i)];
       drift = drift || std::abs(c.gap_normal) > gap_tolerance_ ||
               std::abs(c.gap_rate(u_)) > closing_velocity_;
