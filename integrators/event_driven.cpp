@@ -395,6 +395,7 @@ class EventDriven {
   std::vector<ContactState> old_modes_;
   Vector u_plus_, a_free_, q_event_, u_event_;
   bool diverged_ = false, stalled_ = false;
+  double first_unsolved_ = std::numeric_limits<double>::quiet_NaN();  // [s]
   int n_ = 0, m_ = 0;
   double closing_velocity_ = 0.0, stick_velocity_ = 0.0, gap_tolerance_ = 0.0;
   double gap_shift_ = 0.0;  // penetration [m] that fires an impact without a closing speed
@@ -691,6 +692,16 @@ bool EventDriven::contact_problem(double t, Vector& q, Vector& u) {
     }
   }
   const ContactStatus status = stage_.solve();
+  if (status == ContactStatus::kUnsolved) {
+    // The candidates keep their modes, and the run goes on; the status says
+    // contact_unsolved from here (failure_time: the first such event).
+    if (std::isnan(first_unsolved_)) first_unsolved_ = t;
+    warn(t, candidates_.front() + 1,
+         "contact problem (eq. 6, accelerations) not solved by any solver of the chain "
+         "(residual " + format_number(stage_.result().residual) +
+             "): touching contacts kept closed in their current modes");
+    return true;
+  }
   if (stage_failed(t, candidates_.front() + 1, status, "contact problem (eq. 6, accelerations)")) {
     return false;
   }
@@ -848,7 +859,12 @@ RunResult EventDriven::run() {
     finish_counts();
     if (!std::isfinite(stats_.energy.error)) diverged_ = true;
     finish_status(stats_, diverged_, stalled_ || (!completed && !diverged_ && stats_.lcp_unsolved == 0));
-    if (!succeeded(stats_.status)) stats_.failure_time = t;
+    if (!succeeded(stats_.status)) {
+      stats_.failure_time =
+          stats_.status == RunStatus::kContactUnsolved && !std::isnan(first_unsolved_)
+              ? first_unsolved_
+              : t;
+    }
     stats_.wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     gsl_set_error_handler(old_handler);
