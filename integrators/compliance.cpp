@@ -37,6 +37,8 @@ constexpr int kMaxBisections = 60;
 const double kTimeDifferenceStep = std::sqrt(std::numeric_limits<double>::epsilon());
 // A step shorter than this fraction of max(1 s, |t|) means the step size has underflowed.
 constexpr double kMinRelativeStep = 1e-14;
+// Accepted steps between two calls of the progress callback.
+constexpr std::int64_t kProgressInterval = 4096;
 
 void require(bool ok, const char* field, const char* what) {
   if (!ok) throw std::invalid_argument(std::string("compliance options: ") + field + ": " + what);
@@ -395,7 +397,8 @@ void ComplianceOptions::validate() const {
   require(max_steps > 0, "max_steps", "must be > 0");
 }
 
-RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder) {
+RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder,
+                     const Progress& progress) {
   options.validate();
   const auto wall_start = std::chrono::steady_clock::now();
   RunResult stats;
@@ -617,13 +620,20 @@ RunResult compliance(System& system, const ComplianceOptions& options, Recorder&
     energy.close();
     recorder.sample(t, core.q_, core.u_, core.contacts_, core.lambda_n_, core.lambda_t_,
                     energy.error);
+    if (progress && stats.steps % kProgressInterval == 0) progress(t);
   }
+  if (progress) progress(t);
   stats.completed = (t >= options.end_time);
   stats.end_time = t;
   stats.energy = energy;
   recorder.sample_now(t, core.q_, core.u_, core.contacts_, core.lambda_n_, core.lambda_t_,
                       energy.error);
   if (!stats.completed && stats.message.empty()) stats.message = "stopped before end_time";
+  // A non-finite state is never accepted (the step is halved), so a run that cannot advance
+  // past one ends in a step underflow: stalled, like max_steps. A non-finite energy balance
+  // is divergence.
+  finish_status(stats, !std::isfinite(energy.error), !stats.completed);
+  if (!succeeded(stats.status)) stats.failure_time = t;
   stats.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return stats;

@@ -113,6 +113,8 @@ struct ComplianceOptions {
 // "compliance": steps, rejected_steps, factorizations (one LU per attempted step).
 // Throws std::invalid_argument for bad options; a step size that underflows or a
 // non-finite state ends the run with completed = false and a message.
-RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder);
+// progress is called every few thousand steps with the time reached; it may be empty.
+RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder,
+                     const Progress& progress = {});
 
 }  // namespace nsb::integrators

@@ -1,6 +1,6 @@
 #include "integrators/event_driven.hpp"
 
-#include "lcp/frictional.hpp"
+#include "integrators/contact_stage.hpp"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
@@ -54,13 +54,13 @@ using State = std::vector<double>;
 using Dopri = odeint::runge_kutta_dopri5<State>;
 using Dense = odeint::result_of::make_dense_output<Dopri>::type;
 
-// Mode of one contact during a smooth phase.
-enum class Mode { kOpen, kStick, kSlip };
-
-struct ContactMode {
-  Mode mode = Mode::kOpen;
-  double slip_sign = 0.0;  // sgn(gdot_T) while sliding; 0 for a frictionless closed contact
-};
+// The mode of one contact during a smooth phase is an integrators::ContactState
+// (contact_stage.hpp), shared with Moreau–Jean. A closed contact slides with the sign of its
+// slip velocity (kSlipPositive / kSlipNegative), or is kClosed when frictionless.
+ContactState slip_state(double sign) {
+  return sign > 0.0 ? ContactState::kSlipPositive
+                    : sign < 0.0 ? ContactState::kSlipNegative : ContactState::kClosed;
+}
 
 // Integrated energy terms appended to (q, u) in the Odeint state, so that the energy balance
 // is integrated to the same tolerance as the motion.
@@ -86,11 +86,14 @@ constexpr double kDefaultGapTolerance = 1e-9;
 // A normal force below this fraction of the applied forces' scale is round-off of the
 // contact LCP (solved to 1e-12): the contact is not held closed by it.
 constexpr double kClosedForce = 1e-12;
+// Accepted steps between two calls of the progress callback.
+constexpr std::int64_t kProgressInterval = 1024;
 
 class EventDriven {
  public:
-  EventDriven(System& system, const EventDrivenOptions& options, Recorder& recorder)
-      : sys_(system), opt_(options), rec_(recorder) {
+  EventDriven(System& system, const EventDrivenOptions& options, Recorder& recorder,
+              const Progress& progress)
+      : sys_(system), opt_(options), rec_(recorder), progress_(progress) {
     n_ = sys_.dofs();
     m_ = sys_.contacts();
     const double tol = opt_.tolerance;
@@ -100,7 +103,7 @@ class EventDriven {
     gap_shift_ = 1e-2 * gap_tolerance_;
     minv_ = checked_inverse_mass(sys_, "event_driven");
     cbuf_ = sys_.make_contact_buffer();
-    modes_.assign(static_cast<std::size_t>(m_), ContactMode{});
+    modes_.assign(static_cast<std::size_t>(m_), ContactState::kOpen);
     f_ = Vector::Zero(n_);
     q_ = Vector::Zero(n_);
     u_ = Vector::Zero(n_);
@@ -110,7 +113,17 @@ class EventDriven {
     h_ = Vector::Zero(2 * m_);
     xs_.assign(static_cast<std::size_t>(2 * n_ + kEnergyTerms), 0.0);
     stats_.method = "event_driven";
-    lcp_options_.tolerance = opt_.lcp_tolerance;
+    ContactStageOptions stage_options;
+    stage_options.solver = opt_.solver;
+    stage_options.tolerance = opt_.lcp_tolerance;
+    stage_ = ContactStage(n_, m_, stage_options);
+    touching_.reserve(static_cast<std::size_t>(m_));
+    candidates_.reserve(static_cast<std::size_t>(m_));
+    slip_coupling_.assign(static_cast<std::size_t>(m_), 0.0);
+    u_plus_ = Vector::Zero(n_);
+    q_event_ = Vector::Zero(n_);
+    u_event_ = Vector::Zero(n_);
+    a_free_ = Vector::Zero(n_);
   }
 
   RunResult run();
@@ -141,8 +154,8 @@ class EventDriven {
     lambda_t_.setZero();
     int k = 0;
     for (const auto& md : modes_) {
-      if (md.mode != Mode::kOpen) ++k;
-      if (md.mode == Mode::kStick) ++k;
+      if (closed(md)) ++k;
+      if (md == ContactState::kStick) ++k;
     }
     if (k == 0) {
       udot_.noalias() = minv_ * f_;
@@ -155,15 +168,15 @@ class EventDriven {
     for (int i = 0; i < m_; ++i) {
       const auto& md = modes_[idx(i)];
       const auto& c = cbuf_[idx(i)];
-      if (md.mode == Mode::kOpen) continue;
+      if (!closed(md)) continue;
       R.col(j) = c.w_normal;
       B.col(j) = c.w_normal;
-      if (md.mode == Mode::kSlip && md.slip_sign != 0.0) {
-        B.col(j) -= c.friction * md.slip_sign * c.w_tangent;
+      if (sliding(md)) {
+        B.col(j) -= c.friction * slip_sign(md) * c.w_tangent;
       }
       wbar[j] = c.wbar_normal;
       ++j;
-      if (md.mode == Mode::kStick) {
+      if (md == ContactState::kStick) {
         R.col(j) = c.w_tangent;
         B.col(j) = c.w_tangent;
         wbar[j] = c.wbar_tangent;
@@ -178,12 +191,12 @@ class EventDriven {
     j = 0;
     for (int i = 0; i < m_; ++i) {
       const auto& md = modes_[idx(i)];
-      if (md.mode == Mode::kOpen) continue;
+      if (!closed(md)) continue;
       lambda_n_[i] = lam[j++];
-      if (md.mode == Mode::kStick) {
+      if (md == ContactState::kStick) {
         lambda_t_[i] = lam[j++];
-      } else if (md.mode == Mode::kSlip) {
-        lambda_t_[i] = -cbuf_[idx(i)].friction * md.slip_sign * lambda_n_[i];
+      } else if (sliding(md)) {
+        lambda_t_[i] = -cbuf_[idx(i)].friction * slip_sign(md) * lambda_n_[i];
       }
     }
   }
@@ -192,6 +205,12 @@ class EventDriven {
   void rhs(const State& x, State& dxdt, double t) {
     ++rhs_evaluations_;
     unpack(x, q_, u_);
+    if (!q_.allFinite() || !u_.allFinite()) {
+      // Never hand a non-finite state to the system: the step that produced it is reported
+      // as divergence once Odeint returns (run()).
+      std::fill(dxdt.begin(), dxdt.end(), std::numeric_limits<double>::quiet_NaN());
+      return;
+    }
     phase_forces(t, q_, u_);
     for (int i = 0; i < n_; ++i) {
       dxdt[idx(i)] = u_[i];
@@ -204,10 +223,10 @@ class EventDriven {
     // which is energy put in through support motion.
     double normal = 0.0, friction = 0.0, seat = 0.0;
     bool any_closed = false;
-    for (const auto& md : modes_) any_closed = any_closed || md.mode != Mode::kOpen;
+    for (const auto& md : modes_) any_closed = any_closed || closed(md);
     if (any_closed) {
       for (int i = 0; i < m_; ++i) {
-        if (modes_[idx(i)].mode == Mode::kOpen) continue;
+        if (!closed(modes_[idx(i)])) continue;
         const auto& c = cbuf_[idx(i)];
         normal += lambda_n_[i] * c.gap_rate(u_);
         friction += lambda_t_[i] * c.slip_rate(u_);
@@ -226,25 +245,32 @@ class EventDriven {
   // or +1 (no tangential event possible). An event is a sign change from >= 0 to < 0.
   void indicators(double t, const State& x) {
     unpack(x, q_, u_);
+    if (!q_.allFinite() || !u_.allFinite()) {
+      h_.setOnes();  // no event in a non-finite state: run() stops on it as divergence
+      return;
+    }
     phase_forces(t, q_, u_);
     sys_.contact_data(t, q_, u_, cbuf_);
     for (int i = 0; i < m_; ++i) {
       const auto& c = cbuf_[idx(i)];
       const auto& md = modes_[idx(i)];
-      switch (md.mode) {
-        case Mode::kOpen:
+      switch (md) {
+        case ContactState::kOpen:
           h_[2 * i] = c.gap_normal;
           h_[2 * i + 1] = 1.0;
           break;
-        case Mode::kStick:
+        case ContactState::kStick:
           h_[2 * i] = lambda_n_[i] + force_shift_;
           h_[2 * i + 1] = c.friction * lambda_n_[i] - std::abs(lambda_t_[i]) + force_shift_;
           break;
-        case Mode::kSlip:
+        case ContactState::kClosed:
           h_[2 * i] = lambda_n_[i] + force_shift_;
-          h_[2 * i + 1] = md.slip_sign != 0.0
-                              ? md.slip_sign * c.slip_rate(u_) + velocity_shift_
-                              : 1.0;
+          h_[2 * i + 1] = 1.0;
+          break;
+        case ContactState::kSlipPositive:
+        case ContactState::kSlipNegative:
+          h_[2 * i] = lambda_n_[i] + force_shift_;
+          h_[2 * i + 1] = slip_sign(md) * c.slip_rate(u_) + velocity_shift_;
           break;
       }
     }
@@ -293,7 +319,7 @@ class EventDriven {
   double locate(int k, double ta, double tb, double ha, double hb) {
     const double inf = std::numeric_limits<double>::infinity();
     const int i = k / 2;
-    const bool gap = (k % 2 == 0) && modes_[idx(i)].mode == Mode::kOpen;
+    const bool gap = (k % 2 == 0) && !closed(modes_[idx(i)]);
     auto h = [this, k](double t) { return indicator_at(t, k); };
     if (!gap) {
       if (hb >= 0.0) return inf;
@@ -335,41 +361,52 @@ class EventDriven {
   }
 
   // ---- events ----
-  void count_lcp(const lcp::FrictionalResult& r) {
-    ++stats_.lcp_solves;
-    if (r.used_fallback) ++stats_.lcp_fallbacks;
-    ++stats_.lcp_status[std::string(lcp::to_string(r.status))];
-  }
-  lcp::FrictionalResult solve_contact_problem(lcp::FrictionalProblem& fp);
+  bool stage_failed(double t, int contact, ContactStatus status, const char* problem);
   void project_positions(double t, Vector& q, const Vector& u);
   void project_velocities(double t, const Vector& q, Vector& u);
   void book_impulses(const Matrix& W, const Vector& impulse, const Vector& what,
                      const std::vector<bool>& tangential, const Vector& u_minus,
                      const Vector& u_plus);
+  void book_stage_impulses(const std::vector<int>& index, const Vector& u_minus,
+                           const Vector& u_plus);
+  bool zeno_guard(double t, int trigger_contact, bool initial, bool& forced);
+  void find_touching(double t, const Vector& q, const Vector& u, bool initial, bool& any_impact);
+  bool impact_problem(double t, Vector& u, bool forced, int trigger_contact);
+  void closure_candidates(const Vector& u);
+  bool contact_problem(double t, Vector& q, Vector& u);
+  void record_mode_changes(double t, const std::vector<ContactState>& old);
   bool handle_event(double t, State& x, int trigger_contact, bool initial);
+  void finish_counts();
   void record_sample(double t, const State& x, bool force);
   double balance_error(double t, const State& x);
   void warn(double t, int contact, const std::string& what) {
     rec_.event(t, contact, EventKind::kWarning, what);
-    stats_.warnings.push_back("t = " + std::to_string(t) + " s, contact " +
+    stats_.warnings.push_back("t = " + format_number(t) + " s, contact " +
                               std::to_string(contact) + ": " + what);
   }
 
   System& sys_;
   const EventDrivenOptions& opt_;
   Recorder& rec_;
+  const Progress& progress_;
+  ContactStage stage_;
+  std::vector<int> touching_, candidates_;  // index sets of the impact and contact problems
+  std::vector<double> slip_coupling_;       // -mu s of the contact problem's sliding contacts
+  std::vector<ContactState> old_modes_;
+  Vector u_plus_, a_free_, q_event_, u_event_;
+  bool diverged_ = false, stalled_ = false;
+  double first_unsolved_ = std::numeric_limits<double>::quiet_NaN();  // [s]
   int n_ = 0, m_ = 0;
   double closing_velocity_ = 0.0, stick_velocity_ = 0.0, gap_tolerance_ = 0.0;
   double gap_shift_ = 0.0;  // penetration [m] that fires an impact without a closing speed
   double force_shift_ = 0.0, velocity_shift_ = 0.0;
   Matrix minv_;
   std::vector<ContactData> cbuf_;
-  std::vector<ContactMode> modes_;
+  std::vector<ContactState> modes_;
   Vector f_, q_, u_, udot_, lambda_n_, lambda_t_, h_;
   State xs_;
   Dense dense_ = odeint::make_dense_output(1e-8, 1e-8, Dopri());
   RunResult stats_;
-  lcp::SolveOptions lcp_options_;
   std::int64_t rhs_evaluations_ = 0;
   double impact_normal_work_ = 0.0, impact_friction_work_ = 0.0, impact_ground_work_ = 0.0;
   double initial_energy_ = 0.0;
@@ -379,49 +416,61 @@ class EventDriven {
   bool stop_ = false;
 };
 
-// Solves an impact or contact problem with the chosen solver (and Lemke as its fallback).
-// Redundant contacts (four corners closed on a three-DOF deck) make the Delassus matrix
-// singular and eq. (6) non-monotone, where Lemke may end on a secondary ray although a
-// solution exists: then enumeration of the complementary bases and PGS on the natural form
-// are tried, and last the same chain with a Delassus matrix regularised by
-// kDelassusRegularization times its largest diagonal entry.
-lcp::FrictionalResult EventDriven::solve_contact_problem(lcp::FrictionalProblem& fp) {
-  constexpr double kDelassusRegularization = 1e-10;
-  lcp::FrictionalResult r = lcp::solve_frictional(fp, opt_.solver, lcp_options_, true);
-  count_lcp(r);
-  if (r.ok()) return r;
-  for (int pass = 0; pass < 2 && !r.ok(); ++pass) {
-    if (pass == 1) {
-      const double d = fp.delassus.diagonal().cwiseAbs().maxCoeff();
-      fp.delassus.diagonal().array() += kDelassusRegularization * std::max(d, 1e-300);
-    }
-    for (lcp::Solver alt : {lcp::Solver::kEnumeration, lcp::Solver::kPgs}) {
-      if (pass == 0 && alt == opt_.solver) continue;
-      r = lcp::solve_frictional(fp, alt, lcp_options_, false);
-      count_lcp(r);
-      ++stats_.lcp_fallbacks;
-      if (r.ok()) break;
+// Reports a contact problem the stage could not solve and says whether the run must stop:
+// non-finite data is divergence; an unsolved problem stops the run (the phase that follows
+// would rest on impulses or modes no solver confirmed).
+bool EventDriven::stage_failed(double t, int contact, ContactStatus status, const char* problem) {
+  if (status == ContactStatus::kSolved || status == ContactStatus::kSolvedByFallback) return false;
+  if (status == ContactStatus::kNonFiniteInput) {
+    diverged_ = true;
+    stats_.message = std::string(problem) + ": non-finite data at t = " + format_number(t) + " s";
+  } else {
+    const lcp::FrictionalResult& r = stage_.result();
+    stats_.message = std::string(problem) + " not solved by any solver of the chain at t = " +
+                     format_number(t) + " s (last: " +
+                     std::string(lcp::to_string(r.solver_used)) + ", " +
+                     std::string(lcp::to_string(r.status)) + ", residual " +
+                     format_number(r.residual) + ")";
+  }
+  warn(t, contact, stats_.message);
+  return true;
+}
+
+// The work of the stage's last impulses, booked as book_impulses does: per contact of the
+// index set, the normal impulse along W_N and (with tangential unknowns) the tangential one.
+void EventDriven::book_stage_impulses(const std::vector<int>& index, const Vector& u_minus,
+                                      const Vector& u_plus) {
+  for (std::size_t j = 0; j < index.size(); ++j) {
+    const auto& c = cbuf_[idx(index[j])];
+    const int jj = static_cast<int>(j);
+    const double ln = stage_.lambda_n(jj), lt = stage_.lambda_t(jj);
+    const double mid_n = 0.5 * (c.w_normal.dot(u_minus) + c.w_normal.dot(u_plus));
+    impact_normal_work_ += ln * (mid_n + c.what_normal);
+    impact_ground_work_ -= ln * c.what_normal;
+    if (stage_.kinematics().tangential()) {
+      const double mid_t = 0.5 * (c.w_tangent.dot(u_minus) + c.w_tangent.dot(u_plus));
+      impact_friction_work_ += lt * (mid_t + c.what_tangent);
+      impact_ground_work_ -= lt * c.what_tangent;
     }
   }
-  return r;
 }
 
 void EventDriven::project_positions(double t, Vector& q, const Vector& u) {
   // Closest point in the kinetic metric on g_N,i(q) = 0 for every closed contact:
   //   dq = -M^-1 W (W^T M^-1 W)^+ g      (Newton iterations on the gap functions).
-  std::vector<int> closed;
+  std::vector<int> closed_set;
   for (int i = 0; i < m_; ++i) {
-    if (modes_[idx(i)].mode != Mode::kOpen) closed.push_back(i);
+    if (closed(modes_[idx(i)])) closed_set.push_back(i);
   }
-  if (closed.empty()) return;
-  const int k = static_cast<int>(closed.size());
+  if (closed_set.empty()) return;
+  const int k = static_cast<int>(closed_set.size());
   Matrix W(n_, k);
   Vector g(k);
   for (int it = 0; it < kProjectionIterations; ++it) {
     sys_.contact_data(t, q, u, cbuf_);
     for (int j = 0; j < k; ++j) {
-      W.col(j) = cbuf_[idx(closed[idx(j)])].w_normal;
-      g[j] = cbuf_[idx(closed[idx(j)])].gap_normal;
+      W.col(j) = cbuf_[idx(closed_set[idx(j)])].w_normal;
+      g[j] = cbuf_[idx(closed_set[idx(j)])].gap_normal;
     }
     if (g.cwiseAbs().maxCoeff() <= 1e-15) break;
     const Matrix G = W.transpose() * minv_ * W;
@@ -436,8 +485,8 @@ void EventDriven::project_velocities(double t, const Vector& q, Vector& u) {
   sys_.contact_data(t, q, u, cbuf_);
   int k = 0;
   for (const auto& md : modes_) {
-    if (md.mode != Mode::kOpen) ++k;
-    if (md.mode == Mode::kStick) ++k;
+    if (closed(md)) ++k;
+    if (md == ContactState::kStick) ++k;
   }
   if (k == 0) return;
   Matrix R(n_, k);
@@ -447,11 +496,11 @@ void EventDriven::project_velocities(double t, const Vector& q, Vector& u) {
   for (int i = 0; i < m_; ++i) {
     const auto& c = cbuf_[idx(i)];
     const auto& md = modes_[idx(i)];
-    if (md.mode == Mode::kOpen) continue;
+    if (!closed(md)) continue;
     R.col(j) = c.w_normal;
     what[j] = c.what_normal;
     r[j++] = c.gap_rate(u);
-    if (md.mode == Mode::kStick) {
+    if (md == ContactState::kStick) {
       R.col(j) = c.w_tangent;
       what[j] = c.what_tangent;
       tangential[idx(j)] = true;
@@ -510,234 +559,238 @@ void EventDriven::record_sample(double t, const State& x, bool force) {
   }
 }
 
-// Resolves what happens at time t in state x (modified in place): impacts, then the
-// acceleration-level contact problem that sets the modes of the next phase, then drift
-// projection. Returns false if the run must stop.
-bool EventDriven::handle_event(double t, State& x, int trigger_contact, bool initial) {
-  Vector q(n_), u(n_);
-  unpack(x, q, u);
-
-  // Zeno guard: a bounded number of events per window of time.
-  bool forced = t < forced_closure_until_;
-  if (!initial) {
-    recent_events_.push_back(t);
-    while (!recent_events_.empty() && recent_events_.front() < t - opt_.event_window) {
-      recent_events_.pop_front();
-    }
-    const auto count = static_cast<int>(recent_events_.size());
-    if (count >= 2 * opt_.max_events_per_window) {
-      warn(t, trigger_contact, "event bound reached again under forced closure; run stopped");
-      stats_.message = "more than " + std::to_string(2 * opt_.max_events_per_window) +
-                       " events within " + std::to_string(opt_.event_window) + " s at t = " +
-                       std::to_string(t) + " s";
-      return false;
-    }
-    if (count >= opt_.max_events_per_window && !forced) {
-      warn(t, trigger_contact,
-           "event bound reached (" + std::to_string(count) + " events within " +
-               std::to_string(opt_.event_window) + " s): touching contacts forced closed");
-      forced_closure_until_ = t + opt_.event_window;
-      forced = true;
-    }
+// Zeno guard: a bounded number of events per window of time. Sets `forced` while touching
+// contacts are forced closed; returns false when the bound is reached again under forced
+// closure (the run stalls).
+bool EventDriven::zeno_guard(double t, int trigger_contact, bool initial, bool& forced) {
+  forced = t < forced_closure_until_;
+  if (initial) return true;
+  recent_events_.push_back(t);
+  while (!recent_events_.empty() && recent_events_.front() < t - opt_.event_window) {
+    recent_events_.pop_front();
   }
+  const auto count = static_cast<int>(recent_events_.size());
+  if (count >= 2 * opt_.max_events_per_window) {
+    warn(t, trigger_contact, "event bound reached again under forced closure; run stopped");
+    stats_.message = "more than " + std::to_string(2 * opt_.max_events_per_window) +
+                     " events within " + format_number(opt_.event_window) + " s at t = " +
+                     format_number(t) + " s";
+    stalled_ = true;
+    return false;
+  }
+  if (count >= opt_.max_events_per_window && !forced) {
+    warn(t, trigger_contact,
+         "event bound reached (" + std::to_string(count) + " events within " +
+             format_number(opt_.event_window) + " s): touching contacts forced closed");
+    forced_closure_until_ = t + opt_.event_window;
+    forced = true;
+  }
+  return true;
+}
 
+// Step 1, location's outcome: the contacts touching at t (closed, or open within
+// gap_tolerance) and whether one of them is closing faster than the Zeno threshold.
+void EventDriven::find_touching(double t, const Vector& q, const Vector& u, bool initial,
+                                bool& any_impact) {
   sys_.forces(t, q, u, f_);
   sys_.contact_data(t, q, u, cbuf_);
-  std::vector<int> touching;
-  bool any_impact = false;
+  touching_.clear();
+  any_impact = false;
   for (int i = 0; i < m_; ++i) {
     const auto& c = cbuf_[idx(i)];
-    const bool is_touching = modes_[idx(i)].mode != Mode::kOpen || c.gap_normal <= gap_tolerance_;
+    const bool is_touching = closed(modes_[idx(i)]) || c.gap_normal <= gap_tolerance_;
     if (!is_touching) continue;
-    touching.push_back(i);
+    touching_.push_back(i);
     if (c.gap_rate(u) < -closing_velocity_) any_impact = true;
     if (initial && c.gap_normal < -gap_tolerance_) {
-      warn(t, i + 1, "initial penetration g_N = " + std::to_string(c.gap_normal) + " m");
+      warn(t, i + 1, "initial penetration g_N = " + format_number(c.gap_normal) + " m");
     }
   }
-  bool solved_lcp = false;
+}
 
-  // 1. Impacts: eq. (6) on every touching contact that is closing or resting, with the
-  //    pre-impact velocities. Touching contacts that separate are left out: an impulse
-  //    elsewhere that would make them close is caught as an impact just after.
-  if (any_impact) {
-    touching.erase(std::remove_if(touching.begin(), touching.end(),
-                                  [&](int i) {
-                                    return cbuf_[idx(i)].gap_rate(u) > closing_velocity_;
-                                  }),
-                   touching.end());
-    const int k = static_cast<int>(touching.size());
-    bool frictionless = true;
-    for (int i : touching) frictionless = frictionless && cbuf_[idx(i)].friction == 0.0;
-    const int nt = frictionless ? 0 : k;
-    Matrix W(n_, k + nt);
-    lcp::FrictionalProblem fp;
-    fp.gdot_free.resize(k + nt);
-    fp.gdot_n_minus.resize(k);
-    fp.restitution.resize(k);
-    fp.friction.resize(k);
-    for (int j = 0; j < k; ++j) {
-      const auto& c = cbuf_[idx(touching[idx(j)])];
-      W.col(j) = c.w_normal;
-      fp.gdot_free[j] = c.gap_rate(u);
-      fp.gdot_n_minus[j] = std::min(0.0, c.gap_rate(u));
-      fp.restitution[j] = forced ? 0.0 : c.restitution;
-      fp.friction[j] = c.friction;
-      if (nt > 0) {
-        W.col(k + j) = c.w_tangent;
-        fp.gdot_free[k + j] = c.slip_rate(u);
-      }
-    }
-    fp.delassus = W.transpose() * minv_ * W;
-    const lcp::FrictionalResult r = solve_contact_problem(fp);
-    solved_lcp = true;
-    if (!r.ok()) {
-      stats_.message = "impact LCP (eq. 6) not solved at t = " + std::to_string(t) +
-                       " s: " + std::string(lcp::to_string(r.status));
-      warn(t, trigger_contact, stats_.message);
-      return false;
-    }
-    Vector impulse = W.leftCols(k) * r.lambda_n;
-    if (nt > 0) impulse += W.rightCols(k) * r.lambda_t;
-    const Vector u_plus = u + minv_ * impulse;
-    {
-      Vector all(k + nt), what(k + nt);
-      std::vector<bool> tangential(static_cast<std::size_t>(k + nt), false);
-      all.head(k) = r.lambda_n;
-      for (int j = 0; j < k; ++j) {
-        what[j] = cbuf_[idx(touching[idx(j)])].what_normal;
-        if (nt > 0) {
-          all[k + j] = r.lambda_t[j];
-          what[k + j] = cbuf_[idx(touching[idx(j)])].what_tangent;
-          tangential[idx(k + j)] = true;
-        }
-      }
-      book_impulses(W, all, what, tangential, u, u_plus);
-    }
-    for (int j = 0; j < k; ++j) {
-      const auto& c = cbuf_[idx(touching[idx(j)])];
-      if (c.gap_rate(u) < -closing_velocity_ || r.lambda_n[j] > 0.0) {
-        if (c.gap_rate(u) < -closing_velocity_) {
-          rec_.event(t, touching[idx(j)] + 1, EventKind::kImpact);
-        }
-      }
-    }
-    u = u_plus;
+// Step 2, the impact problem: eq. (6) on every touching contact that is closing or resting,
+// with the pre-impact velocities and Newton's law (restitution 0 under forced closure).
+// Touching contacts that separate are left out: an impulse elsewhere that would make them
+// close is caught as an impact just after. Returns false when the run must stop.
+bool EventDriven::impact_problem(double t, Vector& u, bool forced, int trigger_contact) {
+  touching_.erase(std::remove_if(touching_.begin(), touching_.end(),
+                                 [&](int i) {
+                                   return cbuf_[idx(i)].gap_rate(u) > closing_velocity_;
+                                 }),
+                  touching_.end());
+  bool frictionless = true;
+  for (int i : touching_) frictionless = frictionless && cbuf_[idx(i)].friction == 0.0;
+  lcp::FrictionalProblem& fp =
+      stage_.build(cbuf_, touching_, !frictionless, minv_, u, ContactLevel::kVelocity);
+  for (std::size_t j = 0; j < touching_.size(); ++j) {
+    const auto& c = cbuf_[idx(touching_[j])];
+    const auto jj = static_cast<Eigen::Index>(j);
+    fp.gdot_n_minus[jj] = std::min(0.0, c.gap_rate(u));
+    if (forced) fp.restitution[jj] = 0.0;
   }
+  const ContactStatus status = stage_.solve();
+  if (stage_failed(t, trigger_contact, status, "impact problem (eq. 6)")) return false;
+  u_plus_ = u;
+  stage_.apply(u_plus_);
+  book_stage_impulses(touching_, u, u_plus_);
+  for (int i : touching_) {
+    if (cbuf_[idx(i)].gap_rate(u) < -closing_velocity_) rec_.event(t, i + 1, EventKind::kImpact);
+  }
+  u = u_plus_;
+  return true;
+}
 
-  // 2. Candidates for closure: touching and not separating faster than closing_velocity.
-  std::vector<ContactMode> old = modes_;
-  for (auto& md : modes_) md = ContactMode{};
-  for (int i : touching) {
+// Step 3a: candidates for closure are the touching contacts not separating faster than
+// closing_velocity; each is a stick candidate when frictional and slower than stick_velocity,
+// else sliding in the direction of its slip velocity.
+void EventDriven::closure_candidates(const Vector& u) {
+  // A slip event is located where s gdot_T + velocity_shift_ turns negative, so the slip
+  // velocity there is velocity_shift_ (plus the Brent bracket's overshoot, far smaller):
+  // a stick threshold below it (stick_velocity = 10 tolerance is 1e-10 m/s at tolerance
+  // 1e-11, the shift 3e-10 m/s at 2 m/s) would take the contact for sliding the other way
+  // and fire the reversal again at once. Twice the shift covers the overshoot.
+  const double stick = std::max(stick_velocity_, 2.0 * velocity_shift_);
+  for (auto& md : modes_) md = ContactState::kOpen;
+  for (int i : touching_) {
     const auto& c = cbuf_[idx(i)];
-    if (c.gap_rate(u) <= closing_velocity_) {
-      const bool stick_candidate = c.friction > 0.0 && std::abs(c.slip_rate(u)) <= stick_velocity_;
-      if (stick_candidate) {
-        modes_[idx(i)] = ContactMode{Mode::kStick, 0.0};
-      } else {
-        const double s = c.friction > 0.0 ? (c.slip_rate(u) > 0.0 ? 1.0 : -1.0) : 0.0;
-        modes_[idx(i)] = ContactMode{Mode::kSlip, s};
-      }
+    if (c.gap_rate(u) > closing_velocity_) continue;
+    if (c.friction > 0.0 && std::abs(c.slip_rate(u)) <= stick) {
+      modes_[idx(i)] = ContactState::kStick;
+    } else {
+      const double sgn = c.friction > 0.0 ? (c.slip_rate(u) > 0.0 ? 1.0 : -1.0) : 0.0;
+      modes_[idx(i)] = slip_state(sgn);
     }
   }
+}
+
+// Step 3b, the contact problem: eq. (6) at acceleration level on the candidates, eps = 0
+// (Pfeiffer & Glocker 1996, ch. 6). Sliding contacts carry lambda_T = -mu s lambda_N in their
+// normal column and no tangential unknown. Sets the modes of the next phase. Returns false
+// when the run must stop.
+bool EventDriven::contact_problem(double t, Vector& q, Vector& u) {
+  candidates_.clear();
+  for (int i = 0; i < m_; ++i) {
+    if (closed(modes_[idx(i)])) candidates_.push_back(i);
+  }
+  if (candidates_.empty()) return true;
+  sys_.forces(t, q, u, f_);
+  sys_.contact_data(t, q, u, cbuf_);
+  bool tangential = false;
+  for (std::size_t j = 0; j < candidates_.size(); ++j) {
+    const auto& c = cbuf_[idx(candidates_[j])];
+    const auto& md = modes_[idx(candidates_[j])];
+    tangential = tangential || md == ContactState::kStick;
+    slip_coupling_[j] = -c.friction * slip_sign(md);
+  }
+  a_free_.noalias() = minv_ * f_;
+  lcp::FrictionalProblem& fp = stage_.build(cbuf_, candidates_, tangential, minv_, a_free_,
+                                            ContactLevel::kAcceleration, slip_coupling_.data());
+  for (std::size_t j = 0; j < candidates_.size(); ++j) {
+    const auto& md = modes_[idx(candidates_[j])];
+    if (tangential && md == ContactState::kStick) {
+      fp.friction[static_cast<Eigen::Index>(j)] = cbuf_[idx(candidates_[j])].friction;
+    }
+  }
+  const ContactStatus status = stage_.solve();
+  if (status == ContactStatus::kUnsolved) {
+    // The candidates keep their modes, and the run goes on; the status says
+    // contact_unsolved from here (failure_time: the first such event).
+    if (std::isnan(first_unsolved_)) first_unsolved_ = t;
+    warn(t, candidates_.front() + 1,
+         "contact problem (eq. 6, accelerations) not solved by any solver of the chain "
+         "(residual " + format_number(stage_.result().residual) +
+             "): touching contacts kept closed in their current modes");
+    return true;
+  }
+  if (stage_failed(t, candidates_.front() + 1, status, "contact problem (eq. 6, accelerations)")) {
+    return false;
+  }
+  const lcp::FrictionalResult& r = stage_.result();
+  // Scale of the accelerations, for "gddot = 0" decisions on round-off.
+  const double acc_scale = 1e-9 * (1.0 + fp.gdot_free.cwiseAbs().maxCoeff());
+  const double force_scale = 1.0 + f_.cwiseAbs().maxCoeff();
+  for (std::size_t j = 0; j < candidates_.size(); ++j) {
+    const auto jj = static_cast<Eigen::Index>(j);
+    auto& md = modes_[idx(candidates_[j])];
+    // Closed only under a positive normal force: at a lift-off both lambda_N and gddot_N
+    // pass through 0, and keeping a contact closed on gddot_N = 0 would fire the lift-off
+    // again at once.
+    if (!(r.lambda_n[jj] > kClosedForce * force_scale)) {
+      md = ContactState::kOpen;
+      continue;
+    }
+    if (md != ContactState::kStick) continue;
+    // Stick while the friction force is inside the cone; on its boundary the contact slips
+    // against the friction force, lambda_T = -mu s lambda_N (eq. 5). Deciding on the force
+    // rather than on the sign of gddot_T, which is round-off at a stick-slip transition,
+    // keeps a transition from firing again at once.
+    const double lt = r.lambda_t[jj], cone = fp.friction[jj] * r.lambda_n[jj];
+    const bool saturated = std::abs(lt) >= cone * (1.0 - kConeSaturation) && cone > 0.0;
+    const double at = r.gdot_t_plus[jj];
+    if (saturated || std::abs(at) > acc_scale) {
+      const double sgn = saturated && lt != 0.0 ? (lt > 0.0 ? -1.0 : 1.0) : (at > 0.0 ? 1.0 : -1.0);
+      md = slip_state(sgn);
+    }
+  }
+  return true;
+}
+
+// Step 5: events for the mode changes.
+void EventDriven::record_mode_changes(double t, const std::vector<ContactState>& old) {
+  for (int i = 0; i < m_; ++i) {
+    const auto& a = old[idx(i)];
+    const auto& b = modes_[idx(i)];
+    if (!closed(a) && closed(b)) rec_.event(t, i + 1, EventKind::kClose);
+    if (closed(a) && !closed(b)) rec_.event(t, i + 1, EventKind::kOpen);
+    if (b == ContactState::kStick && a != ContactState::kStick) rec_.event(t, i + 1, EventKind::kStick);
+    if (sliding(b) && a != b) {
+      rec_.event(t, i + 1, EventKind::kSlip);
+    }
+  }
+}
+
+// Resolves what happens at time t in state x (modified in place), along the steps of
+// Shi & Dimitrakopoulos (2017), section 2.2: the located event's touching contacts, the
+// impact problem, the contact problem that sets the modes of the next phase, the projection
+// onto the constraints, and the mode update. Returns false if the run must stop.
+bool EventDriven::handle_event(double t, State& x, int trigger_contact, bool initial) {
+  unpack(x, q_event_, u_event_);
+  Vector& q = q_event_;
+  Vector& u = u_event_;
+  if (!q.allFinite() || !u.allFinite()) {
+    diverged_ = true;
+    stats_.message = "non-finite state at t = " + format_number(t) + " s";
+    warn(t, trigger_contact, stats_.message);
+    return false;
+  }
+  bool forced = false;
+  if (!zeno_guard(t, trigger_contact, initial, forced)) return false;
+
+  bool any_impact = false;
+  find_touching(t, q, u, initial, any_impact);
+  bool solved_lcp = false;
+  if (any_impact) {
+    solved_lcp = true;
+    if (!impact_problem(t, u, forced, trigger_contact)) return false;
+  }
+
+  old_modes_ = modes_;
+  closure_candidates(u);
   // Project the candidates onto the constraint manifold (drift correction, and gdot_N = 0
   // for a contact whose post-impact velocity is below the Zeno threshold).
   project_positions(t, q, u);
   project_velocities(t, q, u);
-
-  // 3. The acceleration-level contact problem on the candidates: eq. (6) with accelerations
-  //    in place of velocities, eps = 0 (Pfeiffer & Glocker 1996, ch. 6). Sliding contacts
-  //    carry lambda_T = -mu s lambda_N in their normal column and no tangential unknown.
-  std::vector<int> cand;
-  for (int i = 0; i < m_; ++i) {
-    if (modes_[idx(i)].mode != Mode::kOpen) cand.push_back(i);
-  }
-  if (!cand.empty()) {
-    sys_.forces(t, q, u, f_);
-    sys_.contact_data(t, q, u, cbuf_);
-    const int k = static_cast<int>(cand.size());
-    bool frictionless = true;
-    for (int i : cand) frictionless = frictionless && modes_[idx(i)].mode != Mode::kStick;
-    const int nt = frictionless ? 0 : k;
-    Matrix Wr(n_, k + nt), Wc(n_, k + nt);
-    lcp::FrictionalProblem fp;
-    fp.gdot_free.resize(k + nt);
-    fp.gdot_n_minus = Vector::Zero(k);
-    fp.restitution = Vector::Zero(k);
-    fp.friction = Vector::Zero(k);
-    const Vector a_free = minv_ * f_;
-    for (int j = 0; j < k; ++j) {
-      const auto& c = cbuf_[idx(cand[idx(j)])];
-      const auto& md = modes_[idx(cand[idx(j)])];
-      Wr.col(j) = c.w_normal;
-      Wc.col(j) = c.w_normal;
-      if (md.mode == Mode::kSlip && md.slip_sign != 0.0) {
-        Wc.col(j) -= c.friction * md.slip_sign * c.w_tangent;
-      }
-      fp.gdot_free[j] = c.w_normal.dot(a_free) + c.wbar_normal;
-      if (nt > 0) {
-        Wr.col(k + j) = c.w_tangent;
-        Wc.col(k + j) = c.w_tangent;
-        fp.gdot_free[k + j] = c.w_tangent.dot(a_free) + c.wbar_tangent;
-        fp.friction[j] = md.mode == Mode::kStick ? c.friction : 0.0;
-      }
-    }
-    fp.delassus = Wr.transpose() * minv_ * Wc;
-    const lcp::FrictionalResult r = solve_contact_problem(fp);
+  bool any_candidate = false;
+  for (const auto& md : modes_) any_candidate = any_candidate || closed(md);
+  if (any_candidate) {
     solved_lcp = true;
-    if (r.ok()) {
-      // Scale of the accelerations, for "gddot = 0" decisions on round-off.
-      const double acc_scale =
-          1e-9 * (1.0 + fp.gdot_free.cwiseAbs().maxCoeff());
-      const double force_scale = 1.0 + f_.cwiseAbs().maxCoeff();
-      for (int j = 0; j < k; ++j) {
-        auto& md = modes_[idx(cand[idx(j)])];
-        // Closed only under a positive normal force: at a lift-off both lambda_N and
-        // gddot_N pass through 0, and keeping a contact closed on gddot_N = 0 would fire
-        // the lift-off again at once.
-        const bool closed = r.lambda_n[j] > kClosedForce * force_scale;
-        if (!closed) {
-          md = ContactMode{};
-          continue;
-        }
-        if (md.mode == Mode::kStick) {
-          // Stick while the friction force is inside the cone; on its boundary the contact
-          // slips against the friction force, lambda_T = -mu s lambda_N (eq. 5). Deciding on
-          // the force rather than on the sign of gddot_T, which is round-off at a stick-slip
-          // transition, keeps a transition from firing again at once.
-          const double lt = r.lambda_t[j], cone = fp.friction[j] * r.lambda_n[j];
-          const bool saturated = std::abs(lt) >= cone * (1.0 - kConeSaturation) && cone > 0.0;
-          const double at = r.gdot_t_plus[j];
-          if (saturated || std::abs(at) > acc_scale) {
-            const double s = saturated && lt != 0.0 ? (lt > 0.0 ? -1.0 : 1.0)
-                                                    : (at > 0.0 ? 1.0 : -1.0);
-            md = ContactMode{Mode::kSlip, s};
-          }
-        }
-      }
-    } else {
-      warn(t, cand.empty() ? 0 : cand.front() + 1,
-           "contact LCP not solved (" + std::string(lcp::to_string(r.status)) +
-               "): touching contacts kept closed in their current modes");
-    }
+    if (!contact_problem(t, q, u)) return false;
     // Final projection with the decided modes (sticking contacts get gdot_T = 0).
     project_positions(t, q, u);
     project_velocities(t, q, u);
   }
   if (solved_lcp) ++stats_.steps_with_lcp;
-
-  // 4. Record the mode changes.
-  for (int i = 0; i < m_; ++i) {
-    const auto& a = old[idx(i)];
-    const auto& b = modes_[idx(i)];
-    if (a.mode == Mode::kOpen && b.mode != Mode::kOpen) rec_.event(t, i + 1, EventKind::kClose);
-    if (a.mode != Mode::kOpen && b.mode == Mode::kOpen) rec_.event(t, i + 1, EventKind::kOpen);
-    if (b.mode == Mode::kStick && a.mode != Mode::kStick) rec_.event(t, i + 1, EventKind::kStick);
-    if (b.mode == Mode::kSlip && b.slip_sign != 0.0 &&
-        (a.mode != Mode::kSlip || a.slip_sign != b.slip_sign)) {
-      rec_.event(t, i + 1, EventKind::kSlip);
-    }
-  }
+  record_mode_changes(t, old_modes_);
 
   // Indicator shifts for the new phase, scaled to the forces and velocities in play.
   sys_.forces(t, q, u, f_);
@@ -751,6 +804,20 @@ bool EventDriven::handle_event(double t, State& x, int trigger_contact, bool ini
   return true;
 }
 
+void EventDriven::finish_counts() {
+  const ContactStageCounts& counts = stage_.counts();
+  stats_.lcp_solves = counts.solves;
+  stats_.lcp_fallbacks = counts.fallbacks;
+  stats_.lcp_unsolved = counts.unsolved;
+  constexpr int kStatuses = static_cast<int>(lcp::Status::kTooLarge) + 1;
+  for (int s = 0; s < kStatuses; ++s) {
+    if (counts.by_status[s] > 0) {
+      stats_.lcp_status[std::string(lcp::to_string(static_cast<lcp::Status>(s)))] =
+          counts.by_status[s];
+    }
+  }
+}
+
 RunResult EventDriven::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   gsl_error_handler_t* old_handler = gsl_set_error_handler_off();
@@ -759,7 +826,7 @@ RunResult EventDriven::run() {
   if (!(t_end > t)) {
     gsl_set_error_handler(old_handler);
     throw std::invalid_argument("event_driven options: end_time must be > the initial time " +
-                                std::to_string(t) + " s");
+                                format_number(t) + " s");
   }
   State x(static_cast<std::size_t>(2 * n_ + kEnergyTerms), 0.0);
   {
@@ -781,7 +848,23 @@ RunResult EventDriven::run() {
   auto finish = [&](bool completed) {
     stats_.completed = completed;
     stats_.end_time = t;
-    record_sample(t, x, true);
+    // A non-finite state is not recorded (nor handed to the system): the history ends with
+    // the last finite sample.
+    if (std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); })) {
+      record_sample(t, x, true);
+    } else {
+      diverged_ = true;
+    }
+    if (progress_) progress_(t);
+    finish_counts();
+    if (!std::isfinite(stats_.energy.error)) diverged_ = true;
+    finish_status(stats_, diverged_, stalled_ || (!completed && !diverged_ && stats_.lcp_unsolved == 0));
+    if (!succeeded(stats_.status)) {
+      stats_.failure_time =
+          stats_.status == RunStatus::kContactUnsolved && !std::isnan(first_unsolved_)
+              ? first_unsolved_
+              : t;
+    }
     stats_.wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     gsl_set_error_handler(old_handler);
@@ -811,13 +894,24 @@ RunResult EventDriven::run() {
     const double ta = dense_.previous_time();
     double tb = std::min(dense_.current_time(), t_end);
     if (!(dense_.current_time_step() > min_step * std::max(1.0, std::abs(ta)))) {
-      stats_.message = "step size underflow at t = " + std::to_string(ta) + " s";
+      stats_.message = "step size underflow at t = " + format_number(ta) + " s";
       warn(ta, 0, stats_.message);
+      stalled_ = true;
       t = ta;
       dense_.calc_state(ta, x);
       return finish(false);
     }
     dense_.calc_state(tb, x);
+    if (!std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); })) {
+      // The step went non-finite (a force blew up): stop at its start, the last finite state.
+      diverged_ = true;
+      stats_.message = "non-finite state in the step from t = " + format_number(ta) + " s";
+      warn(ta, 0, stats_.message);
+      t = ta;
+      dense_.calc_state(ta, x);
+      return finish(false);
+    }
+    if (progress_ && stats_.steps % kProgressInterval == 0) progress_(tb);
     indicators(tb, x);
     Vector h_b = h_;
     // Earliest event in (ta, tb].
@@ -867,7 +961,7 @@ RunResult EventDriven::run() {
     bool drift = false;
     sys_.contact_data(t, q_, u_, cbuf_);
     for (int i = 0; i < m_; ++i) {
-      if (modes_[idx(i)].mode == Mode::kOpen) continue;
+      if (!closed(modes_[idx(i)])) continue;
       const auto& c = cbuf_[idx(i)];
       drift = drift || std::abs(c.gap_normal) > gap_tolerance_ ||
               std::abs(c.gap_rate(u_)) > closing_velocity_;
@@ -891,9 +985,10 @@ RunResult EventDriven::run() {
 
 }  // namespace
 
-RunResult event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder) {
+RunResult event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder,
+                       const Progress& progress) {
   options.validate();
-  EventDriven integrator(system, options, recorder);
+  EventDriven integrator(system, options, recorder, progress);
   return integrator.run();
 }
 

@@ -13,6 +13,7 @@
 //    (lift-off), a sliding velocity reaches 0 (stick or reversal), a sticking contact's
 //    friction force reaches the cone |lambda_T| = mu lambda_N (slip);
 //  - an impact is resolved by the frictional impact LCP of eq. (6) with Newton's law;
+//    it and the contact LCP below are solved by the contact stage (contact_stage.hpp);
 //  - after every event the acceleration-level LCP (the same eq. (6) form with accelerations,
 //    eps = 0) decides which touching contacts stay closed and which stick or slide, and
 //    positions and velocities of the closed contacts are projected back onto
@@ -53,10 +54,13 @@ struct EventDrivenOptions {
 };
 
 // Integrates `system` from its initial state to options.end_time. Fills the recorder with
-// samples at its sample_dt (evaluated on the dense output) and with every event; returns the
-// run's statistics with method "event_driven". Throws std::invalid_argument for bad options;
-// numerical trouble (an LCP that no solver solves, a step size that underflows, the event
-// bound reached twice in a row) ends the run with completed = false and a message.
-RunResult event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder);
+// samples at its sample_dt (evaluated on the dense output) and with every event; calls
+// progress (may be empty) now and then; returns the run's statistics with method
+// "event_driven". Throws std::invalid_argument for bad options. Numerical trouble ends the
+// run with completed = false, a message and a status: kContactUnsolved (an impact or contact
+// problem that no solver of the contact stage's chain solves), kDiverged (a non-finite
+// state), kStalled (a step size that underflows, the event bound reached twice in a row).
+RunResult event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder,
+                       const Progress& progress = {});
 
 }  // namespace nsb::integrators

@@ -1,12 +1,12 @@
 #include "integrators/moreau_jean.hpp"
 
-#include "lcp/frictional.hpp"
+#include "integrators/contact_stage.hpp"
 
 #include <Eigen/LU>
 
-#include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -25,6 +25,8 @@ constexpr double kMaxSteps = 1e10;
 constexpr std::int64_t kMaxWarnings = 100;
 // Number of lcp::Status values (kNotRun .. kTooLarge), for allocation-free counting.
 constexpr int kStatusCount = static_cast<int>(lcp::Status::kTooLarge) + 1;
+// Accepted steps between two calls of the progress callback.
+constexpr std::int64_t kProgressInterval = 4096;
 
 // y += alpha A x. The systems here are tiny (3 DOF for the bridge), where the general
 // matrix-vector kernel's dispatch costs more than the arithmetic. Per row the products are
@@ -39,18 +41,17 @@ void add_product(double alpha, const Matrix& a, const Vector& x, Vector& y) {
   }
 }
 
-// Per-contact state, for events (impact, close, open, stick, slip).
-enum class ContactState { kOpen, kClosed /* frictionless */, kStick, kSlipPositive, kSlipNegative };
-
 class MoreauJean {
  public:
-  MoreauJean(System& system, const MoreauJeanOptions& options, Recorder& recorder);
+  MoreauJean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
+             const Progress& progress);
   RunResult run();
 
  private:
   void factorize(double h);
   bool step(double h, double t1);  // false when the step failed (non-finite state)
-  void solve_contacts(double h);
+  bool solve_contacts(double t1);   // false for a non-finite contact problem
+  bool diverge(double t1, const std::string& what);
   void update_events(double t1);
   void accumulate_smooth_work(double h);
   double energy_error();
@@ -59,6 +60,7 @@ class MoreauJean {
   System& system_;
   const MoreauJeanOptions& options_;
   Recorder& recorder_;
+  const Progress& progress_;
   const Matrix& mass_;
   int n_ = 0;  // degrees of freedom
   int m_ = 0;  // potential contacts
@@ -75,17 +77,12 @@ class MoreauJean {
   bool refactor_ = true;
   bool has_stiffness_ = false;
 
-  // Contacts: data at t_k, the active index set, its columns [W_N | W_T] and A^-1 of them.
-  std::vector<ContactData> contacts_;
+  // Contacts: data at t_k (gaps, index set, Newton's law's gdot_N-) and at (t_k+1, q_k), where
+  // the contact law is imposed (W and the rheonomic what of the moving seats); the index set.
+  std::vector<ContactData> contacts_, contacts_next_;
   std::vector<int> active_;
   bool active_friction_ = false;
-  Matrix w_active_, a_inv_w_;
-  Vector impulse_active_;  // [Lambda_N; Lambda_T] of the active contacts
-  // One preallocated problem per index-set size k = 1..m, frictional (2k) and not (k).
-  std::vector<lcp::FrictionalProblem> frictional_, frictionless_;
-  lcp::SolveOptions solve_options_;
-  lcp::FrictionalSolver solver_;
-  std::vector<lcp::FrictionalResult> frictional_result_, frictionless_result_;
+  ContactStage stage_;
   Vector lambda_n_, lambda_t_;  // impulses of every contact in this step [kN s]
   Vector force_n_, force_t_;    // lambda = Lambda / h, for the history [kN]
   std::vector<ContactState> state_;
@@ -96,15 +93,17 @@ class MoreauJean {
   PowerTerms power_k_;
 
   RunResult stats_;
-  std::array<std::int64_t, kStatusCount> status_count_{};
-  std::int64_t unsolved_ = 0;  // contact problems that ended without kSolved
+  bool diverged_ = false;
+  double first_failure_ = std::numeric_limits<double>::quiet_NaN();  // [s]
   double last_sample_t_ = -1e300;
 };
 
-MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorder& recorder)
+MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
+                       const Progress& progress)
     : system_(system),
       options_(options),
       recorder_(recorder),
+      progress_(progress),
       mass_(system.mass()),
       n_(system.dofs()),
       m_(system.contacts()),
@@ -115,9 +114,9 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   q_ = system.initial_position();
   u_ = system.initial_velocity();
   if (!(options.end_time > t_)) {
-    throw std::invalid_argument("moreau_jean: end_time (" + std::to_string(options.end_time) +
+    throw std::invalid_argument("moreau_jean: end_time (" + format_number(options.end_time) +
                                 ") must exceed the system's initial time (" +
-                                std::to_string(t_) + ")");
+                                format_number(t_) + ")");
   }
   if ((options.end_time - t_) / options.step > kMaxSteps) {
     throw std::invalid_argument("moreau_jean: step is too small for end_time (more than 1e10 "
@@ -138,27 +137,13 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   lu_ = Eigen::PartialPivLU<Matrix>(n_);
 
   contacts_ = system.make_contact_buffer();
+  contacts_next_ = system.make_contact_buffer();
   active_.reserve(static_cast<std::size_t>(m_));
-  w_active_ = Matrix::Zero(n_, 2 * m_);
-  a_inv_w_ = Matrix::Zero(n_, 2 * m_);
-  impulse_active_ = Vector::Zero(2 * m_);
-  frictional_.resize(static_cast<std::size_t>(m_) + 1);
-  frictionless_.resize(static_cast<std::size_t>(m_) + 1);
-  for (int k = 1; k <= m_; ++k) {
-    for (auto* p : {&frictional_[static_cast<std::size_t>(k)],
-                    &frictionless_[static_cast<std::size_t>(k)]}) {
-      const int size = (p == &frictional_[static_cast<std::size_t>(k)]) ? 2 * k : k;
-      p->delassus = Matrix::Zero(size, size);
-      p->gdot_free = Vector::Zero(size);
-      p->gdot_n_minus = Vector::Zero(k);
-      p->restitution = Vector::Zero(k);
-      p->friction = Vector::Zero(k);
-    }
-  }
-  solve_options_.tolerance = options.lcp_tolerance;
-  solver_.reserve(m_);
-  frictional_result_.resize(static_cast<std::size_t>(m_) + 1);
-  frictionless_result_.resize(static_cast<std::size_t>(m_) + 1);
+  ContactStageOptions stage_options;
+  stage_options.solver = options.solver;
+  stage_options.tolerance = options.lcp_tolerance;
+  stage_options.fallback = options.lcp_fallback;
+  stage_ = ContactStage(n_, m_, stage_options);
   lambda_n_ = Vector::Zero(m_);
   lambda_t_ = Vector::Zero(m_);
   force_n_ = Vector::Zero(m_);
@@ -216,11 +201,9 @@ RunResult MoreauJean::run() {
       break;
     }
     sample(last);
-    if (options_.progress && (stats_.steps % options_.progress_interval == 0)) {
-      options_.progress(t_);
-    }
+    if (progress_ && (stats_.steps % kProgressInterval == 0)) progress_(t_);
   }
-  if (options_.progress) options_.progress(t_);
+  if (progress_) progress_(t_);
   if (stats_.completed) {
     stats_.message = "reached end_time";
   } else if (last_sample_t_ != t_) {
@@ -236,15 +219,35 @@ RunResult MoreauJean::run() {
   energy_.close();
   stats_.energy = energy_;
   stats_.end_time = t_;
+  const ContactStageCounts& counts = stage_.counts();
+  stats_.lcp_solves = counts.solves;
+  stats_.lcp_fallbacks = counts.fallbacks;
+  stats_.lcp_unsolved = counts.unsolved;
   for (int s = 0; s < kStatusCount; ++s) {
-    if (status_count_[static_cast<std::size_t>(s)] > 0) {
+    if (counts.by_status[s] > 0) {
       stats_.lcp_status[std::string(lcp::to_string(static_cast<lcp::Status>(s)))] =
-          status_count_[static_cast<std::size_t>(s)];
+          counts.by_status[s];
     }
   }
+  if (!diverged_ && !std::isfinite(energy_.error)) {
+    diverge(t_, "non-finite energy balance");
+  }
+  finish_status(stats_, diverged_, false);
+  if (!succeeded(stats_.status)) stats_.failure_time = first_failure_;
   stats_.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats_;
+}
+
+bool MoreauJean::diverge(double t1, const std::string& what) {
+  system_.revert();
+  diverged_ = true;
+  if (std::isnan(first_failure_)) first_failure_ = t1;
+  stats_.message = what + " at t = " + format_number(t1) +
+                   " s (the step or the model's forces are unstable)";
+  recorder_.event(t1, 0, EventKind::kWarning, stats_.message);
+  stats_.warnings.push_back(stats_.message);
+  return false;
 }
 
 bool MoreauJean::step(double h, double t1) {
@@ -253,6 +256,7 @@ bool MoreauJean::step(double h, double t1) {
   // Free velocity: the theta-method with the smooth force linearised about (q_k, u_k),
   //   A (u_free - u_k) = h [(1-theta) f_k + theta f(t_k+1, q_k, u_k)] - h^2 theta K u_k.
   system_.forces(t1, q_, u_, f_pred_);
+  if (!f_pred_.allFinite()) return diverge(t1, "non-finite smooth force");
   rhs_ = (h * (1.0 - theta_)) * f_k_;
   rhs_ += (h * theta_) * f_pred_;
   if (has_stiffness_) add_product(-(h * h * theta_), K_, u_, rhs_);
@@ -260,14 +264,17 @@ bool MoreauJean::step(double h, double t1) {
   add_product(1.0, A_inv_, rhs_, u_free_);
 
   // Index set: contacts closed or closing within the step, g_N + (h/2) gdot_N <= 0, with
-  // g_N and gdot_N at t_k (Acary & Brogliato 2008, ch. 10; Siconos uses the same rule).
+  // g_N and gdot_N at t_k (Acary & Brogliato 2008, ch. 10; Siconos uses the same rule). The
+  // comparison allows the round-off of g_N (ContactTolerances::gap), so that a resting
+  // contact whose gap came out at +1e-17 m is not dropped for one step.
+  const double gap_slack = ContactTolerances::gap(q_);
   active_.clear();
   active_friction_ = false;
   for (int i = 0; i < m_; ++i) {
     const ContactData& c = contacts_[static_cast<std::size_t>(i)];
     in_index_set_[static_cast<std::size_t>(i)] = 0;
     if (c.far) continue;
-    if (c.gap_normal + 0.5 * h * c.gap_rate(u_) <= 0.0) {
+    if (c.gap_normal + 0.5 * h * c.gap_rate(u_) <= gap_slack) {
       in_index_set_[static_cast<std::size_t>(i)] = 1;
       active_.push_back(i);
       if (c.friction > 0.0) active_friction_ = true;
@@ -276,24 +283,20 @@ bool MoreauJean::step(double h, double t1) {
   u_new_ = u_free_;
   lambda_n_.setZero();
   lambda_t_.setZero();
-  if (!active_.empty()) solve_contacts(h);
+  if (!active_.empty() && !solve_contacts(t1)) {
+    return diverge(t1, "non-finite contact problem");
+  }
 
   q_new_ = q_;
   q_new_ += (h * (1.0 - theta_)) * u_;
   q_new_ += (h * theta_) * u_new_;
-  if (!q_new_.allFinite() || !u_new_.allFinite()) {
-    system_.revert();
-    stats_.message = "non-finite state at t = " + std::to_string(t1) +
-                     " (the step or the model's forces are unstable)";
-    recorder_.event(t1, 0, EventKind::kWarning, stats_.message);
-    stats_.warnings.push_back(stats_.message);
-    return false;
-  }
+  if (!q_new_.allFinite() || !u_new_.allFinite()) return diverge(t1, "non-finite state");
 
   // Work of the contact impulses on the system over the step: Lambda . W^T (u_k + u_k+1)/2,
-  // the exact change of kinetic energy they cause (Acary & Brogliato 2008, ch. 10).
+  // the exact change of kinetic energy they cause (Acary & Brogliato 2008, ch. 10), with the
+  // columns W the impulses acted along (those of t_k+1).
   for (int i : active_) {
-    const ContactData& c = contacts_[static_cast<std::size_t>(i)];
+    const ContactData& c = contacts_next_[static_cast<std::size_t>(i)];
     const double ln = lambda_n_[i];
     const double lt = lambda_t_[i];
     if (ln != 0.0) energy_.impacts += ln * 0.5 * (c.w_normal.dot(u_) + c.w_normal.dot(u_new_));
@@ -303,6 +306,7 @@ bool MoreauJean::step(double h, double t1) {
 
   // Accept the step: evaluate the end state, keep its tangent if it changed, commit once.
   system_.forces(t1, q_new_, u_new_, f_k_);
+  if (!f_k_.allFinite()) return diverge(t1, "non-finite smooth force");
   if (system_.tangent_changed()) {
     system_.tangent(t1, q_new_, u_new_, K_, C_);
     refactor_ = true;
@@ -314,6 +318,9 @@ bool MoreauJean::step(double h, double t1) {
   ++stats_.steps;
   system_.contact_data(t_, q_, u_, contacts_);
   accumulate_smooth_work(h);
+  if (!std::isfinite(energy_.damping + energy_.ground + energy_.external)) {
+    return diverge(t1, "non-finite energy");
+  }
   for (int i = 0; i < m_; ++i) {
     force_n_[i] = lambda_n_[i] / h;
     force_t_[i] = lambda_t_[i] / h;
@@ -321,80 +328,50 @@ bool MoreauJean::step(double h, double t1) {
   return true;
 }
 
-void MoreauJean::solve_contacts(double h) {
+// The contact problem of the step, posed where Newton's law is imposed: on the relative
+// velocity at t_k+1 (docs/moreau-jean.md, "The contact law at t_k+1"):
+//   gdot_k+1 = W_k+1^T u_k+1 + what_k+1 = G Lambda + gdot_free,
+//   G = W_k+1^T A^-1 W_k+1,  gdot_free = W_k+1^T u_free + what_k+1,
+//   gdot_N,k+1 + eps gdot_N,k >= 0 _|_ Lambda_N >= 0,   gdot_N,k = W_N,k^T u_k + what_N,k,
+// with W and what of the moving seats at t_k+1 (evaluated at q_k: the seats' motion is
+// prescribed, so this costs one contact_data call on steps that have an index set).
+bool MoreauJean::solve_contacts(double t1) {
   ++stats_.steps_with_lcp;
+  system_.contact_data(t1, q_, u_, contacts_next_);
+  lcp::FrictionalProblem& p = stage_.build(contacts_next_, active_, active_friction_, A_inv_,
+                                           u_free_, ContactLevel::kVelocity);
   const int k = static_cast<int>(active_.size());
-  const int size = active_friction_ ? 2 * k : k;
   for (int j = 0; j < k; ++j) {
-    const ContactData& c = contacts_[static_cast<std::size_t>(active_[static_cast<std::size_t>(j)])];
-    w_active_.col(j) = c.w_normal;
-    if (active_friction_) w_active_.col(k + j) = c.w_tangent;
+    p.gdot_n_minus[j] = contacts_[static_cast<std::size_t>(active_[static_cast<std::size_t>(j)])]
+                            .gap_rate(u_);
   }
-  auto w = w_active_.leftCols(size);
-  auto a_inv_w = a_inv_w_.leftCols(size);
-  a_inv_w.noalias() = A_inv_ * w;
-
-  lcp::FrictionalProblem& p = active_friction_ ? frictional_[static_cast<std::size_t>(k)]
-                                               : frictionless_[static_cast<std::size_t>(k)];
-  // Delassus matrix G = W^T A^-1 W, normals first (lcp/frictional.hpp, eq. 8 with A for M).
-  p.delassus.noalias() = w.transpose() * a_inv_w;
-  for (int j = 0; j < k; ++j) {
-    const ContactData& c = contacts_[static_cast<std::size_t>(active_[static_cast<std::size_t>(j)])];
-    p.gdot_free[j] = c.w_normal.dot(u_free_) + c.what_normal;
-    p.gdot_n_minus[j] = c.gap_rate(u_);
-    p.restitution[j] = c.restitution;
-    p.friction[j] = c.friction;
-    if (active_friction_) p.gdot_free[k + j] = c.w_tangent.dot(u_free_) + c.what_tangent;
-  }
-
-  ++stats_.lcp_solves;
-  auto impulse = impulse_active_.head(size);
-  const double g11 = p.delassus(0, 0);
-  if (size == 1 && g11 > 0.0) {
-    // One frictionless contact: the 1 x 1 LCP  g11 Lambda + b >= 0, Lambda >= 0,
-    // complementary, has the unique solution Lambda = max(0, -b / g11).
-    const double b = p.gdot_free[0] + p.restitution[0] * p.gdot_n_minus[0];
-    impulse[0] = b >= 0.0 ? 0.0 : -b / g11;
-    ++status_count_[static_cast<std::size_t>(lcp::Status::kSolved)];
-  } else {
-    // One result per index-set size: its vectors keep their size, so the workspace solver
-    // allocates nothing once each size has been met.
-    lcp::FrictionalResult& r = active_friction_ ? frictional_result_[static_cast<std::size_t>(k)]
-                                                : frictionless_result_[static_cast<std::size_t>(k)];
-    solver_.solve(p, options_.solver, solve_options_, options_.lcp_fallback, r);
-    ++status_count_[static_cast<std::size_t>(r.status)];
-    if (r.used_fallback) ++stats_.lcp_fallbacks;
-    const bool usable = r.lambda_n.size() == k && r.lambda_n.allFinite() &&
-                        (!active_friction_ || (r.lambda_t.size() == k && r.lambda_t.allFinite()));
-    if (usable) {
-      impulse.head(k) = r.lambda_n;
-      if (active_friction_) impulse.tail(k) = r.lambda_t;
-    } else {
-      impulse.setZero();
-    }
-    if (!r.ok()) {
-      // The answer is kept when it is finite (it is the solver's best iterate) and flagged:
-      // a failed contact problem never passes silently.
-      const std::string note = "contact problem not solved (" +
+  const ContactStatus status = stage_.solve();
+  if (status == ContactStatus::kNonFiniteInput) return false;
+  if (status == ContactStatus::kUnsolved) {
+    if (std::isnan(first_failure_)) first_failure_ = t1;
+    // The best finite answer of the chain is kept and flagged: a failed contact problem
+    // never passes silently. Reported in full up to kMaxWarnings times, then only counted.
+    if (stage_.counts().unsolved <= kMaxWarnings) {
+      const lcp::FrictionalResult& r = stage_.result();
+      const std::string note = "contact problem not solved by any solver of the chain (last: " +
+                               std::string(lcp::to_string(r.solver_used)) + ", " +
                                std::string(lcp::to_string(r.status)) + ", residual " +
-                               std::to_string(r.residual) + ")" +
-                               (usable ? "" : "; impulses set to zero");
-      // Reported in full up to kMaxWarnings times; afterwards only counted in lcp_status.
-      if (++unsolved_ <= kMaxWarnings) {
-        recorder_.event(t_ + h, 0, EventKind::kWarning, note);
-        stats_.warnings.push_back(note);
-      }
+                               format_number(r.residual) + ")";
+      recorder_.event(t1, 0, EventKind::kWarning, note);
+      stats_.warnings.push_back(note);
     }
   }
-  u_new_.noalias() += a_inv_w * impulse;
+  stage_.apply(u_new_);
   for (int j = 0; j < k; ++j) {
     const int i = active_[static_cast<std::size_t>(j)];
-    lambda_n_[i] = impulse[j];
-    if (active_friction_) lambda_t_[i] = impulse[k + j];
+    lambda_n_[i] = stage_.lambda_n(j);
+    lambda_t_[i] = stage_.lambda_t(j);
   }
+  return true;
 }
 
-// Events from the step's impulses and end velocities (W and what of t_k):
+// Events from the step's impulses and end velocities (W and what of t_k+1, where the contact
+// law holds):
 //   impact: Lambda_N > 0 on a contact that was not resting and approached, gdot_N- < -v_tol;
 //   close / open: the contact starts / stops resting (Lambda_N > 0 and |gdot_N+| <= v_tol;
 //     a contact kept in the index set with no impulse and no separation velocity rests on);
@@ -404,17 +381,17 @@ void MoreauJean::update_events(double t1) {
   const double v_tol = options_.event_velocity_tolerance;
   for (int i = 0; i < m_; ++i) {
     const auto ui = static_cast<std::size_t>(i);
-    const ContactData& c = contacts_[ui];
     const ContactState before = state_[ui];
     // An open contact without a normal impulse stays open: nothing to evaluate (most
     // contacts at most steps).
     if (before == ContactState::kOpen && !(lambda_n_[i] > 0.0)) continue;
+    const ContactData& c = in_index_set_[ui] ? contacts_next_[ui] : contacts_[ui];
     ContactState now = ContactState::kOpen;
     const bool resting = std::abs(c.gap_rate(u_new_)) <= v_tol;
     if (lambda_n_[i] > 0.0) {
       // A resting contact under a moving obstacle meets a small approach velocity every
       // step (the obstacle's acceleration times h): that is contact, not an impact.
-      if (before == ContactState::kOpen && c.gap_rate(u_) < -v_tol) {
+      if (before == ContactState::kOpen && contacts_[ui].gap_rate(u_) < -v_tol) {
         recorder_.event(t1, i + 1, EventKind::kImpact);
       }
       if (resting) {
@@ -491,13 +468,11 @@ void MoreauJeanOptions::validate() const {
     throw std::invalid_argument(
         "MoreauJeanOptions.event_velocity_tolerance must be a finite number > 0 [m/s]");
   }
-  if (progress_interval <= 0) {
-    throw std::invalid_argument("MoreauJeanOptions.progress_interval must be > 0");
-  }
 }
 
-RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder) {
-  MoreauJean integrator(system, options, recorder);
+RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
+                      const Progress& progress) {
+  MoreauJean integrator(system, options, recorder, progress);
   return integrator.run();
 }
 

@@ -23,8 +23,6 @@
 #include "integrators/system.hpp"
 #include "lcp/solve.hpp"
 
-#include <cstdint>
-#include <functional>
 
 namespace nsb::integrators {
 
@@ -34,21 +32,22 @@ struct MoreauJeanOptions {
   double theta = 0.5;          // theta of the theta-method, in [0.5, 1]
   lcp::Solver solver = lcp::Solver::kLemke;  // solver of the contact problem of each step
   double lcp_tolerance = 1e-12;  // lcp::SolveOptions::tolerance, > 0
-  bool lcp_fallback = true;    // run Lemke when the chosen solver does not reach kSolved
+  bool lcp_fallback = true;    // run the contact stage's fallback chain (Lemke, PGS,
+                               //   enumeration) when the chosen solver fails
   // Normal or tangential contact velocity [m/s] below which a contact counts as resting or
   // sticking, for events only (it does not change the dynamics); > 0.
   double event_velocity_tolerance = 1e-6;
-  // Called about every progress_interval accepted steps with the current time [s]; may be
-  // empty. Lets a caller draw a progress bar without the integrator knowing about terminals.
-  std::function<void(double t)> progress;
-  std::int64_t progress_interval = 4096;  // > 0
   void validate() const;       // throws std::invalid_argument naming the field
 };
 
 // Integrates system from its initial state to options.end_time. Samples the history into
-// recorder (contact forces lambda = Lambda / h) and records per-contact events. Throws
-// std::invalid_argument for bad options or a system whose sizes are inconsistent; every
-// numerical outcome (non-finite state, unsolved contact problems) is reported in RunResult.
-RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder);
+// recorder (contact forces lambda = Lambda / h) and records per-contact events; calls
+// progress (may be empty) every few thousand steps. Throws std::invalid_argument for bad
+// options or a system whose sizes are inconsistent; every numerical outcome is the
+// RunResult's status: kDiverged (a non-finite force, state, contact problem or energy; the
+// run stops), kContactUnsolved (a problem no solver of the chain solved; the run goes on with
+// the best answer), kCompletedWithFallbacks, kCompleted.
+RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
+                      const Progress& progress = {});
 
 }  // namespace nsb::integrators

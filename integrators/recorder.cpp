@@ -1,5 +1,7 @@
 #include "integrators/recorder.hpp"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -31,6 +33,26 @@ std::string_view to_string(RunStatus s) {
 
 bool succeeded(RunStatus s) {
   return s == RunStatus::kCompleted || s == RunStatus::kCompletedWithFallbacks;
+}
+
+void finish_status(RunResult& r, bool diverged, bool stalled) {
+  if (diverged) {
+    r.status = RunStatus::kDiverged;
+  } else if (stalled) {
+    r.status = RunStatus::kStalled;
+  } else if (r.lcp_unsolved > 0) {
+    r.status = RunStatus::kContactUnsolved;
+  } else if (r.lcp_fallbacks > 0) {
+    r.status = RunStatus::kCompletedWithFallbacks;
+  } else {
+    r.status = RunStatus::kCompleted;
+  }
+}
+
+std::string format_number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", v);
+  return buffer;
 }
 
 void EnergyBalance::close() {

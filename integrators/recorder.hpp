@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <string_view>
@@ -91,6 +92,21 @@ struct RunResult {
   EnergyBalance energy;
   std::vector<std::string> warnings;
 };
+
+// Sets r.status from what the run met, in order of severity: a non-finite state or energy
+// (kDiverged), an adaptive method that could not advance (kStalled), a contact problem no
+// solver of the chain solved (kContactUnsolved), one solved by a fallback
+// (kCompletedWithFallbacks), else kCompleted. Each integrator calls it once, at its end,
+// with what it recorded itself; failure_time is the integrator's.
+void finish_status(RunResult& r, bool diverged, bool stalled);
+
+// Called now and then with the simulated time reached [s], for a progress display. It must
+// not throw; it may be empty. Every integrator takes one.
+using Progress = std::function<void(double t)>;
+
+// A number for a warning or message: printf's %.3g (1e-09, 0.0123, 4.56e+03), so that a
+// residual of 1e-9 does not print as 0.000000 as std::to_string would.
+std::string format_number(double v);
 
 // Collects the time history at a fixed sampling interval, and every event.
 // Columns: t, <coordinate names>, <velocity names>, then per contact i = 1..m

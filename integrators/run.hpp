@@ -15,7 +15,6 @@
 #include "integrators/recorder.hpp"
 #include "integrators/system.hpp"
 
-#include <functional>
 #include <string_view>
 #include <variant>
 
@@ -31,13 +30,9 @@ double end_time(const RunConfig& config);
 // Throws std::invalid_argument naming the field, as the method's options do.
 void validate(const RunConfig& config);
 
-// Called now and then with the simulated time reached [s], for a progress display. It must
-// not throw; it may be empty.
-using Progress = std::function<void(double t)>;
-
 // Integrates system from its initial state with the method config holds, recording into
-// recorder. Returns the result with its RunStatus; throws std::invalid_argument only for a
-// bad call.
+// recorder; progress (recorder.hpp) is called by every method. Returns the result with the
+// RunStatus the method set itself; throws std::invalid_argument only for a bad call.
 RunResult integrate(System& system, const RunConfig& config, Recorder& recorder,
                     const Progress& progress = {});
 

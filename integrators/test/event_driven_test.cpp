@@ -312,3 +312,79 @@ TEST_CASE("accumulating impacts terminate and results stay finite") {
   for (double v : r.series("y")) CHECK(std::isfinite(v));
   CHECK(s.end_time > 0.0);
 }
+
+TEST_CASE("a sliding block stops without chattering at tolerances 1e-11 and 1e-12") {
+  // v0 = 2 m/s, mu = 0.5: it sticks at t* = v0 / (mu g) = 0.40775 s after
+  // x* = v0^2 / (2 mu g) = 0.40775 m, and stays. At these tolerances the slip indicator's
+  // velocity shift (1e-10 (1 + |u|)) exceeded the default stick velocity (10 tolerance), so
+  // the contact was taken for sliding backwards at the located event and the reversal fired
+  // again at once, until the event bound stopped the run after 4000 slips.
+  for (const double tol : {1e-11, 1e-12}) {
+    CAPTURE(tol);
+    Block k;
+    k.vx0 = 2.0;
+    ni::EventDrivenOptions o;
+    o.end_time = 1.0;
+    o.tolerance = tol;
+    ni::Recorder r(k, 0.0);
+    const auto s = ni::event_driven(k, o, r);
+    CHECK(s.status == ni::RunStatus::kCompleted);
+    REQUIRE(s.completed);
+    const auto sticks = times_of(r, ni::EventKind::kStick);
+    REQUIRE(sticks.size() == 1);
+    CHECK(std::abs(sticks[0] - k.vx0 / (k.mu * k.g)) < kTimeTol);
+    CHECK(r.count(ni::EventKind::kSlip) <= 1);
+    CHECK(r.series("x").back() ==
+          doctest::Approx(k.vx0 * k.vx0 / (2 * k.mu * k.g)).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("a ball at rest on the ground makes no event after it closes") {
+  // e = 0.5 from 1 m: the impacts accumulate at t_inf = sqrt(2 h / g) (1 + e) / (1 - e)
+  // = 1.355 s; afterwards the ball rests: no open, impact or close for 10 s, and the gap
+  // stays at 0 (the drift projection holds it to round-off of 1 m, far below 1e-12 m).
+  Ball b;
+  b.e = 0.5;
+  ni::EventDrivenOptions o;
+  o.end_time = 12.0;
+  o.tolerance = 1e-10;
+  ni::Recorder r(b, 0.01);
+  const auto s = ni::event_driven(b, o, r);
+  REQUIRE(s.status == ni::RunStatus::kCompleted);
+  const auto closes = times_of(r, ni::EventKind::kClose);
+  REQUIRE_FALSE(closes.empty());
+  CHECK(closes.front() == doctest::Approx(std::sqrt(2.0 / b.g) * 3.0).epsilon(1e-6));
+  for (const auto& e : r.events()) {
+    if (e.t > closes.front()) CHECK(e.kind == ni::EventKind::kWarning);
+  }
+  CHECK(r.count(ni::EventKind::kClose) == 1);
+  const auto t = r.series("t"), gap = r.series("gN1");
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] > closes.front()) CHECK(gap[i] >= -1e-12);
+  }
+}
+
+TEST_CASE("a non-finite force ends the run as diverged, never as an exception") {
+  // A NaN load from the start (ramp = NaN): the first right-hand side is NaN.
+  Ball b;
+  b.ramp = std::numeric_limits<double>::quiet_NaN();
+  ni::EventDrivenOptions o;
+  o.end_time = 1.0;
+  ni::Recorder r(b, 0.0);
+  ni::RunResult s;
+  CHECK_NOTHROW(s = ni::event_driven(b, o, r));
+  CHECK(s.status == ni::RunStatus::kDiverged);
+  CHECK_FALSE(s.completed);
+  for (double v : r.series("y")) CHECK(std::isfinite(v));
+}
+
+TEST_CASE("the progress callback reaches end_time") {
+  Ball b;
+  ni::EventDrivenOptions o;
+  o.end_time = 2.0;
+  ni::Recorder r(b, 0.0);
+  std::vector<double> seen;
+  ni::event_driven(b, o, r, [&](double t) { seen.push_back(t); });
+  REQUIRE_FALSE(seen.empty());
+  CHECK(seen.back() == doctest::Approx(2.0));
+}

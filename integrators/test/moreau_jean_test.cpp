@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <new>
 #include <sstream>
 #include <string>
@@ -484,6 +485,121 @@ TEST_CASE("a step allocates nothing") {
     Block a(2.0, 0.4), b(2.0, 0.4);
     CHECK(run(a, 0.6) == run(b, 1.2));
   }
+}
+
+namespace {
+
+// A mass m = 1 t pressed by a constant force -F against a wall that moves with constant
+// acceleration a: x_w(t) = v0 t + a t^2 / 2, gap g_N = q - x_w(t), W_N = 1,
+// what_N = -v_w(t) = -(v0 + a t), wbar_N = -a. With force_nan_after set, the force turns
+// NaN from that time on (a blown-up model).
+class AcceleratingWall final : public System {
+ public:
+  AcceleratingWall(double a, double v0, double press, double force_nan_after = 1e300)
+      : a_(a), v0_(v0), press_(press), nan_after_(force_nan_after),
+        mass_(Matrix::Constant(1, 1, 1.0)) {}
+  double wall(double t) const { return v0_ * t + 0.5 * a_ * t * t; }
+  double wall_speed(double t) const { return v0_ + a_ * t; }
+  int dofs() const override { return 1; }
+  std::vector<std::string> coordinate_names() const override { return {"x"}; }
+  std::vector<std::string> velocity_names() const override { return {"vx"}; }
+  const Matrix& mass() const override { return mass_; }
+  Vector initial_position() const override { return Vector::Constant(1, wall(0.0)); }
+  Vector initial_velocity() const override { return Vector::Constant(1, wall_speed(0.0)); }
+  void forces(double t, const Vector&, const Vector&, Vector& f) override {
+    f[0] = t > nan_after_ ? std::numeric_limits<double>::quiet_NaN() : -press_;
+  }
+  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
+    K.setZero();
+    C.setZero();
+  }
+  int contacts() const override { return 1; }
+  void contact_data(double t, const Vector& q, const Vector&,
+                    std::vector<ContactData>& out) const override {
+    out[0].gap_normal = q[0] - wall(t);
+    out[0].w_normal[0] = 1.0;
+    out[0].w_tangent[0] = 0.0;
+    out[0].what_normal = -wall_speed(t);
+    out[0].wbar_normal = -a_;
+    out[0].restitution = 0.0;
+    out[0].friction = 0.0;
+  }
+  PowerTerms power(double, const Vector&, const Vector& u) const override {
+    return {0.0, 0.0, -press_ * u[0]};
+  }
+  EnergyState energy(double, const Vector&) const override { return {0.0, 0.0}; }
+
+ private:
+  double a_, v0_, press_, nan_after_;
+  Matrix mass_;
+};
+
+}  // namespace
+
+TEST_CASE("a body pressed against an accelerating wall moves with it (rheonomic term at t_k+1)") {
+  // Newton's law with eps = 0 on the relative velocity at t_k+1 makes the step end at
+  // gdot_N,k+1 = u_k+1 - v_w(t_k+1) = 0 while the wall pushes (Lambda_N > 0): u_k+1 is the
+  // wall's speed at t_k+1 exactly. With theta = 1/2, q_k+1 = q_k + h (u_k + u_k+1) / 2 =
+  // x_w(t_k) + h (v_w(t_k) + v_w(t_k+1)) / 2 = x_w(t_k+1), the trapezoidal rule being exact
+  // for the quadratic x_w: the gap stays 0 up to round-off. Taking what at t_k instead leaves
+  // u_k+1 = v_w(t_k), h a = 3e-3 m/s behind, and the wall gains h^2 a / 2 per step on the body.
+  // Measured over the 1000 steps (speeds to 5 m/s, positions to 3.5 m): |u - v_w| = 0 and
+  // |g_N| <= 2.2e-15 m; the bounds are 1e-14 m/s (a few ulps of 5 m/s) and 1e-13 m (45 times
+  // the measured gap).
+  AcceleratingWall wall(3.0, 2.0, 10.0);
+  Recorder rec(wall, 0.0);
+  MoreauJeanOptions o;
+  o.step = 1e-3;
+  o.end_time = 1.0;
+  const RunResult stats = moreau_jean(wall, o, rec);
+  REQUIRE(stats.status == RunStatus::kCompleted);
+  const auto t = rec.series("t"), v = rec.series("vx");
+  const auto gap = rec.series("gN1"), force = rec.series("lambdaN1");
+  REQUIRE(t.size() == 1001);
+  double worst_speed = 0.0, worst_gap = 0.0;
+  for (std::size_t r = 1; r < t.size(); ++r) {
+    worst_speed = std::max(worst_speed, std::abs(v[r] - wall.wall_speed(t[r])));
+    worst_gap = std::max(worst_gap, std::abs(gap[r]));
+    // The contact force is m a + F = 13 kN: the wall pushes in every step.
+    CHECK(force[r] == doctest::Approx(13.0).epsilon(1e-9));
+  }
+  CHECK(worst_speed <= 1e-14);
+  CHECK(worst_gap <= 1e-13);
+  // No spurious events: one close at the first step, and nothing after it.
+  CHECK(rec.count(EventKind::kOpen) == 0);
+  CHECK(rec.count(EventKind::kImpact) == 0);
+  CHECK(rec.count(EventKind::kClose) <= 1);
+}
+
+TEST_CASE("a non-finite force ends the run as diverged, never as an exception") {
+  AcceleratingWall wall(3.0, 2.0, 10.0, 0.5);
+  Recorder rec(wall, 0.0);
+  MoreauJeanOptions o;
+  o.step = 1e-3;
+  o.end_time = 1.0;
+  RunResult stats;
+  CHECK_NOTHROW(stats = moreau_jean(wall, o, rec));
+  CHECK(stats.status == RunStatus::kDiverged);
+  CHECK_FALSE(stats.completed);
+  // The first step whose predictor force (at t_k+1) is NaN is the one ending at 0.501 s.
+  CHECK(stats.failure_time == doctest::Approx(0.501).epsilon(1e-12));
+  CHECK(stats.end_time == doctest::Approx(0.5).epsilon(1e-12));
+  for (double v : rec.series("x")) CHECK(std::isfinite(v));
+  REQUIRE_FALSE(stats.warnings.empty());
+  CHECK(stats.warnings.front().find("0.501") != std::string::npos);
+}
+
+TEST_CASE("the progress callback is called with increasing times up to end_time") {
+  Ball ball(0.1, 0.0, 0.0);
+  Recorder rec(ball, 1e9);
+  MoreauJeanOptions o;
+  o.step = 1e-4;
+  o.end_time = 1.0;
+  std::vector<double> seen;
+  moreau_jean(ball, o, rec, [&](double t) { seen.push_back(t); });
+  REQUIRE(seen.size() >= 2);
+  CHECK(std::is_sorted(seen.begin(), seen.end()));
+  CHECK(seen.back() == doctest::Approx(1.0));
 }
 
 }  // namespace nsb::integrators
