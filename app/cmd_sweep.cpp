@@ -1,4 +1,4 @@
-// nsbridge sweep DESIGN.toml --out DIR [--jobs N] [--restart] [--plot [--pga-key KEY]
+// nsbridge sweep DESIGN.toml --out DIR [--jobs N] [--set key=value ...] [--restart] [--plot [--pga-key KEY]
 //                            [--response COLUMN] [--limit VALUE]] [--plot-only]
 //
 // Expands a design file (docs/sweep.md) into runs of one scene, runs them on --jobs threads
@@ -68,6 +68,9 @@ void add_sweep_command(CLI::App& app) {
       ->required();
   cmd->add_option("--jobs", args->options.jobs, "Worker threads per process (0 = all cores)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--set", args->options.set,
+                  "Add an override to every run, e.g. --set solver.end_time=2 (repeatable)")
+      ->allow_extra_args(false);
   cmd->add_flag("--restart", args->options.restart,
                 "Discard the runs already in --out (needed when the design changed)");
   cmd->add_flag("--plot", args->plot, "Draw IDA, exceedance and tornado plots into DIR/plots/");

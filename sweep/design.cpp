@@ -432,7 +432,7 @@ std::string design_hash(const Design& d) {
 
 }  // namespace
 
-Design load_design(const fs::path& file) {
+Design load_design(const fs::path& file, const std::vector<std::string>& extra_set) {
   Context c{file.string()};
   toml::table root;
   try {
@@ -460,6 +460,10 @@ Design load_design(const fs::path& file) {
       }
       d.set.push_back(*s.value<std::string>());
     }
+  }
+  for (const auto& s : extra_set) {
+    if (s.find('=') == std::string::npos) throw std::invalid_argument("--set " + s + ": must be key=value");
+    d.set.push_back(s);
   }
   if (const auto* mode = root.get("mode")) {
     const std::string m = mode->value<std::string>().value_or("");

@@ -61,7 +61,9 @@ struct Design {
 
 // Reads and expands a design file. Throws std::invalid_argument naming the file, line and key
 // for a malformed design (unknown key, empty factor, duplicate key, bad range, bad CSV).
-Design load_design(const std::filesystem::path& file);
+// extra_set: overrides appended to the file's `set` (the command line's --set), e.g. a short
+// end_time for a quick look.
+Design load_design(const std::filesystem::path& file, const std::vector<std::string>& extra_set = {});
 
 // Loads the base scene once with the design's fixed overrides and once with each level of
 // each factor (for a latin range: both ends), so that an unknown key or a value the scene

@@ -83,7 +83,7 @@ SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& opti
   std::exception_ptr error;
   int code = 0;
   try {
-    d = load_design(design_file);
+    d = load_design(design_file, options.set);
     if (primary) {
       validate_design(d);
       plan = prepare(d, options);

@@ -191,7 +191,7 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
     }
     write_file_atomically(dir / "ida.csv", csv);
     files.push_back(dir / "ida.csv");
-    std::string gp = "set datafile separator ','\nset key outside right\nset grid\n"
+    std::string gp = "set datafile separator ','\nset termoption noenhanced\nset key top left\nset grid\n"
                      "set xlabel 'target PGA [g] (" + o.pga_key + ")'\nset ylabel " +
                      gp_string(axis_label(o.response)) + "\nset title 'IDA curves'\nplot ";
     for (std::size_t i = 0; i < curves.size(); ++i) {
@@ -208,7 +208,7 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
     write_file_atomically(dir / "exceedance.csv", ex);
     files.push_back(dir / "exceedance.csv");
     render(dir, "exceedance",
-           "set datafile separator ','\nset grid\nset yrange [0:1]\nset xlabel 'target PGA [g] (" +
+           "set datafile separator ','\nset termoption noenhanced\nset grid\nset yrange [0:1]\nset xlabel 'target PGA [g] (" +
                o.pga_key + ")'\nset ylabel 'share of runs'\nset title " +
                gp_string("share of runs with " + o.response + " > " + format_number(o.limit)) +
                "\nplot 'exceedance.csv' skip 1 using 1:4 with linespoints notitle\n",
@@ -226,7 +226,7 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
     // Largest swing on top: bar i sits at y = n - 1 - i.
     const std::string n = std::to_string(bars.size());
     render(dir, "tornado",
-           "set datafile separator ','\nset grid x\nset xlabel " + gp_string(axis_label(o.response)) +
+           "set datafile separator ','\nset termoption noenhanced\nset grid x\nset xlabel " + gp_string(axis_label(o.response)) +
                "\nset title 'one factor at a time, about the base run'\nset yrange [-1:" + n +
                "]\nset style fill solid 0.5\nset arrow from " + format_number(bars[0].base) +
                ", graph 0 to " + format_number(bars[0].base) +

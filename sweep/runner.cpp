@@ -311,7 +311,7 @@ SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options)
     }
 #endif
   }
-  Design d = load_design(design_file);
+  Design d = load_design(design_file, options.set);
   validate_design(d);
   SweepSummary s;
   if (!mpi_built_in() && launcher_size() > 1) {

@@ -21,6 +21,7 @@ struct SweepOptions {
                                //   the cores divided among the ranks of one machine)
   bool restart = false;        // discard the runs of an earlier, different design in DIR
   bool progress = true;        // draw a progress bar on stderr when it is a terminal
+  std::vector<std::string> set;  // overrides added to the design's `set` for every run
   void validate() const;       // throws std::invalid_argument naming the field
 };
 
