@@ -47,7 +47,9 @@ void run(const SweepArgs& args) {
             << " already done (skipped), " << s.ran << " run now\n";
   std::cout << "workers    " << s.workers << " thread" << (s.workers == 1 ? "" : "s") << " on "
             << s.ranks << " process" << (s.ranks == 1 ? "" : "es")
-            << (sweep::mpi_built_in() ? " (MPI built in)" : " (MPI is not built in)") << '\n';
+            << (sweep::mpi_built_in() ? " (MPI built in)" : " (MPI is not built in)");
+  if (s.ranks > 1) std::cout << "; " << s.ran_elsewhere << " runs on ranks other than 0";
+  std::cout << '\n';
   std::cout << "failed     " << s.failed << " of " << s.runs
             << " runs did not complete (their status is in results.csv)\n";
   std::cout << "results    " << s.results.string() << '\n';

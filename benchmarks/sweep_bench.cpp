@@ -2,7 +2,9 @@
 // benchmark bridge, scenes/sweeps/fig6.toml) on one worker thread and on every core. Each
 // configuration runs `repeats` times into a fresh folder; the medians give
 //   efficiency = T(1 worker) / (N * T(N workers))   (1 = linear speed-up; goal >= 0.85).
-// The load average is printed, since other processes on the machine lower the efficiency.
+// The load average is printed, since other processes on the machine lower the efficiency; the
+// process CPU time is printed too: its ratio between the two configurations is the work the
+// parallel run adds (1 = none), independent of the load.
 // The MPI counterpart is benchmarks/sweep_mpi_bench.sh.
 //
 //   sweep_bench [repeats = 3] [csv = sweep_bench.csv] [end_time = scene's] [workers = all cores]
@@ -10,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -51,11 +54,11 @@ int main(int argc, char** argv) {
               NSB_GIT_REVISION, load_average());
   const fs::path scratch = fs::temp_directory_path() / "nsb_sweep_bench";
   std::ofstream csv(csv_path);
-  csv << "workers,repeat,wall_s,runs,runs_per_s\n";
-  std::vector<double> medians;
+  csv << "workers,repeat,wall_s,cpu_s,runs,runs_per_s\n";
+  std::vector<double> medians, cpu_medians;
   std::size_t runs = 0;
   for (const int w : {1, workers}) {
-    std::vector<double> walls;
+    std::vector<double> walls, cpus;
     for (int r = 0; r < repeats; ++r) {
       SweepOptions o;
       std::string name = "w";
@@ -67,19 +70,27 @@ int main(int argc, char** argv) {
       fs::remove_all(o.out);
       if (!end_time.empty()) o.set.push_back("solver.end_time=" + end_time);
       const auto start = std::chrono::steady_clock::now();
+      const std::clock_t cpu_start = std::clock();
       const SweepSummary s = run_sweep(design, o);
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+      cpus.push_back(cpu);
       runs = s.runs;
       walls.push_back(wall);
-      csv << w << ',' << r << ',' << wall << ',' << s.runs << ',' << s.runs / wall << '\n';
+      csv << w << ',' << r << ',' << wall << ',' << cpu << ',' << s.runs << ',' << s.runs / wall << '\n';
     }
     medians.push_back(median(walls));
-    std::printf("%2d worker%s: median %.3f s for %zu runs (%.2f runs/s)\n", w, w == 1 ? " " : "s",
-                medians.back(), runs, static_cast<double>(runs) / medians.back());
+    cpu_medians.push_back(median(cpus));
+    std::printf("%2d worker%s: median %.3f s wall, %.3f s CPU for %zu runs (%.2f runs/s)\n", w,
+                w == 1 ? " " : "s", medians.back(), cpu_medians.back(), runs,
+                static_cast<double>(runs) / medians.back());
+    std::fflush(stdout);
   }
   const double efficiency = medians[0] / (workers * medians[1]);
   std::printf("parallel efficiency %.3f (speed-up %.2f on %d workers; goal >= 0.85), load "
               "average after %.2f\n", efficiency, medians[0] / medians[1], workers, load_average());
+  std::printf("CPU time ratio %.3f (CPU of 1 worker / CPU of %d; 1 = no parallel overhead)\n",
+              cpu_medians[0] / cpu_medians[1], workers);
   fs::remove_all(scratch);
   return 0;
 }

@@ -184,6 +184,7 @@ SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& opti
           stop.store(true);
         } else {
           plan.rows[static_cast<std::size_t>(index)] = text;
+          ++s.ran_elsewhere;
           if (static_cast<Report>(report) == Report::kFailed) failed.fetch_add(1);
         }
         done.fetch_add(1);

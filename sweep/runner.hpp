@@ -33,6 +33,7 @@ struct SweepSummary {
   std::size_t failed = 0;        // rows whose status is not a completed one (all rows)
   int workers = 0;               // threads over all processes
   int ranks = 1;                 // MPI processes (1 without MPI)
+  std::size_t ran_elsewhere = 0; // of `ran`, the runs made by MPI ranks other than 0
   bool primary = true;           // false on MPI ranks other than 0: they print nothing
   std::vector<std::string> notes;  // things to tell the user (revision changed, MPI absent)
   std::filesystem::path results; // DIR/results.csv
