@@ -271,3 +271,19 @@ TEST_CASE("format_number: shortest text that reads back to the same double") {
     CHECK(std::stod(nsb::sweep::format_number(v)) == v);
   }
 }
+
+TEST_CASE("every shipped design in scenes/sweeps/ is valid") {
+  int designs = 0;
+  for (const auto& entry : fs::directory_iterator(kScenes + "/sweeps")) {
+    if (entry.path().extension() != ".toml") continue;
+    INFO(entry.path().string());
+    Design d;
+    CHECK_NOTHROW(d = load_design(entry.path()));
+    CHECK_NOTHROW(validate_design(d));
+    CHECK(!d.runs.empty());
+    ++designs;
+  }
+  CHECK(designs >= 3);
+  // Fig. 6: 7 excitations x with/without pounding x 3 friction coefficients.
+  CHECK(load_design(kScenes + "/sweeps/fig6.toml").runs.size() == 42);
+}
