@@ -1,4 +1,5 @@
-// nsbridge sweep DESIGN.toml --out DIR [--jobs N] [--set key=value ...] [--restart] [--plot [--pga-key KEY]
+// nsbridge sweep DESIGN.toml --out DIR [--jobs N] [--set key=value ...] [--restart] [--plot
+// [--pga-key KEY]
 //                            [--response COLUMN] [--limit VALUE]] [--plot-only]
 //
 // Expands a design file (docs/sweep.md) into runs of one scene, runs them on --jobs threads
@@ -29,8 +30,9 @@ struct SweepArgs {
 void draw(const SweepArgs& args) {
   const auto results = args.options.out / "results.csv";
   const auto files = sweep::draw_plots(results, args.options.out / "plots", args.plots);
-  std::cout << "plots      " << (files.empty() ? "none (no PGA factor and no base run)"
-                                                 : (args.options.out / "plots").string() + "/")
+  std::cout << "plots      "
+            << (files.empty() ? "none (no PGA factor and no base run)"
+                              : (args.options.out / "plots").string() + "/")
             << '\n';
 }
 
@@ -77,8 +79,9 @@ void add_sweep_command(CLI::App& app) {
                 "Discard the runs already in --out (needed when the design changed)");
   cmd->add_flag("--plot", args->plot, "Draw IDA, exceedance and tornado plots into DIR/plots/");
   cmd->add_flag("--plot-only", args->plot_only, "Only draw the plots from DIR/results.csv");
-  cmd->add_option("--pga-key", args->plots.pga_key, "Factor on the x axis of the IDA and "
-                                                    "exceedance plots [g]")
+  cmd->add_option("--pga-key", args->plots.pga_key,
+                  "Factor on the x axis of the IDA and "
+                  "exceedance plots [g]")
       ->capture_default_str();
   cmd->add_option("--response", args->plots.response, "results.csv column to plot")
       ->capture_default_str();

@@ -12,9 +12,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -50,8 +50,8 @@ int main(int argc, char** argv) {
   std::printf("sweep_bench: %s, 1 and %d workers (%d cores), %d repeats (median)%s%s\n",
               design.c_str(), workers, cores, repeats, end_time.empty() ? "" : ", end_time ",
               end_time.c_str());
-  std::printf("build %s, revision %s, load average before %.2f\n", NSB_BUILD_TYPE,
-              NSB_GIT_REVISION, load_average());
+  std::printf("build %s, revision %s, load average before %.2f\n", NSB_BUILD_TYPE, NSB_GIT_REVISION,
+              load_average());
   const fs::path scratch = fs::temp_directory_path() / "nsb_sweep_bench";
   std::ofstream csv(csv_path);
   csv << "workers,repeat,wall_s,cpu_s,runs,runs_per_s\n";
@@ -72,12 +72,14 @@ int main(int argc, char** argv) {
       const auto start = std::chrono::steady_clock::now();
       const std::clock_t cpu_start = std::clock();
       const SweepSummary s = run_sweep(design, o);
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
       cpus.push_back(cpu);
       runs = s.runs;
       walls.push_back(wall);
-      csv << w << ',' << r << ',' << wall << ',' << cpu << ',' << s.runs << ',' << s.runs / wall << '\n';
+      csv << w << ',' << r << ',' << wall << ',' << cpu << ',' << s.runs << ',' << s.runs / wall
+          << '\n';
     }
     medians.push_back(median(walls));
     cpu_medians.push_back(median(cpus));
@@ -87,8 +89,10 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   const double efficiency = medians[0] / (workers * medians[1]);
-  std::printf("parallel efficiency %.3f (speed-up %.2f on %d workers; goal >= 0.85), load "
-              "average after %.2f\n", efficiency, medians[0] / medians[1], workers, load_average());
+  std::printf(
+      "parallel efficiency %.3f (speed-up %.2f on %d workers; goal >= 0.85), load "
+      "average after %.2f\n",
+      efficiency, medians[0] / medians[1], workers, load_average());
   std::printf("CPU time ratio %.3f (CPU of 1 worker / CPU of %d; 1 = no parallel overhead)\n",
               cpu_medians[0] / cpu_medians[1], workers);
   fs::remove_all(scratch);

@@ -20,10 +20,14 @@ namespace fs = std::filesystem;
 
 std::string_view to_string(Mode m) {
   switch (m) {
-    case Mode::kGrid: return "grid";
-    case Mode::kLatin: return "latin";
-    case Mode::kList: return "list";
-    case Mode::kOat: return "oat";
+    case Mode::kGrid:
+      return "grid";
+    case Mode::kLatin:
+      return "latin";
+    case Mode::kList:
+      return "list";
+    case Mode::kOat:
+      return "oat";
   }
   return "grid";
 }
@@ -40,7 +44,8 @@ namespace {
 // Where errors point: "<file>:<line>:<col>: <key>: <what>".
 struct Context {
   std::string file;
-  [[noreturn]] void fail(const toml::node* n, const std::string& key, const std::string& what) const {
+  [[noreturn]] void fail(const toml::node* n, const std::string& key,
+                         const std::string& what) const {
     std::ostringstream s;
     s << file;
     if (n != nullptr && n->source().begin.line > 0) {
@@ -136,7 +141,8 @@ std::vector<double> spaced(const Context& c, const toml::node& n, const std::str
 // otherwise as written (the scene's own lookup then applies: docs/scenes.md).
 std::string record_path(const fs::path& dir, const std::string& p) {
   const fs::path candidate = dir / p;
-  if (fs::path(p).is_relative() && fs::exists(candidate)) return candidate.lexically_normal().string();
+  if (fs::path(p).is_relative() && fs::exists(candidate))
+    return candidate.lexically_normal().string();
   return p;
 }
 
@@ -192,7 +198,8 @@ Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, 
     for (const auto& r : array_of(c, *n, where + ".records")) {
       const auto* rt = r.as_table();
       const std::string rw = where + ".records";
-      if (rt == nullptr) c.fail(&r, rw, "each record must be a table {name, transverse, longitudinal}");
+      if (rt == nullptr)
+        c.fail(&r, rw, "each record must be a table {name, transverse, longitudinal}");
       check_keys(c, *rt, rw, {"name", "transverse", "longitudinal"});
       Level level;
       for (const auto& [component, scene_key] : record_components()) {
@@ -231,15 +238,15 @@ Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, 
   }
   std::set<std::string> labels;
   for (const auto& l : f.levels) {
-    if (!labels.insert(l.label).second) c.fail(&t, where, "level \"" + l.label + "\" appears twice");
+    if (!labels.insert(l.label).second)
+      c.fail(&t, where, "level \"" + l.label + "\" appears twice");
   }
   return f;
 }
 
 // List mode: every row of the CSV is a run. A column named like a [[factor]] with records or
 // levels selects a level by its name; any other column is a scene key and its cells values.
-void expand_list(const Context& c, const toml::node& runs_node, const fs::path& dir,
-                 Design& d) {
+void expand_list(const Context& c, const toml::node& runs_node, const fs::path& dir, Design& d) {
   if (!runs_node.is_string()) c.fail(&runs_node, "runs", "must be the name of a CSV file");
   const fs::path csv = dir / *runs_node.value<std::string>();
   std::ifstream in(csv);
@@ -263,16 +270,16 @@ void expand_list(const Context& c, const toml::node& runs_node, const fs::path& 
         }
         Factor f;
         f.key = h;
-        const auto it = std::find_if(named.begin(), named.end(),
-                                     [&](const Factor& n) { return n.key == h; });
+        const auto it =
+            std::find_if(named.begin(), named.end(), [&](const Factor& n) { return n.key == h; });
         if (it != named.end()) f = *it;
         d.factors.push_back(std::move(f));
       }
       continue;
     }
     if (fields.size() != header.size()) {
-      throw std::invalid_argument(where + ": " + std::to_string(fields.size()) + " fields, the header has " +
-                                  std::to_string(header.size()));
+      throw std::invalid_argument(where + ": " + std::to_string(fields.size()) +
+                                  " fields, the header has " + std::to_string(header.size()));
     }
     Run run;
     run.overrides = d.set;
@@ -281,8 +288,8 @@ void expand_list(const Context& c, const toml::node& runs_node, const fs::path& 
       const std::string& cell = fields[k];
       run.labels.push_back(cell);
       if (cell.empty()) continue;
-      const auto named_it = std::find_if(named.begin(), named.end(),
-                                         [&](const Factor& n) { return n.key == f.key; });
+      const auto named_it =
+          std::find_if(named.begin(), named.end(), [&](const Factor& n) { return n.key == f.key; });
       if (named_it != named.end()) {
         const auto level = std::find_if(f.levels.begin(), f.levels.end(),
                                         [&](const Level& l) { return l.label == cell; });
@@ -376,8 +383,8 @@ void expand_latin(Design& d) {
         run.overrides.push_back(f.key + "=" + s);
       } else {
         const auto m = f.levels.size();
-        const Level& l =
-            f.levels[std::min(m - 1, static_cast<std::size_t>(draw[k][i] * static_cast<double>(m)))];
+        const Level& l = f.levels[std::min(
+            m - 1, static_cast<std::size_t>(draw[k][i] * static_cast<double>(m)))];
         run.labels.push_back(l.label);
         run.overrides.insert(run.overrides.end(), l.overrides.begin(), l.overrides.end());
       }
@@ -443,12 +450,14 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
       << e.description();
     throw std::invalid_argument(s.str());
   }
-  check_keys(c, root, "", {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor"});
+  check_keys(c, root, "",
+             {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor"});
   Design d;
   d.file = fs::absolute(file).lexically_normal();
   const fs::path dir = d.file.parent_path();
   const auto* scene = root.get("scene");
-  if (scene == nullptr || !scene->is_string()) c.fail(scene, "scene", "required: the base scene file");
+  if (scene == nullptr || !scene->is_string())
+    c.fail(scene, "scene", "required: the base scene file");
   d.scene = (dir / *scene->value<std::string>()).lexically_normal();
   if (!fs::is_regular_file(d.scene)) c.fail(scene, "scene", "no such file: " + d.scene.string());
   if (const auto* set = root.get("set")) {
@@ -462,16 +471,22 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
     }
   }
   for (const auto& s : extra_set) {
-    if (s.find('=') == std::string::npos) throw std::invalid_argument("--set " + s + ": must be key=value");
+    if (s.find('=') == std::string::npos)
+      throw std::invalid_argument("--set " + s + ": must be key=value");
     d.set.push_back(s);
   }
   if (const auto* mode = root.get("mode")) {
     const std::string m = mode->value<std::string>().value_or("");
-    if (m == "grid") d.mode = Mode::kGrid;
-    else if (m == "latin") d.mode = Mode::kLatin;
-    else if (m == "list") d.mode = Mode::kList;
-    else if (m == "oat") d.mode = Mode::kOat;
-    else c.fail(mode, "mode", "must be \"grid\", \"latin\", \"list\" or \"oat\"");
+    if (m == "grid")
+      d.mode = Mode::kGrid;
+    else if (m == "latin")
+      d.mode = Mode::kLatin;
+    else if (m == "list")
+      d.mode = Mode::kList;
+    else if (m == "oat")
+      d.mode = Mode::kOat;
+    else
+      c.fail(mode, "mode", "must be \"grid\", \"latin\", \"list\" or \"oat\"");
   }
   const auto* samples = root.get("samples");
   const auto* seed = root.get("seed");
@@ -479,26 +494,32 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
   if (d.mode == Mode::kLatin) {
     if (samples == nullptr || !samples->is_integer() || *samples->value<std::int64_t>() < 1 ||
         *samples->value<std::int64_t>() > 1000000) {
-      c.fail(samples != nullptr ? samples : &root, "samples", "latin: required integer in 1..1000000");
+      c.fail(samples != nullptr ? samples : &root, "samples",
+             "latin: required integer in 1..1000000");
     }
     d.samples = *samples->value<std::int64_t>();
     if (seed != nullptr) {
-      if (!seed->is_integer() || *seed->value<std::int64_t>() < 0) c.fail(seed, "seed", "must be an integer >= 0");
+      if (!seed->is_integer() || *seed->value<std::int64_t>() < 0)
+        c.fail(seed, "seed", "must be an integer >= 0");
       d.seed = static_cast<std::uint64_t>(*seed->value<std::int64_t>());
     }
   } else {
     if (samples != nullptr) c.fail(samples, "samples", "only for mode = \"latin\"");
     if (seed != nullptr) c.fail(seed, "seed", "only for mode = \"latin\"");
   }
-  if (d.mode == Mode::kList && runs == nullptr) c.fail(&root, "runs", "list: required CSV file of runs");
+  if (d.mode == Mode::kList && runs == nullptr)
+    c.fail(&root, "runs", "list: required CSV file of runs");
   if (d.mode != Mode::kList && runs != nullptr) c.fail(runs, "runs", "only for mode = \"list\"");
   if (const auto* factors = root.get("factor")) {
     const auto* a = factors->as_array();
-    if (a == nullptr || !a->is_array_of_tables()) c.fail(factors, "factor", "must be [[factor]] tables");
+    if (a == nullptr || !a->is_array_of_tables())
+      c.fail(factors, "factor", "must be [[factor]] tables");
     std::set<std::string> keys;
     for (std::size_t k = 0; k < a->size(); ++k) {
       Factor f = read_factor(c, *(*a)[k].as_table(), dir, k, d.mode);
-      if (!keys.insert(f.key).second) c.fail(&(*a)[k], "factor[" + std::to_string(k) + "].key", "\"" + f.key + "\" appears twice");
+      if (!keys.insert(f.key).second)
+        c.fail(&(*a)[k], "factor[" + std::to_string(k) + "].key",
+               "\"" + f.key + "\" appears twice");
       d.factors.push_back(std::move(f));
     }
   }
@@ -515,7 +536,9 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
       if (d.factors.empty()) c.fail(&root, "factor", "latin: at least one [[factor]]");
       expand_latin(d);
       break;
-    case Mode::kList: expand_list(c, *runs, dir, d); break;
+    case Mode::kList:
+      expand_list(c, *runs, dir, d);
+      break;
   }
   const std::size_t width = std::max<std::size_t>(4, std::to_string(d.runs.size() - 1).size());
   for (std::size_t i = 0; i < d.runs.size(); ++i) {
@@ -541,10 +564,12 @@ void validate_design(const Design& d) {
     const Factor& f = d.factors[k];
     std::string at;
     if (f.line > 0) at.append(":").append(std::to_string(f.line));
-    for (const Level& l : f.levels) attempt(l.overrides, at + ": factor " + f.key + " = " + l.label);
+    for (const Level& l : f.levels)
+      attempt(l.overrides, at + ": factor " + f.key + " = " + l.label);
     if (f.range) {
       for (const double v : *f.range) {
-        attempt({f.key + "=" + format_number(v)}, at + ": factor " + f.key + " = " + format_number(v));
+        attempt({f.key + "=" + format_number(v)},
+                at + ": factor " + f.key + " = " + format_number(v));
       }
     }
   }

@@ -33,10 +33,10 @@ struct Level {
 };
 
 struct Factor {
-  std::string key;                     // column of results.csv: the scene key, or a name
-  std::vector<Level> levels;           // the levels (empty for a continuous latin range)
+  std::string key;                             // column of results.csv: the scene key, or a name
+  std::vector<Level> levels;                   // the levels (empty for a continuous latin range)
   std::optional<std::array<double, 2>> range;  // latin only: continuous [low, high]
-  int line = 0;                        // line of its [[factor]] table in the design file
+  int line = 0;                                // line of its [[factor]] table in the design file
 };
 
 // One run: the label of every factor (empty when the factor keeps the base scene's value,
@@ -48,22 +48,23 @@ struct Run {
 };
 
 struct Design {
-  std::filesystem::path file;          // the design file
-  std::filesystem::path scene;         // the base scene, resolved against the design's folder
-  std::vector<std::string> set;        // overrides applied to every run
+  std::filesystem::path file;    // the design file
+  std::filesystem::path scene;   // the base scene, resolved against the design's folder
+  std::vector<std::string> set;  // overrides applied to every run
   Mode mode = Mode::kGrid;
-  std::int64_t samples = 0;            // latin: number of runs, >= 1
-  std::uint64_t seed = 0;              // latin: seed of the permutations
-  std::vector<Factor> factors;         // in file order (list mode: one per CSV column)
-  std::vector<Run> runs;               // the expanded runs, in id order
-  std::string hash;                    // 16 hex digits; changes whenever a run would change
+  std::int64_t samples = 0;     // latin: number of runs, >= 1
+  std::uint64_t seed = 0;       // latin: seed of the permutations
+  std::vector<Factor> factors;  // in file order (list mode: one per CSV column)
+  std::vector<Run> runs;        // the expanded runs, in id order
+  std::string hash;             // 16 hex digits; changes whenever a run would change
 };
 
 // Reads and expands a design file. Throws std::invalid_argument naming the file, line and key
 // for a malformed design (unknown key, empty factor, duplicate key, bad range, bad CSV).
 // extra_set: overrides appended to the file's `set` (the command line's --set), e.g. a short
 // end_time for a quick look.
-Design load_design(const std::filesystem::path& file, const std::vector<std::string>& extra_set = {});
+Design load_design(const std::filesystem::path& file,
+                   const std::vector<std::string>& extra_set = {});
 
 // Loads the base scene once with the design's fixed overrides and once with each level of
 // each factor (for a latin range: both ends), so that an unknown key or a value the scene

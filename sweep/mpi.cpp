@@ -22,8 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kRequestTag = 1;     // worker -> rank 0: "<thread> <index> <state>\n<row>"
-constexpr int kReplyTagBase = 100; // rank 0 -> worker thread t: the next index, tag base + t
+constexpr int kRequestTag = 1;      // worker -> rank 0: "<thread> <index> <state>\n<row>"
+constexpr int kReplyTagBase = 100;  // rank 0 -> worker thread t: the next index, tag base + t
 
 // What a finished run reports with its request (the first request reports none).
 enum class Report : int { kNone = 0, kSucceeded = 1, kFailed = 2, kError = 3 };
@@ -60,7 +60,8 @@ void remote_worker(const Design& d, const SweepOptions& options, int thread) {
   for (;;) {
     MPI_Send(out.data(), static_cast<int>(out.size()), MPI_CHAR, 0, kRequestTag, MPI_COMM_WORLD);
     long long index = -1;
-    MPI_Recv(&index, 1, MPI_LONG_LONG, 0, kReplyTagBase + thread, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    MPI_Recv(&index, 1, MPI_LONG_LONG, 0, kReplyTagBase + thread, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
     if (index < 0) return;
     try {
       const RunOutcome o = run_one(d, static_cast<std::size_t>(index), options.out);
@@ -159,7 +160,8 @@ SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& opti
     while (remote_active > 0 || local_exited.load() < jobs) {
       int flag = 0;
       MPI_Status status;
-      if (remote_active > 0) MPI_Iprobe(MPI_ANY_SOURCE, kRequestTag, MPI_COMM_WORLD, &flag, &status);
+      if (remote_active > 0)
+        MPI_Iprobe(MPI_ANY_SOURCE, kRequestTag, MPI_COMM_WORLD, &flag, &status);
       if (flag == 0) {
         bar.update(s.already_done + done.load(), failed.load(), total);
         // Poll, rather than block in MPI_Recv, whose busy wait would take a core from the
@@ -180,7 +182,8 @@ SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& opti
       if (index >= 0) {
         if (static_cast<Report>(report) == Report::kError) {
           const std::lock_guard<std::mutex> lock(error_mutex);
-          if (remote_error.empty()) remote_error = "rank " + std::to_string(status.MPI_SOURCE) + ": " + text;
+          if (remote_error.empty())
+            remote_error = "rank " + std::to_string(status.MPI_SOURCE) + ": " + text;
           stop.store(true);
         } else {
           plan.rows[static_cast<std::size_t>(index)] = text;

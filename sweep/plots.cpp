@@ -118,8 +118,14 @@ std::vector<TornadoBar> tornado_bars(const Table& t, const PlotOptions& o) {
       if (fresh) {
         b = {t.header[set[0]], *y, *y, row[set[0]], row[set[0]], 0.0};
       } else {
-        if (*y < b.low) { b.low = *y; b.low_level = row[set[0]]; }
-        if (*y > b.high) { b.high = *y; b.high_level = row[set[0]]; }
+        if (*y < b.low) {
+          b.low = *y;
+          b.low_level = row[set[0]];
+        }
+        if (*y > b.high) {
+          b.high = *y;
+          b.high_level = row[set[0]];
+        }
       }
     }
   }
@@ -155,12 +161,13 @@ void render(const fs::path& dir, const std::string& stem, const std::string& scr
             std::vector<fs::path>& files) {
   write_file_atomically(dir / (stem + ".gp"), script);
   files.push_back(dir / (stem + ".gp"));
-  for (const auto& [terminal, ext] : {std::pair<std::string, std::string>{"pngcairo size 900,600", "png"},
-                                      {"svg size 900,600", "svg"}}) {
-    const std::string cmd = "cd " + gp_string(dir.string()) + " && gnuplot -e " +
-                            gp_string("set terminal " + terminal + "; set output '" + stem + "." +
-                                      ext + "'") +
-                            " " + stem + ".gp 2>/dev/null";
+  for (const auto& [terminal, ext] :
+       {std::pair<std::string, std::string>{"pngcairo size 900,600", "png"},
+        {"svg size 900,600", "svg"}}) {
+    const std::string cmd =
+        "cd " + gp_string(dir.string()) + " && gnuplot -e " +
+        gp_string("set terminal " + terminal + "; set output '" + stem + "." + ext + "'") + " " +
+        stem + ".gp 2>/dev/null";
     if (std::system(cmd.c_str()) != 0) {
       throw std::runtime_error(dir.string() + ": gnuplot could not draw " + stem + "." + ext);
     }
@@ -186,14 +193,17 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
     std::string csv = "curve," + csv_quote(o.pga_key) + "," + o.response + "\n";
     std::vector<std::string> curves;
     for (const auto& p : ida) {
-      csv += csv_quote(p.curve) + "," + format_number(p.pga) + "," + format_number(p.response) + "\n";
+      csv +=
+          csv_quote(p.curve) + "," + format_number(p.pga) + "," + format_number(p.response) + "\n";
       if (curves.empty() || curves.back() != p.curve) curves.push_back(p.curve);
     }
     write_file_atomically(dir / "ida.csv", csv);
     files.push_back(dir / "ida.csv");
-    std::string gp = "set datafile separator ','\nset termoption noenhanced\nset key top left\nset grid\n"
-                     "set xlabel 'target PGA [g] (" + o.pga_key + ")'\nset ylabel " +
-                     gp_string(axis_label(o.response)) + "\nset title 'IDA curves'\nplot ";
+    std::string gp =
+        "set datafile separator ','\nset termoption noenhanced\nset key top left\nset grid\n"
+        "set xlabel 'target PGA [g] (" +
+        o.pga_key + ")'\nset ylabel " + gp_string(axis_label(o.response)) +
+        "\nset title 'IDA curves'\nplot ";
     for (std::size_t i = 0; i < curves.size(); ++i) {
       gp += std::string(i == 0 ? "" : ", \\\n     ") + "'ida.csv' skip 1 using 2:(strcol(1) eq " +
             gp_string(curves[i]) + " ? $3 : NaN) with linespoints title " + gp_string(curves[i]);
@@ -202,13 +212,14 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
 
     std::string ex = csv_quote(o.pga_key) + ",runs,exceeding,share\n";
     for (const auto& e : exceedance_points(t, o)) {
-      ex += format_number(e.pga) + "," + std::to_string(e.runs) + "," + std::to_string(e.exceeding) +
-            "," + format_number(e.share) + "\n";
+      ex += format_number(e.pga) + "," + std::to_string(e.runs) + "," +
+            std::to_string(e.exceeding) + "," + format_number(e.share) + "\n";
     }
     write_file_atomically(dir / "exceedance.csv", ex);
     files.push_back(dir / "exceedance.csv");
     render(dir, "exceedance",
-           "set datafile separator ','\nset termoption noenhanced\nset grid\nset yrange [0:1]\nset xlabel 'target PGA [g] (" +
+           "set datafile separator ','\nset termoption noenhanced\nset grid\nset yrange [0:1]\nset "
+           "xlabel 'target PGA [g] (" +
                o.pga_key + ")'\nset ylabel 'share of runs'\nset title " +
                gp_string("share of runs with " + o.response + " > " + format_number(o.limit)) +
                "\nplot 'exceedance.csv' skip 1 using 1:4 with linespoints notitle\n",
@@ -219,14 +230,16 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
     std::string csv = "factor,low,high,base,low_level,high_level\n";
     for (const auto& b : bars) {
       csv += csv_quote(b.factor) + "," + format_number(b.low) + "," + format_number(b.high) + "," +
-             format_number(b.base) + "," + csv_quote(b.low_level) + "," + csv_quote(b.high_level) + "\n";
+             format_number(b.base) + "," + csv_quote(b.low_level) + "," + csv_quote(b.high_level) +
+             "\n";
     }
     write_file_atomically(dir / "tornado.csv", csv);
     files.push_back(dir / "tornado.csv");
     // Largest swing on top: bar i sits at y = n - 1 - i.
     const std::string n = std::to_string(bars.size());
     render(dir, "tornado",
-           "set datafile separator ','\nset termoption noenhanced\nset grid x\nset xlabel " + gp_string(axis_label(o.response)) +
+           "set datafile separator ','\nset termoption noenhanced\nset grid x\nset xlabel " +
+               gp_string(axis_label(o.response)) +
                "\nset title 'one factor at a time, about the base run'\nset yrange [-1:" + n +
                "]\nset style fill solid 0.5\nset arrow from " + format_number(bars[0].base) +
                ", graph 0 to " + format_number(bars[0].base) +

@@ -18,14 +18,14 @@ namespace nsb::sweep {
 
 struct PlotOptions {
   std::string pga_key = "model.excitation.target_pga";  // the factor on the x axis [g]
-  std::string response = "peak_theta";   // the results.csv column plotted [rad for peak_theta]
-  double limit = 0.01;                   // exceedance threshold, in the response's unit, > 0
-  void validate() const;                 // throws std::invalid_argument naming the field
+  std::string response = "peak_theta";  // the results.csv column plotted [rad for peak_theta]
+  double limit = 0.01;                  // exceedance threshold, in the response's unit, > 0
+  void validate() const;                // throws std::invalid_argument naming the field
 };
 
 struct IdaPoint {
-  std::string curve;   // the other factors' values, "key=value; ..." ("all" when none)
-  double pga = 0.0;    // [g]
+  std::string curve;  // the other factors' values, "key=value; ..." ("all" when none)
+  double pga = 0.0;   // [g]
   double response = 0.0;
 };
 // One point per completed run that has a PGA, sorted by curve then PGA. Empty when
@@ -33,10 +33,10 @@ struct IdaPoint {
 std::vector<IdaPoint> ida_points(const Table& results, const PlotOptions& options);
 
 struct ExceedancePoint {
-  double pga = 0.0;         // [g]
-  std::size_t runs = 0;     // completed runs at this PGA
+  double pga = 0.0;           // [g]
+  std::size_t runs = 0;       // completed runs at this PGA
   std::size_t exceeding = 0;  // of which response > limit
-  double share = 0.0;       // exceeding / runs
+  double share = 0.0;         // exceeding / runs
 };
 std::vector<ExceedancePoint> exceedance_points(const Table& results, const PlotOptions& options);
 
@@ -44,7 +44,7 @@ struct TornadoBar {
   std::string factor;
   double low = 0.0, high = 0.0;  // least and largest response over the factor's levels
   std::string low_level, high_level;
-  double base = 0.0;             // response of the base run
+  double base = 0.0;  // response of the base run
 };
 // For a one-factor-at-a-time design: the base run is the row whose factor columns are all
 // empty; a factor's bar spans the runs that set that factor alone. Sorted by swing

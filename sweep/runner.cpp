@@ -48,17 +48,17 @@ bool mpi_built_in() {
 
 const std::vector<std::string>& result_columns() {
   static const std::vector<std::string> c = {
-      "status",        // integrators::RunStatus name, or "rejected" (the scene refused the run)
-      "peak_x",        // max |x| over the recorded samples [m]
-      "peak_y",        // max |y| [m]
-      "peak_theta",    // max |theta| [rad]
-      "residual_theta",  // theta at the last sample [rad]
-      "impacts",       // impact events
+      "status",           // integrators::RunStatus name, or "rejected" (the scene refused the run)
+      "peak_x",           // max |x| over the recorded samples [m]
+      "peak_y",           // max |y| [m]
+      "peak_theta",       // max |theta| [rad]
+      "residual_theta",   // theta at the last sample [rad]
+      "impacts",          // impact events
       "max_penetration",  // max over samples and contacts of -gN, >= 0 [m]
-      "energy_error",  // relative energy-balance error at the end (summary.json energy.error)
-      "end_time",      // simulated time reached [s]
-      "steps",         // accepted steps
-      "lcp_solves", "lcp_fallbacks", "lcp_unsolved",
+      "energy_error",     // relative energy-balance error at the end (summary.json energy.error)
+      "end_time",         // simulated time reached [s]
+      "steps",            // accepted steps
+      "lcp_solves",      "lcp_fallbacks", "lcp_unsolved",
       "failure_time",  // [s], empty for a completed run
       "message",       // why the run stopped early or was rejected; empty otherwise
       "wall_s",        // wall time of the run [s]; the only column that depends on the machine
@@ -131,7 +131,8 @@ RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out) {
   try {
     models::Scene scene = models::load_scene(d.scene, run.overrides);
     integrators::Recorder recorder(*scene.system, scene.output.sample_dt);
-    const integrators::RunResult result = integrators::integrate(*scene.system, scene.run, recorder);
+    const integrators::RunResult result =
+        integrators::integrate(*scene.system, scene.run, recorder);
     integrators::write_outputs(dir, scene.name, recorder, result);
     const auto x = column_stats(recorder, "x");
     const auto y = column_stats(recorder, "y");
@@ -139,12 +140,12 @@ RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out) {
     outcome.succeeded = integrators::succeeded(result.status);
     std::ostringstream row;
     row << row_prefix(d, index) << ',' << integrators::to_string(result.status) << ','
-        << format_number(x.peak) << ',' << format_number(y.peak) << ','
-        << format_number(theta.peak) << ',' << format_number(theta.last) << ','
+        << format_number(x.peak) << ',' << format_number(y.peak) << ',' << format_number(theta.peak)
+        << ',' << format_number(theta.last) << ','
         << recorder.count(integrators::EventKind::kImpact) << ','
         << format_number(max_penetration(recorder)) << ',' << format_number(result.energy.error)
-        << ',' << format_number(result.end_time) << ',' << result.steps << ','
-        << result.lcp_solves << ',' << result.lcp_fallbacks << ',' << result.lcp_unsolved << ','
+        << ',' << format_number(result.end_time) << ',' << result.steps << ',' << result.lcp_solves
+        << ',' << result.lcp_fallbacks << ',' << result.lcp_unsolved << ','
         << (outcome.succeeded ? std::string() : format_number(result.failure_time)) << ','
         << csv_quote(result.completed ? std::string() : result.message) << ','
         << format_number(now_s() - start);
@@ -182,8 +183,8 @@ Plan prepare(const Design& d, const SweepOptions& options) {
       fs::remove(options.out / "results.csv", ec);
       fs::remove_all(options.out / "plots", ec);
     } else if (revision != code_revision()) {
-      plan.notes.push_back("the completed runs were made by revision " + revision +
-                           ", this is " + code_revision() + "; use --restart to redo them");
+      plan.notes.push_back("the completed runs were made by revision " + revision + ", this is " +
+                           code_revision() + "; use --restart to redo them");
     }
   }
   fs::create_directories(options.out / "runs", ec);
@@ -315,8 +316,9 @@ SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options)
   validate_design(d);
   SweepSummary s;
   if (!mpi_built_in() && launcher_size() > 1) {
-    s.notes.push_back("MPI is not built in: rank 0 runs the whole sweep on threads, the other "
-                      "ranks do nothing");
+    s.notes.push_back(
+        "MPI is not built in: rank 0 runs the whole sweep on threads, the other "
+        "ranks do nothing");
   }
   Plan plan = prepare(d, options);
   s.notes.insert(s.notes.end(), plan.notes.begin(), plan.notes.end());
@@ -326,9 +328,10 @@ SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options)
   s.workers = options.jobs > 0 ? options.jobs : default_jobs(1);
   {
     ProgressBar bar(options.progress, s.already_done);
-    run_threaded(d, options, plan, s.workers, [&bar](std::size_t done, std::size_t failed, std::size_t total) {
-      bar.update(done, failed, total);
-    });
+    run_threaded(d, options, plan, s.workers,
+                 [&bar](std::size_t done, std::size_t failed, std::size_t total) {
+                   bar.update(done, failed, total);
+                 });
   }
   write_results(d, options, plan.rows);
   s.failed = count_failed(d, plan.rows);
@@ -355,11 +358,12 @@ void ProgressBar::update(std::size_t done, std::size_t failed, std::size_t total
   last_ = t;
   const double elapsed = t - start_;
   const std::size_t now_done = done - std::min(done, already_);
-  const double left = now_done > 0 ? elapsed / static_cast<double>(now_done) *
-                                         static_cast<double>(total - done)
-                                   : 0.0;
+  const double left =
+      now_done > 0 ? elapsed / static_cast<double>(now_done) * static_cast<double>(total - done)
+                   : 0.0;
   constexpr int kWidth = 30;
-  const int filled = static_cast<int>(kWidth * static_cast<double>(done) / static_cast<double>(total));
+  const int filled =
+      static_cast<int>(kWidth * static_cast<double>(done) / static_cast<double>(total));
   std::string bar(static_cast<std::size_t>(filled), '#');
   bar.resize(kWidth, ' ');
   std::fprintf(stderr, "\r[%s] %zu/%zu runs, %zu failed, %.0f s left ", bar.c_str(), done, total,

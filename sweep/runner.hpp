@@ -16,27 +16,27 @@
 namespace nsb::sweep {
 
 struct SweepOptions {
-  std::filesystem::path out;   // the sweep's folder DIR (created if needed)
-  int jobs = 0;                // worker threads per process, >= 0; 0 = all cores (under MPI:
-                               //   the cores divided among the ranks of one machine)
-  bool restart = false;        // discard the runs of an earlier, different design in DIR
-  bool progress = true;        // draw a progress bar on stderr when it is a terminal
+  std::filesystem::path out;     // the sweep's folder DIR (created if needed)
+  int jobs = 0;                  // worker threads per process, >= 0; 0 = all cores (under MPI:
+                                 //   the cores divided among the ranks of one machine)
+  bool restart = false;          // discard the runs of an earlier, different design in DIR
+  bool progress = true;          // draw a progress bar on stderr when it is a terminal
   std::vector<std::string> set;  // overrides added to the design's `set` for every run
-  void validate() const;       // throws std::invalid_argument naming the field
+  void validate() const;         // throws std::invalid_argument naming the field
 };
 
 // What a sweep did. Counts refer to the runs of the design.
 struct SweepSummary {
-  std::size_t runs = 0;          // runs in the design
-  std::size_t already_done = 0;  // found complete in DIR and skipped
-  std::size_t ran = 0;           // run now
-  std::size_t failed = 0;        // rows whose status is not a completed one (all rows)
-  int workers = 0;               // threads over all processes
-  int ranks = 1;                 // MPI processes (1 without MPI)
-  std::size_t ran_elsewhere = 0; // of `ran`, the runs made by MPI ranks other than 0
-  bool primary = true;           // false on MPI ranks other than 0: they print nothing
+  std::size_t runs = 0;            // runs in the design
+  std::size_t already_done = 0;    // found complete in DIR and skipped
+  std::size_t ran = 0;             // run now
+  std::size_t failed = 0;          // rows whose status is not a completed one (all rows)
+  int workers = 0;                 // threads over all processes
+  int ranks = 1;                   // MPI processes (1 without MPI)
+  std::size_t ran_elsewhere = 0;   // of `ran`, the runs made by MPI ranks other than 0
+  bool primary = true;             // false on MPI ranks other than 0: they print nothing
   std::vector<std::string> notes;  // things to tell the user (revision changed, MPI absent)
-  std::filesystem::path results; // DIR/results.csv
+  std::filesystem::path results;   // DIR/results.csv
 };
 
 // The columns of results.csv after `run` and the factor columns. wall_s is last, so that
@@ -51,8 +51,8 @@ std::string results_header(const Design& design);
 // is a row with its status; a scene that rejects the run's combination of values is a row with
 // status "rejected". Throws std::runtime_error only when the outputs cannot be written.
 struct RunOutcome {
-  std::string row;        // the results.csv line, without newline
-  bool succeeded = false; // a completed status
+  std::string row;         // the results.csv line, without newline
+  bool succeeded = false;  // a completed status
 };
 RunOutcome run_one(const Design& design, std::size_t index, const std::filesystem::path& out);
 
@@ -77,8 +77,8 @@ using SweepProgress = std::function<void(std::size_t done, std::size_t failed, s
 
 // Runs the pending runs of plan on `threads` workers that take the next index from one
 // atomic counter, filling plan.rows. Returns the number of failed runs among them.
-std::size_t run_threaded(const Design& design, const SweepOptions& options, Plan& plan,
-                         int threads, const SweepProgress& progress);
+std::size_t run_threaded(const Design& design, const SweepOptions& options, Plan& plan, int threads,
+                         const SweepProgress& progress);
 
 // The whole sweep: validate, prepare, run (threaded, or over MPI when the process was started
 // by mpirun and MPI is built in), write results.csv. Throws std::invalid_argument for a bad

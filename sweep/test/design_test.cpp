@@ -26,7 +26,8 @@ const std::string kScenes = NSB_SCENES_DIR;
 
 // Writes a design into a fresh folder; the base scene is given by absolute path.
 fs::path write_design(const std::string& name, const std::string& body) {
-  const fs::path dir = fs::temp_directory_path() / ("nsb_design_test_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("nsb_design_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / (name + ".toml");
   std::ofstream(file) << body;
@@ -63,12 +64,13 @@ values = ["moreau", "event_driven"]
   REQUIRE(d.runs.size() == 6);  // 3 x 2
   CHECK(d.runs[0].id == "0000");
   CHECK(d.runs[5].id == "0005");
-  const std::vector<std::vector<std::string>> labels = {
-      {"0.5", "moreau"}, {"0.5", "event_driven"}, {"0.9", "moreau"},
-      {"0.9", "event_driven"}, {"1", "moreau"}, {"1", "event_driven"}};
+  const std::vector<std::vector<std::string>> labels = {{"0.5", "moreau"}, {"0.5", "event_driven"},
+                                                        {"0.9", "moreau"}, {"0.9", "event_driven"},
+                                                        {"1", "moreau"},   {"1", "event_driven"}};
   for (std::size_t i = 0; i < 6; ++i) CHECK(d.runs[i].labels == labels[i]);
   // The fixed overrides first, then one per factor; strings are quoted for the scene reader.
-  CHECK(d.runs[1].overrides == std::vector<std::string>{"solver.end_time=1", "model.restitution=0.5",
+  CHECK(d.runs[1].overrides == std::vector<std::string>{"solver.end_time=1",
+                                                        "model.restitution=0.5",
                                                         "solver.method=\"event_driven\""});
   CHECK_NOTHROW(validate_design(d));
 }
@@ -165,10 +167,10 @@ records = [
   const auto& sylmar = d.factors[0].levels[0];
   CHECK(sylmar.label == "sylmar");
   // a.AT2 exists beside the design: resolved there; b.AT2 does not: left to the scene's lookup.
-  CHECK(sylmar.overrides == std::vector<std::string>{
-                                "model.excitation.transverse_record=\"" +
-                                    (file.parent_path() / "a.AT2").string() + "\"",
-                                "model.excitation.longitudinal_record=\"b.AT2\""});
+  CHECK(sylmar.overrides ==
+        std::vector<std::string>{"model.excitation.transverse_record=\"" +
+                                     (file.parent_path() / "a.AT2").string() + "\"",
+                                 "model.excitation.longitudinal_record=\"b.AT2\""});
   CHECK(d.factors[0].levels[1].label == "elCentro");  // the file's stem by default
 }
 
@@ -184,8 +186,10 @@ levels = [ { name = "low", set = ["model.height=0.5"] }, { name = "high", set = 
       << "# a comment\ndrop,model.restitution\nlow,0.5\nhigh,\"0.75\"\nhigh,\n";
   const Design d = load_design(file);
   REQUIRE(d.runs.size() == 3);
-  CHECK(d.runs[0].overrides == std::vector<std::string>{"model.height=0.5", "model.restitution=0.5"});
-  CHECK(d.runs[1].overrides == std::vector<std::string>{"model.height=2", "model.restitution=0.75"});
+  CHECK(d.runs[0].overrides ==
+        std::vector<std::string>{"model.height=0.5", "model.restitution=0.5"});
+  CHECK(d.runs[1].overrides ==
+        std::vector<std::string>{"model.height=2", "model.restitution=0.75"});
   CHECK(d.runs[2].overrides == std::vector<std::string>{"model.height=2"});  // empty: base value
   CHECK_NOTHROW(validate_design(d));
 }
@@ -208,15 +212,20 @@ TEST_CASE("design errors name the file, the line and the key") {
     std::string expected;  // a part of the message
   };
   const std::vector<Case> cases = {
-      {"[[factor]]\nkey = \"model.height\"\nvalues = []\n", ":4:10: factor[0].values: must not be empty"},
+      {"[[factor]]\nkey = \"model.height\"\nvalues = []\n",
+       ":4:10: factor[0].values: must not be empty"},
       {"colour = 1\n[[factor]]\nkey = \"a\"\nvalues = [1]\n", ":2:10: colour: unknown key"},
-      {"[[factor]]\nkey = \"model.height\"\nvalues = [1]\n[[factor]]\nkey = \"model.height\"\nvalues = [2]\n",
+      {"[[factor]]\nkey = \"model.height\"\nvalues = [1]\n[[factor]]\nkey = "
+       "\"model.height\"\nvalues = [2]\n",
        "factor[1].key: \"model.height\" appears twice"},
       {"[[factor]]\nkey = \"model.height\"\nvalues = [1, 1.0]\n", "level \"1\" appears twice"},
-      {"[[factor]]\nkey = \"model.height\"\nrange = [1, 2]\n", "factor[0].range: only for mode = \"latin\""},
+      {"[[factor]]\nkey = \"model.height\"\nrange = [1, 2]\n",
+       "factor[0].range: only for mode = \"latin\""},
       {"mode = \"spiral\"\n[[factor]]\nkey = \"a\"\nvalues = [1]\n", ":2:8: mode: must be"},
-      {"[[factor]]\nkey = \"model.height\"\nlinspace = [1, 2]\n", "linspace: must be [first, last, count]"},
-      {"[[factor]]\nkey = \"model.height\"\nvalues = [1]\nlinspace = [1, 2, 3]\n", "give exactly one of"},
+      {"[[factor]]\nkey = \"model.height\"\nlinspace = [1, 2]\n",
+       "linspace: must be [first, last, count]"},
+      {"[[factor]]\nkey = \"model.height\"\nvalues = [1]\nlinspace = [1, 2, 3]\n",
+       "give exactly one of"},
       {"mode = \"list\"\nruns = \"missing.csv\"\n", "runs: cannot read"},
       {"", "factor: grid: at least one [[factor]]"},
   };
@@ -239,7 +248,7 @@ values = [0.5]
 key = "model.colour"
 values = [1]
 )");
-  const Design d = load_design(unknown);  // the design is well formed ...
+  const Design d = load_design(unknown);                        // the design is well formed ...
   const std::string m = error_of([&] { validate_design(d); });  // ... the scene refuses the key
   CHECK(m.find(unknown.string() + ":7: factor model.colour = 1: ") == 0);
   CHECK(m.find("model.colour") != std::string::npos);
@@ -259,7 +268,8 @@ set = ["solver.end_time=-1"]
 key = "model.restitution"
 values = [0.5]
 )");
-  CHECK(error_of([&] { validate_design(load_design(bad_set)); }).find(": scene: ") != std::string::npos);
+  CHECK(error_of([&] { validate_design(load_design(bad_set)); }).find(": scene: ") !=
+        std::string::npos);
 }
 
 TEST_CASE("format_number: shortest text that reads back to the same double") {

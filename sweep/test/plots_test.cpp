@@ -54,7 +54,7 @@ TEST_CASE("exceedance: share of the completed runs above the limit at each PGA")
 TEST_CASE("tornado: swing about the base run, largest first") {
   Table t;
   t.header = {"run", "mu", "gap", "status", "peak_theta", "wall_s"};
-  t.rows = {{"0000", "", "", "completed", "0.010", "1"},     // base
+  t.rows = {{"0000", "", "", "completed", "0.010", "1"},  // base
             {"0001", "0.2", "", "completed", "0.008", "1"},
             {"0002", "0.8", "", "completed", "0.013", "1"},  // mu: [0.008, 0.013], swing 0.005
             {"0003", "", "0.5", "completed", "0.011", "1"},  // gap: [0.010, 0.011] with the base
@@ -74,14 +74,15 @@ TEST_CASE("tornado: swing about the base run, largest first") {
 }
 
 TEST_CASE("draw_plots writes PNG and SVG beside their CSV") {
-  const auto dir = std::filesystem::temp_directory_path() / ("nsb_plots_test_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("nsb_plots_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "results.csv")
       << "run,record,model.excitation.target_pga,status,peak_theta,wall_s\n"
          "0000,a,0.5,completed,0.004,1\n0001,a,1,completed,0.02,1\n";
   const auto files = draw_plots(dir / "results.csv", dir / "plots", PlotOptions{});
-  for (const char* f : {"ida.csv", "ida.png", "ida.svg", "exceedance.csv", "exceedance.png",
-                        "exceedance.svg"}) {
+  for (const char* f :
+       {"ida.csv", "ida.png", "ida.svg", "exceedance.csv", "exceedance.png", "exceedance.svg"}) {
     INFO(f);
     CHECK(std::filesystem::file_size(dir / "plots" / f) > 0);
   }

@@ -24,8 +24,8 @@ namespace {
 const std::string kScenes = NSB_SCENES_DIR;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("nsb_runner_test_" + std::to_string(::getpid())) / name;
+  const fs::path dir =
+      fs::temp_directory_path() / ("nsb_runner_test_" + std::to_string(::getpid())) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -117,10 +117,11 @@ TEST_CASE("a row equals an independent single run of the same scene") {
 TEST_CASE("results.csv does not depend on the number of workers") {
   const fs::path dir = scratch("jobs");
   const fs::path design = dir / "d.toml";
-  std::ofstream(design) << "scene = \"" << kScenes << "/bridge-exc5.toml\"\n"
-                        << "set = [\"solver.end_time=1.5\"]\n"
-                        << "[[factor]]\nkey = \"model.excitation.target_pga\"\nvalues = [0.5, 1.0, 2.0]\n"
-                        << "[[factor]]\nkey = \"model.seats.friction\"\nvalues = [0.0, 0.5]\n";
+  std::ofstream(design)
+      << "scene = \"" << kScenes << "/bridge-exc5.toml\"\n"
+      << "set = [\"solver.end_time=1.5\"]\n"
+      << "[[factor]]\nkey = \"model.excitation.target_pga\"\nvalues = [0.5, 1.0, 2.0]\n"
+      << "[[factor]]\nkey = \"model.seats.friction\"\nvalues = [0.0, 0.5]\n";
   SweepOptions one, three;
   one.out = dir / "one";
   one.jobs = 1;
