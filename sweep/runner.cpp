@@ -258,7 +258,8 @@ std::size_t run_threaded(const Design& d, const SweepOptions& options, Plan& pla
       });
     }
     std::size_t seen = 0;
-    while (exited.load() < workers) {
+    // Without a progress display the workers are simply joined at the end of this scope.
+    while (progress && exited.load() < workers) {
       ticks.wait(seen);
       seen = ticks.load();
       if (progress) progress(before + done.load(), failed.load(), total);
@@ -328,10 +329,13 @@ SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options)
   s.workers = options.jobs > 0 ? options.jobs : default_jobs(1);
   {
     ProgressBar bar(options.progress, s.already_done);
-    run_threaded(d, options, plan, s.workers,
-                 [&bar](std::size_t done, std::size_t failed, std::size_t total) {
-                   bar.update(done, failed, total);
-                 });
+    SweepProgress progress;
+    if (bar.enabled()) {
+      progress = [&bar](std::size_t done, std::size_t failed, std::size_t total) {
+        bar.update(done, failed, total);
+      };
+    }
+    run_threaded(d, options, plan, s.workers, progress);
   }
   write_results(d, options, plan.rows);
   s.failed = count_failed(d, plan.rows);

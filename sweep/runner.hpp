@@ -100,6 +100,7 @@ class ProgressBar {
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
   void update(std::size_t done, std::size_t failed, std::size_t total);
+  bool enabled() const { return enabled_; }
 
  private:
   bool enabled_;
