@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages nsbridge needs to build, test and plot. Idempotent: when every
-# package is present it prints nothing and changes nothing.
+# package is present it prints nothing and changes nothing. OpenMPI is optional for the build
+# (without it `nsbridge sweep` runs on threads only); CI installs it to test sweeps under mpirun.
 #   --with-siconos   also install Siconos Numerics, the optional reference for benchmarks
 set -euo pipefail
 
@@ -10,6 +11,7 @@ packages=(
   doctest-dev libcli11-dev libtomlplusplus-dev
   libgnuplot-iostream-dev libboost-iostreams-dev libboost-system-dev libboost-filesystem-dev
   gnuplot-nox
+  libopenmpi-dev openmpi-bin
 )
 if [[ "${1:-}" == "--with-siconos" ]]; then
   packages+=(libsiconos-numerics-dev)

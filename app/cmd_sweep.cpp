@@ -1,0 +1,93 @@
+// nsbridge sweep DESIGN.toml --out DIR [--jobs N] [--set key=value ...] [--restart] [--plot
+// [--pga-key KEY]
+//                            [--response COLUMN] [--limit VALUE]] [--plot-only]
+//
+// Expands a design file (docs/sweep.md) into runs of one scene, runs them on --jobs threads
+// (or, started by mpirun, on every rank), writes each run's outputs to DIR/runs/<id>/ and one
+// row per run to DIR/results.csv. A rerun over the same DIR resumes. Exit code 1 when some
+// run did not complete (the rows say which); 2 for a bad design, before any run.
+#include "app/commands.hpp"
+
+#include "sweep/plots.hpp"
+#include "sweep/runner.hpp"
+
+#include <iostream>
+#include <memory>
+#include <string>
+
+namespace nsb::app {
+
+namespace {
+
+struct SweepArgs {
+  std::string design;
+  sweep::SweepOptions options;
+  bool plot = false;
+  bool plot_only = false;
+  sweep::PlotOptions plots;
+};
+
+void draw(const SweepArgs& args) {
+  const auto results = args.options.out / "results.csv";
+  const auto files = sweep::draw_plots(results, args.options.out / "plots", args.plots);
+  std::cout << "plots      "
+            << (files.empty() ? "none (no PGA factor and no base run)"
+                              : (args.options.out / "plots").string() + "/")
+            << '\n';
+}
+
+void run(const SweepArgs& args) {
+  args.plots.validate();
+  if (args.plot_only) {
+    draw(args);
+    return;
+  }
+  const sweep::SweepSummary s = sweep::run_sweep(args.design, args.options);
+  if (!s.primary) return;
+  for (const auto& note : s.notes) std::cerr << "nsbridge sweep: " << note << '\n';
+  std::cout << "runs       " << s.runs << " in the design; " << s.already_done
+            << " already done (skipped), " << s.ran << " run now\n";
+  std::cout << "workers    " << s.workers << " thread" << (s.workers == 1 ? "" : "s") << " on "
+            << s.ranks << " process" << (s.ranks == 1 ? "" : "es")
+            << (sweep::mpi_built_in() ? " (MPI built in)" : " (MPI is not built in)");
+  if (s.ranks > 1) std::cout << "; " << s.ran_elsewhere << " runs on ranks other than 0";
+  std::cout << '\n';
+  std::cout << "failed     " << s.failed << " of " << s.runs
+            << " runs did not complete (their status is in results.csv)\n";
+  std::cout << "results    " << s.results.string() << '\n';
+  if (args.plot) draw(args);
+  if (s.failed > 0) exit_code() = 1;
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app) {
+  auto args = std::make_shared<SweepArgs>();
+  auto* cmd = app.add_subcommand(
+      "sweep", "Run every run of a design file (grid, latin, list, oat) on all cores or MPI ranks");
+  cmd->add_option("design", args->design, "Design file (TOML, docs/sweep.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", args->options.out, "Folder of the sweep: runs/<id>/, results.csv")
+      ->required();
+  cmd->add_option("--jobs", args->options.jobs, "Worker threads per process (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--set", args->options.set,
+                  "Add an override to every run, e.g. --set solver.end_time=2 (repeatable)")
+      ->allow_extra_args(false);
+  cmd->add_flag("--restart", args->options.restart,
+                "Discard the runs already in --out (needed when the design changed)");
+  cmd->add_flag("--plot", args->plot, "Draw IDA, exceedance and tornado plots into DIR/plots/");
+  cmd->add_flag("--plot-only", args->plot_only, "Only draw the plots from DIR/results.csv");
+  cmd->add_option("--pga-key", args->plots.pga_key,
+                  "Factor on the x axis of the IDA and "
+                  "exceedance plots [g]")
+      ->capture_default_str();
+  cmd->add_option("--response", args->plots.response, "results.csv column to plot")
+      ->capture_default_str();
+  cmd->add_option("--limit", args->plots.limit, "Exceedance limit of the response [rad]")
+      ->capture_default_str();
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace nsb::app

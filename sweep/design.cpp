@@ -1,0 +1,578 @@
+#include "sweep/design.hpp"
+
+#include "models/scene.hpp"
+#include "sweep/csv.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace nsb::sweep {
+
+namespace fs = std::filesystem;
+
+std::string_view to_string(Mode m) {
+  switch (m) {
+    case Mode::kGrid:
+      return "grid";
+    case Mode::kLatin:
+      return "latin";
+    case Mode::kList:
+      return "list";
+    case Mode::kOat:
+      return "oat";
+  }
+  return "grid";
+}
+
+std::string format_number(double v) {
+  if (!std::isfinite(v)) return {};
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+namespace {
+
+// Where errors point: "<file>:<line>:<col>: <key>: <what>".
+struct Context {
+  std::string file;
+  [[noreturn]] void fail(const toml::node* n, const std::string& key,
+                         const std::string& what) const {
+    std::ostringstream s;
+    s << file;
+    if (n != nullptr && n->source().begin.line > 0) {
+      s << ':' << n->source().begin.line << ':' << n->source().begin.column;
+    }
+    s << ": " << key << ": " << what;
+    throw std::invalid_argument(s.str());
+  }
+};
+
+// A TOML basic string holding s, so that a label with spaces or '=' reaches the scene intact.
+std::string toml_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + '"';
+}
+
+void check_keys(const Context& c, const toml::table& t, const std::string& where,
+                const std::set<std::string>& allowed) {
+  for (const auto& [k, v] : t) {
+    const std::string key(k.str());
+    if (allowed.count(key) == 0) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      c.fail(&v, where.empty() ? key : where + "." + key, "unknown key (allowed: " + list + ")");
+    }
+  }
+}
+
+double number(const Context& c, const toml::node& n, const std::string& key) {
+  if (const auto v = n.value<double>(); v && (n.is_floating_point() || n.is_integer())) {
+    if (!std::isfinite(*v)) c.fail(&n, key, "must be finite");
+    return *v;
+  }
+  c.fail(&n, key, "must be a number");
+}
+
+// The label and override text of a TOML value: numbers in their shortest round-trip form,
+// strings quoted for the scene reader, booleans as true/false.
+Level value_level(const Context& c, const toml::node& n, const std::string& key,
+                  const std::string& fkey) {
+  if (n.is_integer()) {
+    const std::string s = std::to_string(*n.value<std::int64_t>());
+    return {s, {fkey + "=" + s}};
+  }
+  if (n.is_floating_point()) {
+    const std::string s = format_number(number(c, n, key));
+    return {s, {fkey + "=" + s}};
+  }
+  if (n.is_boolean()) {
+    const std::string s = *n.value<bool>() ? "true" : "false";
+    return {s, {fkey + "=" + s}};
+  }
+  if (n.is_string()) {
+    const std::string s = *n.value<std::string>();
+    return {s, {fkey + "=" + toml_string(s)}};
+  }
+  c.fail(&n, key, "must be a number, a string or a boolean");
+}
+
+const toml::array& array_of(const Context& c, const toml::node& n, const std::string& key) {
+  const auto* a = n.as_array();
+  if (a == nullptr) c.fail(&n, key, "must be an array");
+  if (a->empty()) c.fail(&n, key, "must not be empty");
+  return *a;
+}
+
+// [a, b, n]: n >= 1 points from a to b, both ends exact.
+std::vector<double> spaced(const Context& c, const toml::node& n, const std::string& key,
+                           bool geometric) {
+  const auto& a = array_of(c, n, key);
+  if (a.size() != 3 || !a[2].is_integer()) c.fail(&n, key, "must be [first, last, count]");
+  const double lo = number(c, a[0], key), hi = number(c, a[1], key);
+  const std::int64_t count = *a[2].value<std::int64_t>();
+  if (count < 1 || count > 100000) c.fail(&a[2], key, "count must be in 1..100000");
+  if (geometric && (lo <= 0.0 || hi <= 0.0)) c.fail(&n, key, "both ends must be > 0");
+  std::vector<double> v(static_cast<std::size_t>(count));
+  for (std::int64_t i = 0; i < count; ++i) {
+    const double s = count == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(count - 1);
+    v[static_cast<std::size_t>(i)] =
+        geometric ? std::exp(std::log(lo) + s * (std::log(hi) - std::log(lo)))
+                  : lo * (1.0 - s) + hi * s;
+  }
+  v.front() = lo;
+  v.back() = hi;
+  return v;
+}
+
+// A record file named in the design: relative to the design's folder when it exists there,
+// otherwise as written (the scene's own lookup then applies: docs/scenes.md).
+std::string record_path(const fs::path& dir, const std::string& p) {
+  const fs::path candidate = dir / p;
+  if (fs::path(p).is_relative() && fs::exists(candidate))
+    return candidate.lexically_normal().string();
+  return p;
+}
+
+// The scene keys of a record's components (docs/scenes.md, [model.excitation]).
+const std::vector<std::pair<std::string, std::string>>& record_components() {
+  static const std::vector<std::pair<std::string, std::string>> c = {
+      {"transverse", "model.excitation.transverse_record"},
+      {"longitudinal", "model.excitation.longitudinal_record"}};
+  return c;
+}
+
+Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, std::size_t index,
+                   Mode mode) {
+  const std::string where = "factor[" + std::to_string(index) + "]";
+  check_keys(c, t, where, {"key", "values", "linspace", "logspace", "range", "records", "levels"});
+  Factor f;
+  f.line = static_cast<int>(t.source().begin.line);
+  const auto* key = t.get("key");
+  if (key == nullptr || !key->is_string() || key->value<std::string>()->empty()) {
+    c.fail(key != nullptr ? key : &t, where + ".key", "required: the scene key (or a name)");
+  }
+  f.key = *key->value<std::string>();
+  int given = 0;
+  for (const char* k : {"values", "linspace", "logspace", "range", "records", "levels"}) {
+    given += t.get(k) != nullptr ? 1 : 0;
+  }
+  if (given != 1) {
+    c.fail(&t, where, "give exactly one of values, linspace, logspace, range, records, levels");
+  }
+  if (const auto* n = t.get("values")) {
+    for (const auto& v : array_of(c, *n, where + ".values")) {
+      f.levels.push_back(value_level(c, v, where + ".values", f.key));
+    }
+  }
+  for (const bool geometric : {false, true}) {
+    const std::string name = geometric ? "logspace" : "linspace";
+    if (const auto* n = t.get(name)) {
+      for (const double v : spaced(c, *n, where + "." + name, geometric)) {
+        const std::string s = format_number(v);
+        f.levels.push_back({s, {f.key + "=" + s}});
+      }
+    }
+  }
+  if (const auto* n = t.get("range")) {
+    if (mode != Mode::kLatin) c.fail(n, where + ".range", "only for mode = \"latin\"");
+    const auto& a = array_of(c, *n, where + ".range");
+    if (a.size() != 2) c.fail(n, where + ".range", "must be [low, high]");
+    const double lo = number(c, a[0], where + ".range"), hi = number(c, a[1], where + ".range");
+    if (!(lo < hi)) c.fail(n, where + ".range", "must have low < high");
+    f.range = std::array<double, 2>{lo, hi};
+  }
+  if (const auto* n = t.get("records")) {
+    for (const auto& r : array_of(c, *n, where + ".records")) {
+      const auto* rt = r.as_table();
+      const std::string rw = where + ".records";
+      if (rt == nullptr)
+        c.fail(&r, rw, "each record must be a table {name, transverse, longitudinal}");
+      check_keys(c, *rt, rw, {"name", "transverse", "longitudinal"});
+      Level level;
+      for (const auto& [component, scene_key] : record_components()) {
+        if (const auto* p = rt->get(component)) {
+          if (!p->is_string()) c.fail(p, rw + "." + component, "must be a file name");
+          const std::string file = *p->value<std::string>();
+          level.overrides.push_back(scene_key + "=" + toml_string(record_path(dir, file)));
+          if (level.label.empty()) level.label = fs::path(file).stem().string();
+        }
+      }
+      if (level.overrides.empty()) c.fail(&r, rw, "a record needs transverse and/or longitudinal");
+      if (const auto* name = rt->get("name")) {
+        if (!name->is_string()) c.fail(name, rw + ".name", "must be a string");
+        level.label = *name->value<std::string>();
+      }
+      f.levels.push_back(std::move(level));
+    }
+  }
+  if (const auto* n = t.get("levels")) {
+    for (const auto& l : array_of(c, *n, where + ".levels")) {
+      const auto* lt = l.as_table();
+      const std::string lw = where + ".levels";
+      if (lt == nullptr) c.fail(&l, lw, "each level must be a table {name, set}");
+      check_keys(c, *lt, lw, {"name", "set"});
+      const auto* name = lt->get("name");
+      const auto* set = lt->get("set");
+      if (name == nullptr || !name->is_string()) c.fail(&l, lw + ".name", "required string");
+      if (set == nullptr) c.fail(&l, lw + ".set", "required: an array of \"key=value\"");
+      Level level{*name->value<std::string>(), {}};
+      for (const auto& s : array_of(c, *set, lw + ".set")) {
+        if (!s.is_string()) c.fail(&s, lw + ".set", "must hold strings \"key=value\"");
+        level.overrides.push_back(*s.value<std::string>());
+      }
+      f.levels.push_back(std::move(level));
+    }
+  }
+  std::set<std::string> labels;
+  for (const auto& l : f.levels) {
+    if (!labels.insert(l.label).second)
+      c.fail(&t, where, "level \"" + l.label + "\" appears twice");
+  }
+  return f;
+}
+
+// List mode: every row of the CSV is a run. A column named like a [[factor]] with records or
+// levels selects a level by its name; any other column is a scene key and its cells values.
+void expand_list(const Context& c, const toml::node& runs_node, const fs::path& dir, Design& d) {
+  if (!runs_node.is_string()) c.fail(&runs_node, "runs", "must be the name of a CSV file");
+  const fs::path csv = dir / *runs_node.value<std::string>();
+  std::ifstream in(csv);
+  if (!in) c.fail(&runs_node, "runs", "cannot read " + csv.string());
+  std::vector<Factor> named = std::move(d.factors);
+  d.factors.clear();
+  std::string line;
+  int lineno = 0;
+  std::vector<std::string> header;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
+    auto fields = csv_fields(line);
+    const std::string where = csv.string() + ":" + std::to_string(lineno);
+    if (header.empty()) {
+      header = fields;
+      std::set<std::string> seen;
+      for (const auto& h : header) {
+        if (h.empty() || !seen.insert(h).second) {
+          throw std::invalid_argument(where + ": column names must be non-empty and distinct");
+        }
+        Factor f;
+        f.key = h;
+        const auto it =
+            std::find_if(named.begin(), named.end(), [&](const Factor& n) { return n.key == h; });
+        if (it != named.end()) f = *it;
+        d.factors.push_back(std::move(f));
+      }
+      continue;
+    }
+    if (fields.size() != header.size()) {
+      throw std::invalid_argument(where + ": " + std::to_string(fields.size()) +
+                                  " fields, the header has " + std::to_string(header.size()));
+    }
+    Run run;
+    run.overrides = d.set;
+    for (std::size_t k = 0; k < header.size(); ++k) {
+      Factor& f = d.factors[k];
+      const std::string& cell = fields[k];
+      run.labels.push_back(cell);
+      if (cell.empty()) continue;
+      const auto named_it =
+          std::find_if(named.begin(), named.end(), [&](const Factor& n) { return n.key == f.key; });
+      if (named_it != named.end()) {
+        const auto level = std::find_if(f.levels.begin(), f.levels.end(),
+                                        [&](const Level& l) { return l.label == cell; });
+        if (level == f.levels.end()) {
+          throw std::invalid_argument(where + ": " + f.key + ": no level named \"" + cell + "\"");
+        }
+        run.overrides.insert(run.overrides.end(), level->overrides.begin(), level->overrides.end());
+      } else {
+        const std::string o = f.key + "=" + cell;
+        run.overrides.push_back(o);
+        if (std::none_of(f.levels.begin(), f.levels.end(),
+                         [&](const Level& l) { return l.label == cell; })) {
+          f.levels.push_back({cell, {o}});
+        }
+      }
+    }
+    d.runs.push_back(std::move(run));
+  }
+  if (d.runs.empty()) c.fail(&runs_node, "runs", csv.string() + " holds no run");
+}
+
+void expand_grid(Design& d) {
+  std::vector<std::size_t> at(d.factors.size(), 0);
+  for (;;) {
+    Run run;
+    run.overrides = d.set;
+    for (std::size_t k = 0; k < d.factors.size(); ++k) {
+      const Level& l = d.factors[k].levels[at[k]];
+      run.labels.push_back(l.label);
+      run.overrides.insert(run.overrides.end(), l.overrides.begin(), l.overrides.end());
+    }
+    d.runs.push_back(std::move(run));
+    // Odometer with the last factor fastest.
+    std::size_t k = d.factors.size();
+    while (k > 0) {
+      --k;
+      if (++at[k] < d.factors[k].levels.size()) break;
+      at[k] = 0;
+      if (k == 0) return;
+    }
+    if (d.factors.empty()) return;
+  }
+}
+
+void expand_oat(Design& d) {
+  Run base;
+  base.labels.assign(d.factors.size(), std::string());
+  base.overrides = d.set;
+  d.runs.push_back(base);
+  for (std::size_t k = 0; k < d.factors.size(); ++k) {
+    for (const Level& l : d.factors[k].levels) {
+      Run run = base;
+      run.labels[k] = l.label;
+      run.overrides.insert(run.overrides.end(), l.overrides.begin(), l.overrides.end());
+      d.runs.push_back(std::move(run));
+    }
+  }
+}
+
+// A uniform double in [0, 1) from the top 53 bits: the same on every platform, unlike
+// std::uniform_real_distribution, whose algorithm the standard leaves open.
+double unit(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
+
+// Latin hypercube (McKay, Beckman & Conover 1979): each factor's range is cut into n equal
+// strata, a random permutation assigns one stratum to each run, and the value is drawn
+// uniformly inside it. Discrete factors take the level whose share of [0, 1) holds the draw.
+void expand_latin(Design& d) {
+  const auto n = static_cast<std::size_t>(d.samples);
+  std::mt19937_64 g(d.seed);
+  std::vector<std::vector<double>> draw(d.factors.size(), std::vector<double>(n));
+  for (std::size_t k = 0; k < d.factors.size(); ++k) {
+    std::vector<std::size_t> perm(n);
+    for (std::size_t i = 0; i < n; ++i) perm[i] = i;
+    for (std::size_t i = n; i > 1; --i) {  // Fisher–Yates
+      const auto j = static_cast<std::size_t>(unit(g) * static_cast<double>(i));
+      std::swap(perm[i - 1], perm[std::min(j, i - 1)]);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      draw[k][i] = (static_cast<double>(perm[i]) + unit(g)) / static_cast<double>(n);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    Run run;
+    run.overrides = d.set;
+    for (std::size_t k = 0; k < d.factors.size(); ++k) {
+      const Factor& f = d.factors[k];
+      if (f.range) {
+        const double v = (*f.range)[0] + draw[k][i] * ((*f.range)[1] - (*f.range)[0]);
+        const std::string s = format_number(v);
+        run.labels.push_back(s);
+        run.overrides.push_back(f.key + "=" + s);
+      } else {
+        const auto m = f.levels.size();
+        const Level& l = f.levels[std::min(
+            m - 1, static_cast<std::size_t>(draw[k][i] * static_cast<double>(m)))];
+        run.labels.push_back(l.label);
+        run.overrides.insert(run.overrides.end(), l.overrides.begin(), l.overrides.end());
+      }
+    }
+    d.runs.push_back(std::move(run));
+  }
+}
+
+// FNV-1a, 64 bit: a fingerprint of the expanded design, not a security measure.
+std::string fingerprint(const std::string& text) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const unsigned char ch : text) {
+    h ^= ch;
+    h *= 0x100000001b3ULL;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Everything a run's result depends on that the design controls: the base scene's text and
+// every run's overrides, with the design's folder written as "." so that moving the whole
+// tree does not change the hash.
+std::string design_hash(const Design& d) {
+  const std::string dir = d.file.parent_path().lexically_normal().string();
+  std::string text = read_file(d.scene);
+  text += '\x1e';
+  text += to_string(d.mode);
+  for (const auto& f : d.factors) text += '\x1f' + f.key;
+  for (const auto& r : d.runs) {
+    text += '\x1e';
+    for (const auto& l : r.labels) text += l + '\x1f';
+    for (const auto& o : r.overrides) {
+      std::size_t from = 0;
+      for (auto p = dir.empty() ? std::string::npos : o.find(dir); p != std::string::npos;
+           p = o.find(dir, from)) {
+        text.append(o, from, p - from).append(".");
+        from = p + dir.size();
+      }
+      text.append(o, from, std::string::npos).append("\x1f");
+    }
+  }
+  return fingerprint(text);
+}
+
+}  // namespace
+
+Design load_design(const fs::path& file, const std::vector<std::string>& extra_set) {
+  Context c{file.string()};
+  toml::table root;
+  try {
+    root = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    std::ostringstream s;
+    s << file.string() << ':' << e.source().begin.line << ':' << e.source().begin.column << ": "
+      << e.description();
+    throw std::invalid_argument(s.str());
+  }
+  check_keys(c, root, "",
+             {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor"});
+  Design d;
+  d.file = fs::absolute(file).lexically_normal();
+  const fs::path dir = d.file.parent_path();
+  const auto* scene = root.get("scene");
+  if (scene == nullptr || !scene->is_string())
+    c.fail(scene, "scene", "required: the base scene file");
+  d.scene = (dir / *scene->value<std::string>()).lexically_normal();
+  if (!fs::is_regular_file(d.scene)) c.fail(scene, "scene", "no such file: " + d.scene.string());
+  if (const auto* set = root.get("set")) {
+    const auto* a = set->as_array();
+    if (a == nullptr) c.fail(set, "set", "must be an array of \"key=value\"");
+    for (const auto& s : *a) {
+      if (!s.is_string() || s.value<std::string>()->find('=') == std::string::npos) {
+        c.fail(&s, "set", "must hold strings \"key=value\"");
+      }
+      d.set.push_back(*s.value<std::string>());
+    }
+  }
+  for (const auto& s : extra_set) {
+    if (s.find('=') == std::string::npos)
+      throw std::invalid_argument("--set " + s + ": must be key=value");
+    d.set.push_back(s);
+  }
+  if (const auto* mode = root.get("mode")) {
+    const std::string m = mode->value<std::string>().value_or("");
+    if (m == "grid")
+      d.mode = Mode::kGrid;
+    else if (m == "latin")
+      d.mode = Mode::kLatin;
+    else if (m == "list")
+      d.mode = Mode::kList;
+    else if (m == "oat")
+      d.mode = Mode::kOat;
+    else
+      c.fail(mode, "mode", "must be \"grid\", \"latin\", \"list\" or \"oat\"");
+  }
+  const auto* samples = root.get("samples");
+  const auto* seed = root.get("seed");
+  const auto* runs = root.get("runs");
+  if (d.mode == Mode::kLatin) {
+    if (samples == nullptr || !samples->is_integer() || *samples->value<std::int64_t>() < 1 ||
+        *samples->value<std::int64_t>() > 1000000) {
+      c.fail(samples != nullptr ? samples : &root, "samples",
+             "latin: required integer in 1..1000000");
+    }
+    d.samples = *samples->value<std::int64_t>();
+    if (seed != nullptr) {
+      if (!seed->is_integer() || *seed->value<std::int64_t>() < 0)
+        c.fail(seed, "seed", "must be an integer >= 0");
+      d.seed = static_cast<std::uint64_t>(*seed->value<std::int64_t>());
+    }
+  } else {
+    if (samples != nullptr) c.fail(samples, "samples", "only for mode = \"latin\"");
+    if (seed != nullptr) c.fail(seed, "seed", "only for mode = \"latin\"");
+  }
+  if (d.mode == Mode::kList && runs == nullptr)
+    c.fail(&root, "runs", "list: required CSV file of runs");
+  if (d.mode != Mode::kList && runs != nullptr) c.fail(runs, "runs", "only for mode = \"list\"");
+  if (const auto* factors = root.get("factor")) {
+    const auto* a = factors->as_array();
+    if (a == nullptr || !a->is_array_of_tables())
+      c.fail(factors, "factor", "must be [[factor]] tables");
+    std::set<std::string> keys;
+    for (std::size_t k = 0; k < a->size(); ++k) {
+      Factor f = read_factor(c, *(*a)[k].as_table(), dir, k, d.mode);
+      if (!keys.insert(f.key).second)
+        c.fail(&(*a)[k], "factor[" + std::to_string(k) + "].key",
+               "\"" + f.key + "\" appears twice");
+      d.factors.push_back(std::move(f));
+    }
+  }
+  switch (d.mode) {
+    case Mode::kGrid:
+      if (d.factors.empty()) c.fail(&root, "factor", "grid: at least one [[factor]]");
+      expand_grid(d);
+      break;
+    case Mode::kOat:
+      if (d.factors.empty()) c.fail(&root, "factor", "oat: at least one [[factor]]");
+      expand_oat(d);
+      break;
+    case Mode::kLatin:
+      if (d.factors.empty()) c.fail(&root, "factor", "latin: at least one [[factor]]");
+      expand_latin(d);
+      break;
+    case Mode::kList:
+      expand_list(c, *runs, dir, d);
+      break;
+  }
+  const std::size_t width = std::max<std::size_t>(4, std::to_string(d.runs.size() - 1).size());
+  for (std::size_t i = 0; i < d.runs.size(); ++i) {
+    std::string id = std::to_string(i);
+    d.runs[i].id = std::string(width - id.size(), '0') + id;
+  }
+  d.hash = design_hash(d);
+  return d;
+}
+
+void validate_design(const Design& d) {
+  const auto attempt = [&](const std::vector<std::string>& extra, const std::string& where) {
+    std::vector<std::string> overrides = d.set;
+    overrides.insert(overrides.end(), extra.begin(), extra.end());
+    try {
+      (void)models::load_scene(d.scene, overrides);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(d.file.string() + where + ": " + e.what());
+    }
+  };
+  attempt({}, ": scene");
+  for (std::size_t k = 0; k < d.factors.size(); ++k) {
+    const Factor& f = d.factors[k];
+    std::string at;
+    if (f.line > 0) at.append(":").append(std::to_string(f.line));
+    for (const Level& l : f.levels)
+      attempt(l.overrides, at + ": factor " + f.key + " = " + l.label);
+    if (f.range) {
+      for (const double v : *f.range) {
+        attempt({f.key + "=" + format_number(v)},
+                at + ": factor " + f.key + " = " + format_number(v));
+      }
+    }
+  }
+}
+
+}  // namespace nsb::sweep

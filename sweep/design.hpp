@@ -1,0 +1,79 @@
+// Sweep designs: a base scene, overrides applied to every run, and factors, read from a TOML
+// file (docs/sweep.md) and expanded into the list of runs. Each run is a list of scene
+// overrides ("key=value", as `nsbridge run --set` takes them).
+//
+//   Design d = load_design("scenes/sweeps/fig6.toml");   // parse and expand
+//   validate_design(d);                                    // every key and value, before any run
+//
+// Errors throw std::invalid_argument with "<file>:<line>:<col>: <key>: <what is allowed>".
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace nsb::sweep {
+
+// How the factors become runs.
+enum class Mode {
+  kGrid,   // full factorial: every combination of every factor's levels, first factor slowest
+  kLatin,  // Latin hypercube: `samples` runs, each factor stratified into `samples` equal parts
+  kList,   // the runs are the rows of a CSV file
+  kOat,    // one factor at a time: the base scene, then each level of each factor alone
+};
+std::string_view to_string(Mode m);
+
+// One level of a factor: the text that names it in results.csv and the overrides it applies.
+struct Level {
+  std::string label;                   // e.g. "0.5", or a record's name
+  std::vector<std::string> overrides;  // e.g. {"model.seats.friction=0.5"}
+};
+
+struct Factor {
+  std::string key;                             // column of results.csv: the scene key, or a name
+  std::vector<Level> levels;                   // the levels (empty for a continuous latin range)
+  std::optional<std::array<double, 2>> range;  // latin only: continuous [low, high]
+  int line = 0;                                // line of its [[factor]] table in the design file
+};
+
+// One run: the label of every factor (empty when the factor keeps the base scene's value,
+// as in the base run of a one-factor-at-a-time design) and every override to apply.
+struct Run {
+  std::string id;                      // zero-padded index: the folder name under runs/
+  std::vector<std::string> labels;     // one per Design::factors entry
+  std::vector<std::string> overrides;  // Design::set, then the factors' overrides
+};
+
+struct Design {
+  std::filesystem::path file;    // the design file
+  std::filesystem::path scene;   // the base scene, resolved against the design's folder
+  std::vector<std::string> set;  // overrides applied to every run
+  Mode mode = Mode::kGrid;
+  std::int64_t samples = 0;     // latin: number of runs, >= 1
+  std::uint64_t seed = 0;       // latin: seed of the permutations
+  std::vector<Factor> factors;  // in file order (list mode: one per CSV column)
+  std::vector<Run> runs;        // the expanded runs, in id order
+  std::string hash;             // 16 hex digits; changes whenever a run would change
+};
+
+// Reads and expands a design file. Throws std::invalid_argument naming the file, line and key
+// for a malformed design (unknown key, empty factor, duplicate key, bad range, bad CSV).
+// extra_set: overrides appended to the file's `set` (the command line's --set), e.g. a short
+// end_time for a quick look.
+Design load_design(const std::filesystem::path& file,
+                   const std::vector<std::string>& extra_set = {});
+
+// Loads the base scene once with the design's fixed overrides and once with each level of
+// each factor (for a latin range: both ends), so that an unknown key or a value the scene
+// rejects is reported before any run. Throws std::invalid_argument naming the design file,
+// the factor's line and key, and the scene's own message.
+void validate_design(const Design& design);
+
+// The shortest text that reads back to the same double ("0.1", "1e-05"): labels and
+// results.csv use it so that they do not depend on the platform's printf.
+std::string format_number(double v);
+
+}  // namespace nsb::sweep

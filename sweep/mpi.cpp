@@ -1,0 +1,209 @@
+// The sweep over MPI ranks (built only when MPI is found). Dynamic distribution: every worker
+// asks rank 0 for the next run index when it is free, so runs of unequal cost balance
+// themselves; its request carries the row of the run it just finished, so the rows gather on
+// rank 0 without a shared file system for results.csv.
+#include "sweep/mpi.hpp"
+
+#include "sweep/csv.hpp"
+
+#include <mpi.h>
+
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+namespace nsb::sweep {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kRequestTag = 1;      // worker -> rank 0: "<thread> <index> <state>\n<row>"
+constexpr int kReplyTagBase = 100;  // rank 0 -> worker thread t: the next index, tag base + t
+
+// What a finished run reports with its request (the first request reports none).
+enum class Report : int { kNone = 0, kSucceeded = 1, kFailed = 2, kError = 3 };
+
+class Session {
+ public:
+  Session() {
+    int provided = MPI_THREAD_SINGLE;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_MULTIPLE, &provided);
+    multiple_ = provided >= MPI_THREAD_MULTIPLE;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  }
+  ~Session() { MPI_Finalize(); }
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool multiple() const { return multiple_; }
+
+ private:
+  int rank_ = 0, size_ = 1;
+  bool multiple_ = false;
+};
+
+std::string message(int thread, long long index, Report r, const std::string& text) {
+  return std::to_string(thread) + " " + std::to_string(index) + " " +
+         std::to_string(static_cast<int>(r)) + "\n" + text;
+}
+
+// A worker on a rank other than 0: ask, run, report, until rank 0 answers -1.
+void remote_worker(const Design& d, const SweepOptions& options, int thread) {
+  std::string out = message(thread, -1, Report::kNone, "");
+  for (;;) {
+    MPI_Send(out.data(), static_cast<int>(out.size()), MPI_CHAR, 0, kRequestTag, MPI_COMM_WORLD);
+    long long index = -1;
+    MPI_Recv(&index, 1, MPI_LONG_LONG, 0, kReplyTagBase + thread, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+    if (index < 0) return;
+    try {
+      const RunOutcome o = run_one(d, static_cast<std::size_t>(index), options.out);
+      out = message(thread, index, o.succeeded ? Report::kSucceeded : Report::kFailed, o.row);
+    } catch (const std::exception& e) {
+      out = message(thread, index, Report::kError, e.what());
+    }
+  }
+}
+
+}  // namespace
+
+SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& options) {
+  Session mpi;
+  const bool primary = mpi.rank() == 0;
+  // Every rank reads the design; rank 0 alone validates it and prepares DIR. A failure
+  // anywhere stops every rank before any run.
+  Design d;
+  Plan plan;
+  std::exception_ptr error;
+  int code = 0;
+  try {
+    d = load_design(design_file, options.set);
+    if (primary) {
+      validate_design(d);
+      plan = prepare(d, options);
+    }
+  } catch (...) {
+    error = std::current_exception();
+    code = 1;
+  }
+  int any = 0;
+  MPI_Allreduce(&code, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  SweepSummary s;
+  s.primary = primary;
+  s.ranks = mpi.size();
+  if (any != 0) {
+    if (!primary) return s;
+    if (error) std::rethrow_exception(error);
+    throw std::invalid_argument(design_file.string() + ": another MPI rank could not read it");
+  }
+  int jobs = options.jobs > 0 ? options.jobs : default_jobs(launcher_local_size());
+  // Without MPI_THREAD_MULTIPLE only one thread of a worker rank may talk to rank 0.
+  if (!primary && !mpi.multiple()) jobs = 1;
+  const int remote_jobs = primary ? 0 : jobs;
+  int remote_workers = 0;
+  MPI_Allreduce(&remote_jobs, &remote_workers, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  if (!primary) {
+    if (jobs == 1) {
+      remote_worker(d, options, 0);
+    } else {
+      std::vector<std::jthread> pool;
+      for (int t = 0; t < jobs; ++t) pool.emplace_back([&, t] { remote_worker(d, options, t); });
+    }
+    return s;
+  }
+
+  s.runs = d.runs.size();
+  s.already_done = s.runs - plan.pending.size();
+  s.ran = plan.pending.size();
+  s.workers = jobs + remote_workers;
+  s.notes = plan.notes;
+  const std::size_t total = s.runs;
+  std::atomic<std::size_t> next{0}, done{0}, failed{0};
+  std::atomic<int> local_exited{0};
+  std::atomic<bool> stop{false};
+  std::mutex error_mutex;
+  std::string remote_error;
+  const auto take = [&]() -> long long {
+    if (stop.load()) return -1;
+    const std::size_t k = next.fetch_add(1);
+    return k < plan.pending.size() ? static_cast<long long>(plan.pending[k]) : -1;
+  };
+  ProgressBar bar(options.progress, s.already_done);
+  {
+    // Rank 0's own workers take indices from the same counter; only this thread calls MPI.
+    std::vector<std::jthread> pool;
+    for (int t = 0; t < jobs; ++t) {
+      pool.emplace_back([&] {
+        for (long long index = take(); index >= 0; index = take()) {
+          try {
+            RunOutcome o = run_one(d, static_cast<std::size_t>(index), options.out);
+            plan.rows[static_cast<std::size_t>(index)] = std::move(o.row);
+            if (!o.succeeded) failed.fetch_add(1);
+          } catch (...) {
+            const std::lock_guard<std::mutex> lock(error_mutex);
+            if (!error) error = std::current_exception();
+            stop.store(true);
+          }
+          done.fetch_add(1);
+        }
+        local_exited.fetch_add(1);
+      });
+    }
+    int remote_active = remote_workers;
+    while (remote_active > 0 || local_exited.load() < jobs) {
+      int flag = 0;
+      MPI_Status status;
+      if (remote_active > 0)
+        MPI_Iprobe(MPI_ANY_SOURCE, kRequestTag, MPI_COMM_WORLD, &flag, &status);
+      if (flag == 0) {
+        bar.update(s.already_done + done.load(), failed.load(), total);
+        // Poll, rather than block in MPI_Recv, whose busy wait would take a core from the
+        // workers of this rank.
+        std::this_thread::sleep_for(std::chrono::microseconds(remote_active > 0 ? 500 : 20000));
+        continue;
+      }
+      int size = 0;
+      MPI_Get_count(&status, MPI_CHAR, &size);
+      std::string in(static_cast<std::size_t>(size), '\0');
+      MPI_Recv(in.data(), size, MPI_CHAR, status.MPI_SOURCE, kRequestTag, MPI_COMM_WORLD,
+               MPI_STATUS_IGNORE);
+      std::istringstream head(in.substr(0, in.find('\n')));
+      int thread = 0, report = 0;
+      long long index = -1;
+      head >> thread >> index >> report;
+      const std::string text = in.substr(in.find('\n') + 1);
+      if (index >= 0) {
+        if (static_cast<Report>(report) == Report::kError) {
+          const std::lock_guard<std::mutex> lock(error_mutex);
+          if (remote_error.empty())
+            remote_error = "rank " + std::to_string(status.MPI_SOURCE) + ": " + text;
+          stop.store(true);
+        } else {
+          plan.rows[static_cast<std::size_t>(index)] = text;
+          ++s.ran_elsewhere;
+          if (static_cast<Report>(report) == Report::kFailed) failed.fetch_add(1);
+        }
+        done.fetch_add(1);
+      }
+      long long reply = take();
+      if (reply < 0) --remote_active;
+      MPI_Send(&reply, 1, MPI_LONG_LONG, status.MPI_SOURCE, kReplyTagBase + thread, MPI_COMM_WORLD);
+    }
+    bar.update(s.already_done + done.load(), failed.load(), total);
+  }
+  if (error) std::rethrow_exception(error);
+  if (!remote_error.empty()) throw std::runtime_error(remote_error);
+  write_results(d, options, plan.rows);
+  s.failed = failed_rows(d, plan.rows);
+  s.results = options.out / "results.csv";
+  return s;
+}
+
+}  // namespace nsb::sweep

@@ -1,0 +1,254 @@
+#include "sweep/plots.hpp"
+
+#include "sweep/design.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+namespace nsb::sweep {
+
+namespace fs = std::filesystem;
+
+void PlotOptions::validate() const {
+  if (pga_key.empty()) throw std::invalid_argument("--pga-key: must name a factor column");
+  if (response.empty()) throw std::invalid_argument("--response: must name a results.csv column");
+  if (!(limit > 0.0) || !std::isfinite(limit)) throw std::invalid_argument("--limit: must be > 0");
+}
+
+namespace {
+
+std::optional<double> parse(const std::string& s) {
+  double v = 0.0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v)) {
+    return std::nullopt;
+  }
+  return v;
+}
+
+// The factor columns lie between "run" and "status".
+struct Layout {
+  std::size_t first = 1, end = 1;  // factor columns [first, end)
+  std::size_t status = 0, response = 0;
+};
+Layout layout(const Table& t, const PlotOptions& o) {
+  Layout l;
+  l.status = t.column("status");
+  l.end = l.status;
+  try {
+    l.response = t.column(o.response);
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument("--response: results.csv has no column \"" + o.response + "\"");
+  }
+  return l;
+}
+
+bool completed(const std::vector<std::string>& row, const Layout& l) {
+  return row[l.status] == "completed" || row[l.status] == "completed_with_fallbacks";
+}
+
+std::optional<std::size_t> find_column(const Table& t, const std::string& name) {
+  const auto it = std::find(t.header.begin(), t.header.end(), name);
+  if (it == t.header.end()) return std::nullopt;
+  return static_cast<std::size_t>(it - t.header.begin());
+}
+
+}  // namespace
+
+std::vector<IdaPoint> ida_points(const Table& t, const PlotOptions& o) {
+  const Layout l = layout(t, o);
+  const auto pga = find_column(t, o.pga_key);
+  std::vector<IdaPoint> points;
+  if (!pga || *pga >= l.end) return points;
+  for (const auto& row : t.rows) {
+    const auto x = parse(row[*pga]);
+    const auto y = parse(row[l.response]);
+    if (!completed(row, l) || !x || !y) continue;
+    std::string curve;
+    for (std::size_t k = l.first; k < l.end; ++k) {
+      if (k == *pga) continue;
+      curve += (curve.empty() ? "" : "; ") + t.header[k] + "=" + row[k];
+    }
+    points.push_back({curve.empty() ? "all" : curve, *x, *y});
+  }
+  std::stable_sort(points.begin(), points.end(), [](const IdaPoint& a, const IdaPoint& b) {
+    return a.curve != b.curve ? a.curve < b.curve : a.pga < b.pga;
+  });
+  return points;
+}
+
+std::vector<ExceedancePoint> exceedance_points(const Table& t, const PlotOptions& o) {
+  std::map<double, ExceedancePoint> by_pga;
+  for (const auto& p : ida_points(t, o)) {
+    auto& e = by_pga[p.pga];
+    e.pga = p.pga;
+    ++e.runs;
+    if (p.response > o.limit) ++e.exceeding;
+  }
+  std::vector<ExceedancePoint> out;
+  for (auto& [pga, e] : by_pga) {
+    e.share = static_cast<double>(e.exceeding) / static_cast<double>(e.runs);
+    out.push_back(e);
+  }
+  return out;
+}
+
+std::vector<TornadoBar> tornado_bars(const Table& t, const PlotOptions& o) {
+  const Layout l = layout(t, o);
+  std::optional<double> base;
+  std::map<std::size_t, TornadoBar> bars;
+  for (const auto& row : t.rows) {
+    std::vector<std::size_t> set;
+    for (std::size_t k = l.first; k < l.end; ++k) {
+      if (!row[k].empty()) set.push_back(k);
+    }
+    const auto y = parse(row[l.response]);
+    if (!completed(row, l) || !y) continue;
+    if (set.empty()) {
+      base = *y;
+    } else if (set.size() == 1) {
+      auto [it, fresh] = bars.try_emplace(set[0]);
+      TornadoBar& b = it->second;
+      if (fresh) {
+        b = {t.header[set[0]], *y, *y, row[set[0]], row[set[0]], 0.0};
+      } else {
+        if (*y < b.low) {
+          b.low = *y;
+          b.low_level = row[set[0]];
+        }
+        if (*y > b.high) {
+          b.high = *y;
+          b.high_level = row[set[0]];
+        }
+      }
+    }
+  }
+  std::vector<TornadoBar> out;
+  if (!base) return out;
+  for (auto& [k, b] : bars) {
+    b.base = *base;
+    b.low = std::min(b.low, *base);
+    b.high = std::max(b.high, *base);
+    out.push_back(b);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const TornadoBar& a, const TornadoBar& b) {
+    return a.high - a.low > b.high - b.low;
+  });
+  return out;
+}
+
+namespace {
+
+// A gnuplot string literal.
+std::string gp_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + '"';
+}
+
+// Runs the script once per terminal: PNG, then SVG. The script sets everything but the
+// terminal and the output.
+void render(const fs::path& dir, const std::string& stem, const std::string& script,
+            std::vector<fs::path>& files) {
+  write_file_atomically(dir / (stem + ".gp"), script);
+  files.push_back(dir / (stem + ".gp"));
+  for (const auto& [terminal, ext] :
+       {std::pair<std::string, std::string>{"pngcairo size 900,600", "png"},
+        {"svg size 900,600", "svg"}}) {
+    const std::string cmd =
+        "cd " + gp_string(dir.string()) + " && gnuplot -e " +
+        gp_string("set terminal " + terminal + "; set output '" + stem + "." + ext + "'") + " " +
+        stem + ".gp 2>/dev/null";
+    if (std::system(cmd.c_str()) != 0) {
+      throw std::runtime_error(dir.string() + ": gnuplot could not draw " + stem + "." + ext);
+    }
+    files.push_back(dir / (stem + "." + ext));
+  }
+}
+
+std::string axis_label(const std::string& column) {
+  return column == "peak_theta" ? "peak deck rotation |theta| [rad]" : column;
+}
+
+}  // namespace
+
+std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& dir,
+                                 const PlotOptions& o) {
+  o.validate();
+  const Table t = read_csv(results_csv);
+  (void)layout(t, o);
+  fs::create_directories(dir);
+  std::vector<fs::path> files;
+  const auto ida = ida_points(t, o);
+  if (!ida.empty()) {
+    std::string csv = "curve," + csv_quote(o.pga_key) + "," + o.response + "\n";
+    std::vector<std::string> curves;
+    for (const auto& p : ida) {
+      csv +=
+          csv_quote(p.curve) + "," + format_number(p.pga) + "," + format_number(p.response) + "\n";
+      if (curves.empty() || curves.back() != p.curve) curves.push_back(p.curve);
+    }
+    write_file_atomically(dir / "ida.csv", csv);
+    files.push_back(dir / "ida.csv");
+    std::string gp =
+        "set datafile separator ','\nset termoption noenhanced\nset key top left\nset grid\n"
+        "set xlabel 'target PGA [g] (" +
+        o.pga_key + ")'\nset ylabel " + gp_string(axis_label(o.response)) +
+        "\nset title 'IDA curves'\nplot ";
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+      gp += std::string(i == 0 ? "" : ", \\\n     ") + "'ida.csv' skip 1 using 2:(strcol(1) eq " +
+            gp_string(curves[i]) + " ? $3 : NaN) with linespoints title " + gp_string(curves[i]);
+    }
+    render(dir, "ida", gp + "\n", files);
+
+    std::string ex = csv_quote(o.pga_key) + ",runs,exceeding,share\n";
+    for (const auto& e : exceedance_points(t, o)) {
+      ex += format_number(e.pga) + "," + std::to_string(e.runs) + "," +
+            std::to_string(e.exceeding) + "," + format_number(e.share) + "\n";
+    }
+    write_file_atomically(dir / "exceedance.csv", ex);
+    files.push_back(dir / "exceedance.csv");
+    render(dir, "exceedance",
+           "set datafile separator ','\nset termoption noenhanced\nset grid\nset yrange [0:1]\nset "
+           "xlabel 'target PGA [g] (" +
+               o.pga_key + ")'\nset ylabel 'share of runs'\nset title " +
+               gp_string("share of runs with " + o.response + " > " + format_number(o.limit)) +
+               "\nplot 'exceedance.csv' skip 1 using 1:4 with linespoints notitle\n",
+           files);
+  }
+  const auto bars = tornado_bars(t, o);
+  if (!bars.empty()) {
+    std::string csv = "factor,low,high,base,low_level,high_level\n";
+    for (const auto& b : bars) {
+      csv += csv_quote(b.factor) + "," + format_number(b.low) + "," + format_number(b.high) + "," +
+             format_number(b.base) + "," + csv_quote(b.low_level) + "," + csv_quote(b.high_level) +
+             "\n";
+    }
+    write_file_atomically(dir / "tornado.csv", csv);
+    files.push_back(dir / "tornado.csv");
+    // Largest swing on top: bar i sits at y = n - 1 - i.
+    const std::string n = std::to_string(bars.size());
+    render(dir, "tornado",
+           "set datafile separator ','\nset termoption noenhanced\nset grid x\nset xlabel " +
+               gp_string(axis_label(o.response)) +
+               "\nset title 'one factor at a time, about the base run'\nset yrange [-1:" + n +
+               "]\nset style fill solid 0.5\nset arrow from " + format_number(bars[0].base) +
+               ", graph 0 to " + format_number(bars[0].base) +
+               ", graph 1 nohead dt 2\nplot 'tornado.csv' skip 1 using (($2+$3)/2):(" + n +
+               "-1-$0):2:3:(" + n + "-1.4-$0):(" + n +
+               "-0.6-$0):yticlabels(1) with boxxyerror notitle\n",
+           files);
+  }
+  return files;
+}
+
+}  // namespace nsb::sweep

@@ -1,0 +1,379 @@
+#include "sweep/runner.hpp"
+
+#include "integrators/output.hpp"
+#include "integrators/run.hpp"
+#include "models/scene.hpp"
+#include "sweep/csv.hpp"
+#include "sweep/mpi.hpp"
+
+#include <toml++/toml.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#ifndef NSB_GIT_REVISION
+#define NSB_GIT_REVISION "unknown"
+#endif
+
+namespace nsb::sweep {
+
+namespace fs = std::filesystem;
+
+void SweepOptions::validate() const {
+  if (out.empty()) throw std::invalid_argument("--out: required (the sweep's folder)");
+  if (jobs < 0) throw std::invalid_argument("--jobs: must be >= 0 (0 = all cores)");
+}
+
+std::string code_revision() { return NSB_GIT_REVISION; }
+
+bool mpi_built_in() {
+#ifdef NSB_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+const std::vector<std::string>& result_columns() {
+  static const std::vector<std::string> c = {
+      "status",           // integrators::RunStatus name, or "rejected" (the scene refused the run)
+      "peak_x",           // max |x| over the recorded samples [m]
+      "peak_y",           // max |y| [m]
+      "peak_theta",       // max |theta| [rad]
+      "residual_theta",   // theta at the last sample [rad]
+      "impacts",          // impact events
+      "max_penetration",  // max over samples and contacts of -gN, >= 0 [m]
+      "energy_error",     // relative energy-balance error at the end (summary.json energy.error)
+      "end_time",         // simulated time reached [s]
+      "steps",            // accepted steps
+      "lcp_solves",      "lcp_fallbacks", "lcp_unsolved",
+      "failure_time",  // [s], empty for a completed run
+      "message",       // why the run stopped early or was rejected; empty otherwise
+      "wall_s",        // wall time of the run [s]; the only column that depends on the machine
+  };
+  return c;
+}
+
+std::string results_header(const Design& design) {
+  std::string h = "run";
+  for (const auto& f : design.factors) h.append(",").append(csv_quote(f.key));
+  for (const auto& c : result_columns()) h.append(",").append(c);
+  return h;
+}
+
+namespace {
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// Largest |value| of a history column, and its last value; NaN when the column is absent.
+struct ColumnStats {
+  double peak = std::numeric_limits<double>::quiet_NaN();
+  double last = std::numeric_limits<double>::quiet_NaN();
+};
+ColumnStats column_stats(const integrators::Recorder& r, const std::string& name) {
+  ColumnStats s;
+  const auto& cols = r.columns();
+  const auto it = std::find(cols.begin(), cols.end(), name);
+  if (it == cols.end() || r.rows() == 0) return s;
+  const auto c = static_cast<std::size_t>(it - cols.begin());
+  s.peak = 0.0;
+  for (std::size_t i = 0; i < r.rows(); ++i) s.peak = std::max(s.peak, std::abs(r.at(i, c)));
+  s.last = r.at(r.rows() - 1, c);
+  return s;
+}
+
+double max_penetration(const integrators::Recorder& r) {
+  double p = 0.0;
+  const auto& cols = r.columns();
+  for (std::size_t c = 0; c < cols.size(); ++c) {
+    if (cols[c].rfind("gN", 0) != 0) continue;
+    for (std::size_t i = 0; i < r.rows(); ++i) p = std::max(p, -r.at(i, c));
+  }
+  return p;
+}
+
+std::string row_prefix(const Design& d, std::size_t index) {
+  const Run& run = d.runs[index];
+  std::string row = run.id;
+  for (const auto& l : run.labels) row.append(",").append(csv_quote(l));
+  return row;
+}
+
+std::string rejected_row(const Design& d, std::size_t index, const std::string& message,
+                         double wall) {
+  std::string row = row_prefix(d, index) + ",rejected";
+  // Every numeric column stays empty; message and wall_s are the last two.
+  for (std::size_t k = 1; k + 2 < result_columns().size(); ++k) row += ",";
+  return row.append(",").append(csv_quote(message)).append(",").append(format_number(wall));
+}
+
+}  // namespace
+
+RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out) {
+  const Run& run = d.runs.at(index);
+  const fs::path dir = out / "runs" / run.id;
+  const double start = now_s();
+  RunOutcome outcome;
+  try {
+    models::Scene scene = models::load_scene(d.scene, run.overrides);
+    integrators::Recorder recorder(*scene.system, scene.output.sample_dt);
+    const integrators::RunResult result =
+        integrators::integrate(*scene.system, scene.run, recorder);
+    integrators::write_outputs(dir, scene.name, recorder, result);
+    const auto x = column_stats(recorder, "x");
+    const auto y = column_stats(recorder, "y");
+    const auto theta = column_stats(recorder, "theta");
+    outcome.succeeded = integrators::succeeded(result.status);
+    std::ostringstream row;
+    row << row_prefix(d, index) << ',' << integrators::to_string(result.status) << ','
+        << format_number(x.peak) << ',' << format_number(y.peak) << ',' << format_number(theta.peak)
+        << ',' << format_number(theta.last) << ','
+        << recorder.count(integrators::EventKind::kImpact) << ','
+        << format_number(max_penetration(recorder)) << ',' << format_number(result.energy.error)
+        << ',' << format_number(result.end_time) << ',' << result.steps << ',' << result.lcp_solves
+        << ',' << result.lcp_fallbacks << ',' << result.lcp_unsolved << ','
+        << (outcome.succeeded ? std::string() : format_number(result.failure_time)) << ','
+        << csv_quote(result.completed ? std::string() : result.message) << ','
+        << format_number(now_s() - start);
+    outcome.row = row.str();
+  } catch (const std::invalid_argument& e) {
+    // The design was validated factor by factor; a combination of values can still be one the
+    // scene rejects (e.g. a step larger than a shortened end_time). That run is a row.
+    fs::create_directories(dir);
+    outcome.row = rejected_row(d, index, e.what(), now_s() - start);
+  }
+  write_file_atomically(dir / "row.csv", outcome.row + "\n");
+  return outcome;
+}
+
+Plan prepare(const Design& d, const SweepOptions& options) {
+  Plan plan;
+  const fs::path manifest = options.out / "manifest.toml";
+  std::error_code ec;
+  if (fs::exists(manifest) || fs::exists(options.out / "runs")) {
+    std::string hash, revision;
+    try {
+      const toml::table m = toml::parse_file(manifest.string());
+      hash = m["design_hash"].value_or(std::string());
+      revision = m["revision"].value_or(std::string());
+    } catch (const toml::parse_error&) {
+    }
+    if (hash != d.hash && !options.restart) {
+      throw std::invalid_argument(
+          options.out.string() + ": holds the runs of a different design (design hash " +
+          (hash.empty() ? std::string("unknown") : hash) + ", this design " + d.hash +
+          "); use --restart to discard them, or another --out");
+    }
+    if (hash != d.hash || options.restart) {
+      fs::remove_all(options.out / "runs", ec);
+      fs::remove(options.out / "results.csv", ec);
+      fs::remove_all(options.out / "plots", ec);
+    } else if (revision != code_revision()) {
+      plan.notes.push_back("the completed runs were made by revision " + revision + ", this is " +
+                           code_revision() + "; use --restart to redo them");
+    }
+  }
+  fs::create_directories(options.out / "runs", ec);
+  if (ec) throw std::invalid_argument("--out: cannot create " + (options.out / "runs").string());
+  std::ostringstream m;
+  m << "# The sweep in this folder (nsbridge sweep); a rerun resumes it.\n"
+    << "design = " << toml::value<std::string>(d.file.string()) << '\n'
+    << "design_hash = \"" << d.hash << "\"\n"
+    << "revision = " << toml::value<std::string>(code_revision()) << '\n'
+    << "runs = " << d.runs.size() << '\n';
+  try {
+    write_file_atomically(manifest, m.str());
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(std::string("--out: ") + e.what());
+  }
+  plan.rows.resize(d.runs.size());
+  for (std::size_t i = 0; i < d.runs.size(); ++i) {
+    std::ifstream in(options.out / "runs" / d.runs[i].id / "row.csv");
+    std::string line;
+    if (in && std::getline(in, line) && line.rfind(d.runs[i].id + ",", 0) == 0) {
+      plan.rows[i] = line;
+    } else {
+      plan.pending.push_back(i);
+    }
+  }
+  return plan;
+}
+
+void write_results(const Design& d, const SweepOptions& options,
+                   const std::vector<std::optional<std::string>>& rows) {
+  std::string text = results_header(d) + "\n";
+  for (const auto& r : rows) {
+    if (r) text += *r + "\n";
+  }
+  write_file_atomically(options.out / "results.csv", text);
+}
+
+std::size_t run_threaded(const Design& d, const SweepOptions& options, Plan& plan, int threads,
+                         const SweepProgress& progress) {
+  const std::size_t total = plan.rows.size();
+  const std::size_t before = total - plan.pending.size();
+  std::atomic<std::size_t> next{0}, done{0}, failed{0}, ticks{0};
+  std::atomic<int> exited{0};
+  std::atomic<bool> stop{false};
+  std::mutex error_mutex;
+  std::exception_ptr error;
+  const int workers = std::max(1, std::min<int>(threads, static_cast<int>(plan.pending.size())));
+  {
+    std::vector<std::jthread> pool;
+    for (int w = 0; w < workers; ++w) {
+      pool.emplace_back([&] {
+        while (!stop.load()) {
+          const std::size_t k = next.fetch_add(1);
+          if (k >= plan.pending.size()) break;
+          try {
+            RunOutcome o = run_one(d, plan.pending[k], options.out);
+            plan.rows[plan.pending[k]] = std::move(o.row);
+            if (!o.succeeded) failed.fetch_add(1);
+          } catch (...) {
+            const std::lock_guard<std::mutex> lock(error_mutex);
+            if (!error) error = std::current_exception();
+            stop.store(true);
+          }
+          done.fetch_add(1);
+          ticks.fetch_add(1);
+          ticks.notify_one();
+        }
+        exited.fetch_add(1);
+        ticks.fetch_add(1);
+        ticks.notify_one();
+      });
+    }
+    std::size_t seen = 0;
+    // Without a progress display the workers are simply joined at the end of this scope.
+    while (progress && exited.load() < workers) {
+      ticks.wait(seen);
+      seen = ticks.load();
+      if (progress) progress(before + done.load(), failed.load(), total);
+    }
+  }
+  if (error) std::rethrow_exception(error);
+  return failed.load();
+}
+
+namespace {
+
+int env_int(const char* name, int fallback) {
+  const char* v = std::getenv(name);
+  return v != nullptr && *v != '\0' ? std::atoi(v) : fallback;
+}
+
+std::size_t count_failed(const Design& d, const std::vector<std::optional<std::string>>& rows) {
+  const std::size_t status = 1 + d.factors.size();
+  std::size_t failed = 0;
+  for (const auto& r : rows) {
+    if (!r) continue;
+    const auto f = csv_fields(*r);
+    if (f.size() > status && f[status] != "completed" && f[status] != "completed_with_fallbacks") {
+      ++failed;
+    }
+  }
+  return failed;
+}
+
+}  // namespace
+
+int launcher_rank() { return env_int("OMPI_COMM_WORLD_RANK", env_int("PMI_RANK", 0)); }
+int launcher_size() { return env_int("OMPI_COMM_WORLD_SIZE", env_int("PMI_SIZE", 1)); }
+int launcher_local_size() { return env_int("OMPI_COMM_WORLD_LOCAL_SIZE", 1); }
+
+int default_jobs(int local_ranks) {
+  const int cores = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+  return std::max(1, cores / std::max(1, local_ranks));
+}
+
+SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options) {
+  options.validate();
+  if (launcher_size() > 1) {
+#ifdef NSB_HAVE_MPI
+    return run_sweep_mpi(design_file, options);
+#else
+    SweepSummary quiet;
+    if (launcher_rank() != 0) {
+      quiet.primary = false;
+      return quiet;
+    }
+#endif
+  }
+  Design d = load_design(design_file, options.set);
+  validate_design(d);
+  SweepSummary s;
+  if (!mpi_built_in() && launcher_size() > 1) {
+    s.notes.push_back(
+        "MPI is not built in: rank 0 runs the whole sweep on threads, the other "
+        "ranks do nothing");
+  }
+  Plan plan = prepare(d, options);
+  s.notes.insert(s.notes.end(), plan.notes.begin(), plan.notes.end());
+  s.runs = d.runs.size();
+  s.already_done = s.runs - plan.pending.size();
+  s.ran = plan.pending.size();
+  s.workers = options.jobs > 0 ? options.jobs : default_jobs(1);
+  {
+    ProgressBar bar(options.progress, s.already_done);
+    SweepProgress progress;
+    if (bar.enabled()) {
+      progress = [&bar](std::size_t done, std::size_t failed, std::size_t total) {
+        bar.update(done, failed, total);
+      };
+    }
+    run_threaded(d, options, plan, s.workers, progress);
+  }
+  write_results(d, options, plan.rows);
+  s.failed = count_failed(d, plan.rows);
+  s.results = options.out / "results.csv";
+  return s;
+}
+
+std::size_t failed_rows(const Design& d, const std::vector<std::optional<std::string>>& rows) {
+  return count_failed(d, rows);
+}
+
+ProgressBar::ProgressBar(bool enabled, std::size_t already)
+    : enabled_(enabled && ::isatty(STDERR_FILENO) == 1), already_(already), start_(now_s()) {}
+
+ProgressBar::~ProgressBar() {
+  if (drawn_) std::fputs("\n", stderr);
+}
+
+void ProgressBar::update(std::size_t done, std::size_t failed, std::size_t total) {
+  if (!enabled_ || total == 0) return;
+  const double t = now_s();
+  // Redraw at most ten times a second, and always at the end.
+  if (done < total && last_ >= 0.0 && t - last_ < 0.1) return;
+  last_ = t;
+  const double elapsed = t - start_;
+  const std::size_t now_done = done - std::min(done, already_);
+  const double left =
+      now_done > 0 ? elapsed / static_cast<double>(now_done) * static_cast<double>(total - done)
+                   : 0.0;
+  constexpr int kWidth = 30;
+  const int filled =
+      static_cast<int>(kWidth * static_cast<double>(done) / static_cast<double>(total));
+  std::string bar(static_cast<std::size_t>(filled), '#');
+  bar.resize(kWidth, ' ');
+  std::fprintf(stderr, "\r[%s] %zu/%zu runs, %zu failed, %.0f s left ", bar.c_str(), done, total,
+               failed, left);
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+}  // namespace nsb::sweep

@@ -1,0 +1,113 @@
+// Running a sweep: every run of a design is an ordinary integrators::integrate() call with
+// its own outputs under DIR/runs/<id>/, on a pool of threads or on MPI ranks; DIR/results.csv
+// gathers one row per run, sorted by run id, and does not depend on how the runs were
+// distributed (docs/sweep.md).
+#pragma once
+
+#include "sweep/design.hpp"
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace nsb::sweep {
+
+struct SweepOptions {
+  std::filesystem::path out;     // the sweep's folder DIR (created if needed)
+  int jobs = 0;                  // worker threads per process, >= 0; 0 = all cores (under MPI:
+                                 //   the cores divided among the ranks of one machine)
+  bool restart = false;          // discard the runs of an earlier, different design in DIR
+  bool progress = true;          // draw a progress bar on stderr when it is a terminal
+  std::vector<std::string> set;  // overrides added to the design's `set` for every run
+  void validate() const;         // throws std::invalid_argument naming the field
+};
+
+// What a sweep did. Counts refer to the runs of the design.
+struct SweepSummary {
+  std::size_t runs = 0;            // runs in the design
+  std::size_t already_done = 0;    // found complete in DIR and skipped
+  std::size_t ran = 0;             // run now
+  std::size_t failed = 0;          // rows whose status is not a completed one (all rows)
+  int workers = 0;                 // threads over all processes
+  int ranks = 1;                   // MPI processes (1 without MPI)
+  std::size_t ran_elsewhere = 0;   // of `ran`, the runs made by MPI ranks other than 0
+  bool primary = true;             // false on MPI ranks other than 0: they print nothing
+  std::vector<std::string> notes;  // things to tell the user (revision changed, MPI absent)
+  std::filesystem::path results;   // DIR/results.csv
+};
+
+// The columns of results.csv after `run` and the factor columns. wall_s is last, so that
+// comparing two results.csv without it is one `cut`.
+const std::vector<std::string>& result_columns();
+
+// The header line of results.csv for a design (no newline).
+std::string results_header(const Design& design);
+
+// One run: loads the scene with the run's overrides, integrates, writes its outputs into
+// DIR/runs/<id>/ and its row into DIR/runs/<id>/row.csv (each atomically). A numerical failure
+// is a row with its status; a scene that rejects the run's combination of values is a row with
+// status "rejected". Throws std::runtime_error only when the outputs cannot be written.
+struct RunOutcome {
+  std::string row;         // the results.csv line, without newline
+  bool succeeded = false;  // a completed status
+};
+RunOutcome run_one(const Design& design, std::size_t index, const std::filesystem::path& out);
+
+// The state of DIR before the runs: which are already complete (their rows), which remain.
+struct Plan {
+  std::vector<std::optional<std::string>> rows;  // one per run; set for completed runs
+  std::vector<std::size_t> pending;              // indices still to run, ascending
+  std::vector<std::string> notes;
+};
+// Prepares DIR for a design: records the design's hash and the code revision in
+// DIR/manifest.toml, and reads the rows of completed runs. A DIR holding a different design is
+// refused (std::invalid_argument) unless options.restart, which removes its runs first.
+Plan prepare(const Design& design, const SweepOptions& options);
+
+// Writes DIR/results.csv from every row (sorted by run id), via a temporary file and rename.
+void write_results(const Design& design, const SweepOptions& options,
+                   const std::vector<std::optional<std::string>>& rows);
+
+// Reports progress: runs done and failed so far (of the total). Called from one thread at a
+// time; may be empty.
+using SweepProgress = std::function<void(std::size_t done, std::size_t failed, std::size_t total)>;
+
+// Runs the pending runs of plan on `threads` workers that take the next index from one
+// atomic counter, filling plan.rows. Returns the number of failed runs among them.
+std::size_t run_threaded(const Design& design, const SweepOptions& options, Plan& plan, int threads,
+                         const SweepProgress& progress);
+
+// The whole sweep: validate, prepare, run (threaded, or over MPI when the process was started
+// by mpirun and MPI is built in), write results.csv. Throws std::invalid_argument for a bad
+// design or options, before any run.
+SweepSummary run_sweep(const std::filesystem::path& design_file, const SweepOptions& options);
+
+// True when nsbridge was built with MPI.
+bool mpi_built_in();
+
+// The code revision recorded in manifest.toml (git revision at configure time).
+std::string code_revision();
+
+// A progress bar on stderr (terminal only): runs done, failed, estimated time left.
+class ProgressBar {
+ public:
+  // already: runs complete before this session, left out of the rate that estimates the time.
+  ProgressBar(bool enabled, std::size_t already);
+  ~ProgressBar();
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+  void update(std::size_t done, std::size_t failed, std::size_t total);
+  bool enabled() const { return enabled_; }
+
+ private:
+  bool enabled_;
+  bool drawn_ = false;
+  std::size_t already_;
+  double start_;
+  double last_ = -1.0;
+};
+
+}  // namespace nsb::sweep

@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# End-to-end tests of `nsbridge sweep`: design errors (exit 2, nothing written), a failing run
+# inside a sweep (exit 1, a row with its status), resume, refusal of a changed design, the
+# equality of --jobs 1 and --jobs 2, the Fig. 6 design and the plots.
+#   bash sweep/test/sweep_cli_test.sh NSBRIDGE
+set -uo pipefail
+nsb=$1
+root=$(cd "$(dirname "$0")/../.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+passed=0
+failed=0
+
+check() {  # check DESCRIPTION COMMAND...
+  local what=$1
+  shift
+  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAILED: $what" >&2; fi
+}
+# run CODE PATTERN ARGS...: nsbridge ARGS must exit with CODE and print PATTERN (ERE).
+run() {
+  local code=$1 pattern=$2
+  shift 2
+  local out rc
+  out=$("$nsb" "$@" 2>&1)
+  rc=$?
+  if [[ $rc -eq $code ]] && grep -Eq -- "$pattern" <<<"$out"; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1))
+    echo "FAILED: nsbridge $* -> exit $rc (expected $code, /$pattern/):" >&2
+    echo "$out" | head -5 >&2
+  fi
+}
+# The rows of a results.csv without wall_s, the last column.
+rows() { awk -F, '{ NF--; print }' OFS=, "$1"; }
+
+design() {  # design FILE SCENE BODY: a design file with the base scene by absolute path
+  printf 'scene = "%s/scenes/%s.toml"\n%s\n' "$root" "$2" "$3" > "$1"
+}
+
+# --- Design errors: exit 2 before any run, nothing written ------------------------------
+design "$tmp/unknown.toml" bouncing-ball $'[[factor]]\nkey = "model.colour"\nvalues = [1]'
+run 2 'unknown.toml:2: factor model.colour = 1: .*model.colour' sweep "$tmp/unknown.toml" --out "$tmp/o1"
+check "no output after a design error" test ! -e "$tmp/o1"
+design "$tmp/value.toml" bouncing-ball $'[[factor]]\nkey = "model.restitution"\nvalues = [0.5, 2]'
+run 2 'factor model.restitution = 2: .*must be in \[0, 1\]' sweep "$tmp/value.toml" --out "$tmp/o1"
+design "$tmp/empty.toml" bouncing-ball $'[[factor]]\nkey = "model.restitution"\nvalues = []'
+run 2 'empty.toml:4:10: factor\[0\].values: must not be empty' sweep "$tmp/empty.toml" --out "$tmp/o1"
+run 2 "fig6.toml: scene: .*solver.end_time \\(override\\)" sweep "$root/scenes/sweeps/fig6.toml" --out "$tmp/o1" --set solver.end_time=-1
+check "no output after design errors" test ! -e "$tmp/o1"
+
+# --- A run that fails numerically is a row; the sweep goes on -----------------------------
+# Event-driven with g = 1e308: the adaptive step underflows at t = 0 (status "stalled").
+design "$tmp/ball.toml" bouncing-ball \
+  $'set = ["solver.method=event_driven"]\n[[factor]]\nkey = "model.gravity"\nvalues = [9.81, 1e308, 4.905]'
+run 1 'failed +1 of 3 runs' sweep "$tmp/ball.toml" --out "$tmp/ball"
+check "stalled row" grep -q '^0001,1e+308,stalled,' "$tmp/ball/results.csv"
+check "completed rows" test "$(grep -c ',completed,' "$tmp/ball/results.csv")" -eq 2
+check "outputs of the failed run" test -s "$tmp/ball/runs/0001/summary.json"
+
+# --- Resume and a changed design ------------------------------------------------------------
+rm "$tmp/ball/runs/0002/row.csv"
+run 1 '2 already done \(skipped\), 1 run now' sweep "$tmp/ball.toml" --out "$tmp/ball"
+design "$tmp/ball.toml" bouncing-ball \
+  $'set = ["solver.method=event_driven"]\n[[factor]]\nkey = "model.gravity"\nvalues = [9.81, 3.0]'
+run 2 'different design.*--restart' sweep "$tmp/ball.toml" --out "$tmp/ball"
+check "refused: old rows kept" grep -q '^0002,4.905,' "$tmp/ball/results.csv"
+run 0 '0 already done \(skipped\), 2 run now' sweep "$tmp/ball.toml" --out "$tmp/ball" --restart
+check "restarted: old runs removed" test ! -e "$tmp/ball/runs/0002"
+
+# --- Fig. 6 (short records) with 1 and 2 workers: the same rows --------------------------------
+fig6=$root/scenes/sweeps/fig6.toml
+run 0 '42 in the design' sweep "$fig6" --out "$tmp/f1" --jobs 1 --set solver.end_time=2
+run 0 '2 threads' sweep "$fig6" --out "$tmp/f2" --jobs 2 --set solver.end_time=2 --plot
+check "fig6: 42 rows" test "$(wc -l < "$tmp/f1/results.csv")" -eq 43
+check "fig6: --jobs 1 and 2 give the same rows" cmp -s <(rows "$tmp/f1/results.csv") <(rows "$tmp/f2/results.csv")
+for f in ida.csv ida.png ida.svg exceedance.csv exceedance.png exceedance.svg; do
+  check "plot $f" test -s "$tmp/f2/plots/$f"
+done
+
+# --- One factor at a time on the bridge: the tornado chart --------------------------------------
+design "$tmp/oat.toml" bridge-exc7 $'mode = "oat"\nset = ["solver.end_time=3"]
+[[factor]]\nkey = "model.seats.friction"\nvalues = [0.2, 0.8]
+[[factor]]\nkey = "model.gaps.left"\nvalues = [0.005, 0.05]'
+run 0 '5 in the design' sweep "$tmp/oat.toml" --out "$tmp/oat" --plot --limit 0.001
+for f in tornado.csv tornado.png tornado.svg; do check "plot $f" test -s "$tmp/oat/plots/$f"; done
+check "tornado rows" test "$(wc -l < "$tmp/oat/plots/tornado.csv")" -eq 3
+
+echo "sweep_cli_test: $passed passed, $failed failed"
+[[ $failed -eq 0 ]]
