@@ -65,13 +65,13 @@ function(nsb_add_test file)
   endif()
 endfunction()
 
-# nsb_add_folder_tests(<library target>)
+# nsb_add_folder_tests(<library target> [<more targets...>])
 # Registers every test/<module>_test.cpp of the current folder as a unit test linked to the
-# folder's library.
+# folder's library (and the further targets, e.g. nsb_testsupport).
 function(nsb_add_folder_tests lib)
   file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/*_test.cpp)
   foreach(t ${tests})
-    nsb_add_test(${t} DEPS ${lib})
+    nsb_add_test(${t} DEPS ${lib} ${ARGN})
   endforeach()
 endfunction()
 
