@@ -105,7 +105,8 @@ EnergyState Ball::energy(double, const Vector& q) const {
 // ---------------------------------------------------------------------------------------
 Block::Block(const Parameters& p) : TestSystem({"x", "y"}, {"vx", "vy"}), p_(p) {
   set_mass(Matrix::Identity(2, 2) * p_.mass);
-  set_initial_state(vector2(p_.initial_position, 0.0), vector2(p_.initial_velocity, 0.0));
+  set_initial_state(vector2(p_.initial_position, p_.initial_height),
+                    vector2(p_.initial_velocity, 0.0));
 }
 
 double Block::driving_force(double t) const {
@@ -126,7 +127,7 @@ void Block::tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) 
 void Block::contact_data(double, const Vector& q, const Vector&,
                          std::vector<ContactData>& out) const {
   static const Vector kWn = vector2(0.0, 1.0), kWt = vector2(1.0, 0.0);
-  integrators::set_fixed_contact(out[0], q[1], kWn, kWt, 0.0, p_.friction);
+  integrators::set_fixed_contact(out[0], q[1], kWn, kWt, p_.restitution, p_.friction);
 }
 
 PowerTerms Block::power(double t, const Vector&, const Vector& u) const {

@@ -112,8 +112,8 @@ class Ball final : public TestSystem {
 };
 
 // A block on the ground y = 0 (2 DOF: x, y) with Coulomb friction, pushed along x by
-// F(t) = F0 + F1 sin(w t) and held by a spring k x: g_N = y, W_N = (0, 1), W_T = (1, 0),
-// restitution 0. Stored energy k x^2 / 2 + m g y.
+// F(t) = F0 + F1 sin(w t) and held by a spring k x: g_N = y, W_N = (0, 1), W_T = (1, 0).
+// Stored energy k x^2 / 2 + m g y.
 class Block final : public TestSystem {
  public:
   struct Parameters {
@@ -126,6 +126,8 @@ class Block final : public TestSystem {
     double force_frequency = 0.0;    // w [rad/s]
     double initial_position = 0.0;   // x0 [m]
     double initial_velocity = 0.0;   // vx0 [m/s]
+    double initial_height = 0.0;     // y0 [m] (< 0: a compliant floor's static penetration)
+    double restitution = 0.0;        // Newton's e, in [0, 1]
   };
   explicit Block(const Parameters& p);
   const Parameters& parameters() const { return p_; }
