@@ -84,46 +84,60 @@ class Core {
     q_ = x.head(n_);
     u_ = x.tail(n_);
     sys_.forces(t, q_, u_, f_);
-    sys_.contact_data(t, q_, u_, contacts_);
+    sys_.contact_data(t, q_, u_, contacts_);  // gaps, W and the rheonomic terms (eq. 2)
     if (derivatives) {
       Jq_.setZero();
       Ju_.setZero();
     }
     for (int i = 0; i < m_; ++i) {
-      const ContactData& c = contacts_[static_cast<std::size_t>(i)];
       lambda_n_[i] = 0.0;
       lambda_t_[i] = 0.0;
       damping_part_[i] = 0.0;
+      const ContactData& c = contacts_[static_cast<std::size_t>(i)];
       if (c.far || !(c.gap_normal < 0.0)) continue;
-      const double delta = -c.gap_normal;
-      const double delta_rate = -c.gap_rate(u_);
-      const NormalForce fn =
-          hertz_damp_force(opt_.stiffness, chi_[i], v_minus_[i], delta, delta_rate);
-      lambda_n_[i] = fn.force;
-      damping_part_[i] = fn.force - opt_.stiffness * delta * std::sqrt(delta);
-      f_.noalias() += c.w_normal * fn.force;
-      TangentForce ft;
-      if (c.friction > 0.0) {
-        ft = regularized_coulomb(c.friction, fn.force, c.slip_rate(u_),
-                                 opt_.stick_slip_velocity);
-        lambda_t_[i] = ft.force;
-        f_.noalias() += c.w_tangent * ft.force;
-      }
-      if (derivatives) {
-        // delta = -g_N with dg_N/dq = W_N^T, and deltadot = -(W_N^T u + what_N), so
-        // dlambda_N/dq = -dF/ddelta W_N^T, dlambda_N/du = -dF/ddeltadot W_N^T.
-        // The terms (dW_N/dq) u of dgdot/dq are left out: they are of the order of the
-        // rotation rate times the damping force, small beside the stiffness terms, and a
-        // Rosenbrock step with an approximate Jacobian stays consistent (the error control
-        // sees the difference).
-        Jq_.noalias() += fn.d_penetration * c.w_normal * c.w_normal.transpose();
-        Ju_.noalias() += fn.d_rate * c.w_normal * c.w_normal.transpose();
-        if (c.friction > 0.0) {
-          Jq_.noalias() += (ft.d_normal * fn.d_penetration) * c.w_tangent * c.w_normal.transpose();
-          Ju_.noalias() += (ft.d_normal * fn.d_rate) * c.w_tangent * c.w_normal.transpose();
-          Ju_.noalias() -= ft.d_slip * c.w_tangent * c.w_tangent.transpose();
-        }
-      }
+      const NormalForce fn = normal_force(i, c);
+      const TangentForce ft = tangent_force(i, c, fn);
+      if (derivatives) add_contact_jacobian(c, fn, ft);
+    }
+  }
+
+  // Eq. (9) on the penetration delta = -g_N and its rate -gdot_N, added to f along W_N.
+  NormalForce normal_force(int i, const ContactData& c) {
+    const double delta = -c.gap_normal;
+    const double delta_rate = -c.gap_rate(u_);
+    const NormalForce fn =
+        hertz_damp_force(opt_.stiffness, chi_[i], v_minus_[i], delta, delta_rate);
+    lambda_n_[i] = fn.force;
+    damping_part_[i] = fn.force - opt_.stiffness * delta * std::sqrt(delta);
+    f_.noalias() += c.w_normal * fn.force;
+    return fn;
+  }
+
+  // Eq. (10) on the slip rate gdot_T, added to f along W_T (none without friction).
+  TangentForce tangent_force(int i, const ContactData& c, const NormalForce& fn) {
+    TangentForce ft;
+    if (c.friction > 0.0) {
+      ft = regularized_coulomb(c.friction, fn.force, c.slip_rate(u_), opt_.stick_slip_velocity);
+      lambda_t_[i] = ft.force;
+      f_.noalias() += c.w_tangent * ft.force;
+    }
+    return ft;
+  }
+
+  // The contact's share of Jq_ = -dF/dq and Ju_ = -dF/du.
+  void add_contact_jacobian(const ContactData& c, const NormalForce& fn, const TangentForce& ft) {
+    // delta = -g_N with dg_N/dq = W_N^T, and deltadot = -(W_N^T u + what_N), so
+    // dlambda_N/dq = -dF/ddelta W_N^T, dlambda_N/du = -dF/ddeltadot W_N^T.
+    // The terms (dW_N/dq) u of dgdot/dq are left out: they are of the order of the
+    // rotation rate times the damping force, small beside the stiffness terms, and a
+    // Rosenbrock step with an approximate Jacobian stays consistent (the error control
+    // sees the difference).
+    Jq_.noalias() += fn.d_penetration * c.w_normal * c.w_normal.transpose();
+    Ju_.noalias() += fn.d_rate * c.w_normal * c.w_normal.transpose();
+    if (c.friction > 0.0) {
+      Jq_.noalias() += (ft.d_normal * fn.d_penetration) * c.w_tangent * c.w_normal.transpose();
+      Ju_.noalias() += (ft.d_normal * fn.d_rate) * c.w_tangent * c.w_normal.transpose();
+      Ju_.noalias() -= ft.d_slip * c.w_tangent * c.w_tangent.transpose();
     }
   }
 
