@@ -2,15 +2,9 @@
 // gravity in the plane: the deck model of the rotation criterion (eq. 1) and of the impact
 // law (eq. 3-7) of Shi & Dimitrakopoulos (2017).
 //
-// Geometry (docs/bridge.md): deck centre (x, y), rotation theta (counter-clockwise), axis along
-// global x at theta = 0; length L along the axis, width W across it; skew angle alpha. The deck
-// ends and the abutment faces are the lines x_b = +-L/2 + y_b tan(alpha), so the corners are
-// (+-L/2 +- (W/2) tan(alpha), +-W/2). Contacts (paper, Figure 2):
-//   1 = left end, y_b = +W/2;  2 = left end, y_b = -W/2;
-//   3 = right end, y_b = +W/2; 4 = right end, y_b = -W/2.
-// gap_right / gap_left: clear distance along the deck axis at x = y = theta = 0 (the normal
-// gap is gap cos(alpha)). W_N opens the gap; the tangent is the face normal n (from the
-// abutment towards the deck) rotated +90 degrees.
+// Geometry, contact numbering and gaps: models/deck_geometry.hpp (the paper's contacts 1..4
+// are indices 0..3 there). W_N opens the gap; the tangent is the face normal n (from the abutment
+// towards the deck) rotated +90 degrees.
 //
 // Units: kN, t, m, s, rad.
 #pragma once
