@@ -1,6 +1,8 @@
 # LCP solver benchmark: eq. (6) problems, dense SPD problems and Siconos's LCP collection;
 # with Siconos Numerics installed, the same problems through its solvers, and the time ratios.
-nsb_add_benchmark(lcp_bench SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/lcp_bench.cpp DEPS nsb_lcp)
+# Smoke run: --quick (fewer sizes and repetitions): ~19 s.
+nsb_add_benchmark(lcp_bench SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/lcp_bench.cpp DEPS nsb_lcp
+                  SMOKE --quick --csv lcp_bench.csv)
 if(NSB_HAVE_SICONOS)
   target_compile_definitions(lcp_bench PRIVATE NSB_HAVE_SICONOS=1)
   # Siconos's headers include "SiconosConfig.h" from the folder above numerics/.

@@ -34,10 +34,19 @@ function(nsb_add_library name)
   endif()
 endfunction()
 
+# nsb_test_name(<out-var> <name>)
+# The CTest name of a test of the current folder: "<folder>.<name>", e.g. lcp.lemke_test,
+# verification.moreau_deck_check, benchmarks.moreau_bench (README, "Tests"). The prefix lets
+# `ctest -R '^lcp\.'` select one module.
+function(nsb_test_name out name)
+  file(RELATIVE_PATH folder ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
+  set(${out} "${folder}.${name}" PARENT_SCOPE)
+endfunction()
+
 # nsb_add_test(<file.cpp> DEPS <targets...> [LABELS <labels...>] [FIXTURES_SETUP <f>]
 #              [FIXTURES_REQUIRED <f>] [TIMEOUT <s>])
-# One doctest executable per test file, registered with CTest under the file's stem.
-# Every test gets the label "unit" unless LABELS says otherwise.
+# One doctest executable per test file, named after the file's stem and registered with CTest
+# as "<folder>.<stem>". Every test gets the label "unit" unless LABELS says otherwise.
 function(nsb_add_test file)
   cmake_parse_arguments(ARG "" "TIMEOUT" "DEPS;LABELS;FIXTURES_SETUP;FIXTURES_REQUIRED" ${ARGN})
   get_filename_component(stem ${file} NAME_WE)
@@ -46,38 +55,41 @@ function(nsb_add_test file)
   target_compile_definitions(${stem} PRIVATE NSB_DATA_DIR="${NSB_DATA_DIR}"
                                              NSB_SCENES_DIR="${NSB_SCENES_DIR}")
   nsb_target_options(${stem})
-  add_test(NAME ${stem} COMMAND ${stem})
+  nsb_test_name(name ${stem})
+  add_test(NAME ${name} COMMAND ${stem})
   if(NOT ARG_LABELS)
     set(ARG_LABELS unit)
   endif()
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 300)
   endif()
-  set_tests_properties(${stem} PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+  set_tests_properties(${name} PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
   if("unit" IN_LIST ARG_LABELS)
     add_dependencies(nsb_unit_tests ${stem})
   endif()
   if(ARG_FIXTURES_SETUP)
-    set_tests_properties(${stem} PROPERTIES FIXTURES_SETUP "${ARG_FIXTURES_SETUP}")
+    set_tests_properties(${name} PROPERTIES FIXTURES_SETUP "${ARG_FIXTURES_SETUP}")
   endif()
   if(ARG_FIXTURES_REQUIRED)
-    set_tests_properties(${stem} PROPERTIES FIXTURES_REQUIRED "${ARG_FIXTURES_REQUIRED}")
+    set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "${ARG_FIXTURES_REQUIRED}")
   endif()
 endfunction()
 
-# nsb_add_folder_tests(<library target>)
+# nsb_add_folder_tests(<library target> [<more targets...>])
 # Registers every test/<module>_test.cpp of the current folder as a unit test linked to the
-# folder's library.
+# folder's library (and the further targets, e.g. nsb_testsupport).
 function(nsb_add_folder_tests lib)
   file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/*_test.cpp)
   foreach(t ${tests})
-    nsb_add_test(${t} DEPS ${lib})
+    nsb_add_test(${t} DEPS ${lib} ${ARGN})
   endforeach()
 endfunction()
 
 # nsb_include_fragments()
-# Includes every *.cmake file of the current folder, in name order, so that each module adds
-# its own executables and tests without editing a shared list.
+# Includes every *.cmake file of the current folder, so that each module adds its own
+# executables and tests without editing a shared list. The order carries no meaning: tests
+# that must run after others say so with the CTest fixture properties (FIXTURES_SETUP and
+# FIXTURES_REQUIRED), never through the order of the fragments.
 macro(nsb_include_fragments)
   file(GLOB _nsb_fragments CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cmake)
   list(SORT _nsb_fragments)

@@ -86,46 +86,60 @@ class Core {
     q_ = x.head(n_);
     u_ = x.tail(n_);
     sys_.forces(t, q_, u_, f_);
-    sys_.contact_data(t, q_, u_, contacts_);
+    sys_.contact_data(t, q_, u_, contacts_);  // gaps, W and the rheonomic terms (eq. 2)
     if (derivatives) {
       Jq_.setZero();
       Ju_.setZero();
     }
     for (int i = 0; i < m_; ++i) {
-      const ContactData& c = contacts_[static_cast<std::size_t>(i)];
       lambda_n_[i] = 0.0;
       lambda_t_[i] = 0.0;
       damping_part_[i] = 0.0;
+      const ContactData& c = contacts_[static_cast<std::size_t>(i)];
       if (c.far || !(c.gap_normal < 0.0)) continue;
-      const double delta = -c.gap_normal;
-      const double delta_rate = -c.gap_rate(u_);
-      const NormalForce fn =
-          hertz_damp_force(opt_.stiffness, chi_[i], v_minus_[i], delta, delta_rate);
-      lambda_n_[i] = fn.force;
-      damping_part_[i] = fn.force - opt_.stiffness * delta * std::sqrt(delta);
-      f_.noalias() += c.w_normal * fn.force;
-      TangentForce ft;
-      if (c.friction > 0.0) {
-        ft = regularized_coulomb(c.friction, fn.force, c.slip_rate(u_),
-                                 opt_.stick_slip_velocity);
-        lambda_t_[i] = ft.force;
-        f_.noalias() += c.w_tangent * ft.force;
-      }
-      if (derivatives) {
-        // delta = -g_N with dg_N/dq = W_N^T, and deltadot = -(W_N^T u + what_N), so
-        // dlambda_N/dq = -dF/ddelta W_N^T, dlambda_N/du = -dF/ddeltadot W_N^T.
-        // The terms (dW_N/dq) u of dgdot/dq are left out: they are of the order of the
-        // rotation rate times the damping force, small beside the stiffness terms, and a
-        // Rosenbrock step with an approximate Jacobian stays consistent (the error control
-        // sees the difference).
-        Jq_.noalias() += fn.d_penetration * c.w_normal * c.w_normal.transpose();
-        Ju_.noalias() += fn.d_rate * c.w_normal * c.w_normal.transpose();
-        if (c.friction > 0.0) {
-          Jq_.noalias() += (ft.d_normal * fn.d_penetration) * c.w_tangent * c.w_normal.transpose();
-          Ju_.noalias() += (ft.d_normal * fn.d_rate) * c.w_tangent * c.w_normal.transpose();
-          Ju_.noalias() -= ft.d_slip * c.w_tangent * c.w_tangent.transpose();
-        }
-      }
+      const NormalForce fn = normal_force(i, c);
+      const TangentForce ft = tangent_force(i, c, fn);
+      if (derivatives) add_contact_jacobian(c, fn, ft);
+    }
+  }
+
+  // Eq. (9) on the penetration delta = -g_N and its rate -gdot_N, added to f along W_N.
+  NormalForce normal_force(int i, const ContactData& c) {
+    const double delta = -c.gap_normal;
+    const double delta_rate = -c.gap_rate(u_);
+    const NormalForce fn =
+        hertz_damp_force(opt_.stiffness, chi_[i], v_minus_[i], delta, delta_rate);
+    lambda_n_[i] = fn.force;
+    damping_part_[i] = fn.force - opt_.stiffness * delta * std::sqrt(delta);
+    f_.noalias() += c.w_normal * fn.force;
+    return fn;
+  }
+
+  // Eq. (10) on the slip rate gdot_T, added to f along W_T (none without friction).
+  TangentForce tangent_force(int i, const ContactData& c, const NormalForce& fn) {
+    TangentForce ft;
+    if (c.friction > 0.0) {
+      ft = regularized_coulomb(c.friction, fn.force, c.slip_rate(u_), opt_.stick_slip_velocity);
+      lambda_t_[i] = ft.force;
+      f_.noalias() += c.w_tangent * ft.force;
+    }
+    return ft;
+  }
+
+  // The contact's share of Jq_ = -dF/dq and Ju_ = -dF/du.
+  void add_contact_jacobian(const ContactData& c, const NormalForce& fn, const TangentForce& ft) {
+    // delta = -g_N with dg_N/dq = W_N^T, and deltadot = -(W_N^T u + what_N), so
+    // dlambda_N/dq = -dF/ddelta W_N^T, dlambda_N/du = -dF/ddeltadot W_N^T.
+    // The terms (dW_N/dq) u of dgdot/dq are left out: they are of the order of the
+    // rotation rate times the damping force, small beside the stiffness terms, and a
+    // Rosenbrock step with an approximate Jacobian stays consistent (the error control
+    // sees the difference).
+    Jq_.noalias() += fn.d_penetration * c.w_normal * c.w_normal.transpose();
+    Ju_.noalias() += fn.d_rate * c.w_normal * c.w_normal.transpose();
+    if (c.friction > 0.0) {
+      Jq_.noalias() += (ft.d_normal * fn.d_penetration) * c.w_tangent * c.w_normal.transpose();
+      Ju_.noalias() += (ft.d_normal * fn.d_rate) * c.w_tangent * c.w_normal.transpose();
+      Ju_.noalias() -= ft.d_slip * c.w_tangent * c.w_tangent.transpose();
     }
   }
 
@@ -289,6 +303,307 @@ struct Powers {
   double external = 0, ground = 0, damping = 0, impacts = 0, friction = 0;
 };
 
+// One integration of the compliance method, split along §4 of the paper: the gap elements'
+// state (closure and approach velocity v_minus, which fix eq. 9's damping), the step with its
+// control (Rosenbrock step, closures located on the step's interpolant so that contact onset
+// is a step boundary), the events, and the energy balance.
+class ComplianceRun {
+ public:
+  ComplianceRun(System& system, const ComplianceOptions& options, Recorder& recorder,
+                const Progress& progress)
+      : system_(system), options_(options), recorder_(recorder), progress_(progress),
+        core_(system, options),
+        n_(core_.dofs()), m_(core_.contacts()),
+        closed_(static_cast<std::size_t>(m_), 0), pending_(static_cast<std::size_t>(m_), 0),
+        stepper_(core_, options.tolerance, options.tolerance, options.max_step) {}
+
+  RunResult integrate() {
+    const auto wall_start = std::chrono::steady_clock::now();
+    stats_.method = "compliance";
+    start();
+    double dt = std::min(options_.initial_step, options_.max_step);
+    const double time_scale = std::max(1.0, std::abs(options_.end_time));
+    while (t_ < options_.end_time) {
+      if (stats_.steps + stats_.rejected_steps >= options_.max_steps) {
+        stats_.message = "max_steps reached";
+        break;
+      }
+      dt = std::min({dt, options_.end_time - t_, target_ - t_});
+      if (dt < kMinRelativeStep * std::max(1.0, std::abs(t_))) {
+        std::ostringstream os;
+        os << "step size underflow at t = " << t_;
+        stats_.message = os.str();
+        break;
+      }
+      const double dt_try = dt;
+      double t_new = t_;
+      ++stats_.factorizations;
+      const bool ok = stepper_.try_step(x_, t_new, xnew_, dt);
+      if (!ok || !finite(xnew_)) {
+        if (ok) dt = 0.5 * dt_try;  // a finite error estimate but a non-finite state: halve
+        ++stats_.rejected_steps;
+        continue;
+      }
+      // Landing exactly on the end time or the closure target must not be missed by
+      // round-off.
+      if (std::abs(t_new - options_.end_time) <= 1e-14 * time_scale) t_new = options_.end_time;
+      const bool landed = std::abs(t_new - target_) <= 1e-14 * time_scale;
+      if (landed) t_new = target_;
+
+      const Closure closure = locate_closure(t_new, landed);
+      if (closure.retake) {
+        // Retake the step so that it ends at the closure: contact onset is a step boundary.
+        target_ = closure.time;
+        dt = closure.time - t_;
+        ++stats_.rejected_steps;
+        continue;
+      }
+      accept_step(t_new, landed, closure.at_start);
+      if (progress_ && stats_.steps % kProgressInterval == 0) progress_(t_);
+    }
+    if (progress_) progress_(t_);
+    stats_.completed = (t_ >= options_.end_time);
+    stats_.end_time = t_;
+    stats_.energy = energy_;
+    recorder_.sample_now(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_,
+                         core_.lambda_t_, energy_.error);
+    if (!stats_.completed && stats_.message.empty()) stats_.message = "stopped before end_time";
+    // A non-finite state is never accepted (the step is halved), so a run that cannot advance
+    // past one ends in a step underflow: stalled, like max_steps. A non-finite energy balance
+    // is divergence.
+    finish_status(stats_, !std::isfinite(energy_.error), !stats_.completed);
+    if (!succeeded(stats_.status)) stats_.failure_time = t_;
+    stats_.wall_time =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    return stats_;
+  }
+
+ private:
+  // Where the step's interpolant first closes an open gap.
+  struct Closure {
+    bool retake = false;    // the closure is inside the step: retake it up to `time`
+    bool at_start = false;  // the closure is at the start of the step: close the pending now
+    double time = 0.0;
+  };
+
+  // Initial state, eq. (9)'s damping factor chi of every contact from its restitution, the
+  // contacts closed at t0, the initial energy and the first sample.
+  void start() {
+    t_ = system_.initial_time();
+    x_ = State::Zero(2 * n_);
+    xnew_ = State::Zero(2 * n_);
+    const Vector q0 = system_.initial_position();
+    const Vector u0 = system_.initial_velocity();
+    if (q0.size() != n_ || u0.size() != n_) {
+      throw std::invalid_argument("compliance: initial state size differs from dofs()");
+    }
+    x_.head(n_) = q0;
+    x_.tail(n_) = u0;
+    core_.evaluate(t_, x_, false);
+    for (int i = 0; i < m_; ++i) {
+      const ContactData& c = core_.contacts_[static_cast<std::size_t>(i)];
+      core_.chi_[i] = damping_factor(options_.law, c.restitution);
+    }
+    for (int i = 0; i < m_; ++i) {
+      const ContactData& c = core_.contacts_[static_cast<std::size_t>(i)];
+      if (!c.far && c.gap_normal <= 0.0) close_contact(i, t_);
+    }
+    core_.evaluate(t_, x_, false);
+    system_.commit();
+    update_state_energy();
+    energy_.initial = energy_.kinetic + energy_.stored;
+    energy_.close();
+    p_old_ = powers();
+    recorder_.sample(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
+                     0.0);
+  }
+
+  // A gap element closes: eq. (9)'s v_minus is the approach velocity now (floored).
+  void close_contact(int i, double time) {
+    const ContactData& c = core_.contacts_[static_cast<std::size_t>(i)];
+    closed_[static_cast<std::size_t>(i)] = 1;
+    core_.v_minus_[i] = std::max(-c.gap_rate(core_.u_), options_.min_impact_velocity);
+    recorder_.event(time, i + 1, EventKind::kClose);
+  }
+
+  // Contacts whose closure the search looks for: open at the start of the step, not far, and
+  // not already located (on a step that landed on a located closure).
+  bool searched(int i, const ContactData& c, bool landed) const {
+    const auto ii = static_cast<std::size_t>(i);
+    return !closed_[ii] && !c.far && !(landed && pending_[ii]);
+  }
+
+  // Smallest searched gap on the interpolant at t + s (t_new - t).
+  double min_open_gap(double t_new, bool landed, double s) {
+    double g = std::numeric_limits<double>::infinity();
+    const auto& cs = core_.gaps_at(t_, x_, t_new, xnew_, s);
+    for (int i = 0; i < m_; ++i) {
+      const ContactData& c = cs[static_cast<std::size_t>(i)];
+      if (searched(i, c, landed)) g = std::min(g, c.gap_normal);
+    }
+    return g;
+  }
+
+  // Step control at contact onset: the first probe point where a searched gap is negative,
+  // then bisection on the interpolant between it and the previous probe. The contacts that
+  // close first become pending.
+  Closure locate_closure(double t_new, bool landed) {
+    Closure out;
+    double s_lo = 0.0, s_hi = -1.0;
+    for (int j = 1; m_ > 0 && j <= kClosureProbes; ++j) {
+      const double s = static_cast<double>(j) / kClosureProbes;
+      if (min_open_gap(t_new, landed, s) < 0.0) {
+        s_hi = s;
+        s_lo = static_cast<double>(j - 1) / kClosureProbes;
+        break;
+      }
+    }
+    if (!(s_hi > 0.0)) return out;
+    for (int it = 0; it < kMaxBisections && s_hi - s_lo > kClosureRelativeWidth; ++it) {
+      const double mid = 0.5 * (s_lo + s_hi);
+      (min_open_gap(t_new, landed, mid) < 0.0 ? s_hi : s_lo) = mid;
+    }
+    const double t_close = t_ + s_lo * (t_new - t_);
+    // The contacts that close first: their interpolated gap at s_hi is negative.
+    const auto& cs = core_.gaps_at(t_, x_, t_new, xnew_, s_hi);
+    std::fill(pending_.begin(), pending_.end(), 0);
+    for (int i = 0; i < m_; ++i) {
+      const ContactData& c = cs[static_cast<std::size_t>(i)];
+      if (searched(i, c, landed) && c.gap_normal < 0.0) pending_[static_cast<std::size_t>(i)] = 1;
+    }
+    if (t_close - t_ > 10.0 * kMinRelativeStep * std::max(1.0, std::abs(t_))) {
+      out.retake = true;
+      out.time = t_close;
+    } else {
+      out.at_start = true;
+    }
+    return out;
+  }
+
+  // Openings: a closed gap that is positive at the end of the step; the crossing is located
+  // on the interpolant for the event time only (the force is continuous there).
+  void record_openings(double t_new) {
+    const double h = t_new - t_;
+    for (int i = 0; i < m_; ++i) {
+      const auto ii = static_cast<std::size_t>(i);
+      if (!closed_[ii]) continue;
+      if (!(core_.gaps_at(t_, x_, t_new, xnew_, 1.0)[ii].gap_normal > 0.0)) continue;
+      double lo = 0.0, hi = 1.0;
+      for (int it = 0; it < kMaxBisections && hi - lo > kClosureRelativeWidth; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (core_.gaps_at(t_, x_, t_new, xnew_, mid)[ii].gap_normal > 0.0 ? hi : lo) = mid;
+      }
+      closed_[ii] = 0;
+      recorder_.event(t_ + hi * h, i + 1, EventKind::kOpen);
+    }
+  }
+
+  // Closures at the new time: a negative gap, or a located closure this step landed on.
+  // Returns whether any contact closed.
+  bool record_closures(bool landed, bool close_at_start) {
+    bool closed_now = false;
+    for (int i = 0; i < m_; ++i) {
+      const auto ii = static_cast<std::size_t>(i);
+      const ContactData& c = core_.contacts_[ii];
+      if (closed_[ii] || c.far) {
+        pending_[ii] = 0;
+        continue;
+      }
+      if (c.gap_normal < 0.0 || (pending_[ii] && (landed || close_at_start))) {
+        close_contact(i, t_);
+        pending_[ii] = 0;
+        closed_now = true;
+      }
+    }
+    return closed_now;
+  }
+
+  // Accepts the step to t_new: events, commit, energy, sample.
+  void accept_step(double t_new, bool landed, bool close_at_start) {
+    record_openings(t_new);
+    const double h = t_new - t_;
+    x_ = xnew_;
+    t_ = t_new;
+    ++stats_.steps;
+    core_.evaluate(t_, x_, false);
+    system_.commit();
+    const bool closed_now = record_closures(landed, close_at_start);
+    if (landed) {
+      target_ = std::numeric_limits<double>::infinity();
+      std::fill(pending_.begin(), pending_.end(), 0);
+    }
+    if (closed_now) core_.evaluate(t_, x_, false);  // forces with the new v_minus, for the record
+    accumulate_energy(h);
+    recorder_.sample(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
+                     energy_.error);
+  }
+
+  // Energy stored in the Hertz springs: integral of k delta^1.5 = 0.4 k delta^2.5.
+  double contact_potential() const {
+    double v = 0.0;
+    for (const ContactData& c : core_.contacts_) {
+      if (!c.far && c.gap_normal < 0.0) v += 0.4 * options_.stiffness * std::pow(-c.gap_normal, 2.5);
+    }
+    return v;
+  }
+
+  // Energy flows at the current state.
+  Powers powers() const {
+    Powers p;
+    const PowerTerms s = system_.power(t_, core_.q_, core_.u_);
+    p.external = s.external;
+    p.ground = s.ground;
+    p.damping = s.damping;
+    for (int i = 0; i < m_; ++i) {
+      const ContactData& c = core_.contacts_[static_cast<std::size_t>(i)];
+      // Work of the contact forces on the system: lambda (W^T u) = lambda (gdot - what).
+      // The spring part of lambda_N is stored energy (contact_potential); the rest of the
+      // normal work is the dissipation of the dashpot; the what-terms are work done by
+      // moving obstacles (ground).
+      p.impacts += core_.damping_part_[i] * c.gap_rate(core_.u_);
+      p.ground -= core_.lambda_n_[i] * c.what_normal + core_.lambda_t_[i] * c.what_tangent;
+      p.friction += core_.lambda_t_[i] * c.slip_rate(core_.u_);
+    }
+    return p;
+  }
+
+  void update_state_energy() {
+    energy_.kinetic = 0.5 * core_.u_.dot(system_.mass() * core_.u_);
+    const EnergyState es = system_.energy(t_, core_.q_);
+    energy_.stored = es.stored + contact_potential();
+    energy_.hysteretic = es.hysteretic;
+  }
+
+  // The balance terms by the trapezoidal rule over the accepted step of length h.
+  void accumulate_energy(double h) {
+    const Powers p_new = powers();
+    energy_.external += 0.5 * h * (p_old_.external + p_new.external);
+    energy_.ground += 0.5 * h * (p_old_.ground + p_new.ground);
+    energy_.damping += 0.5 * h * (p_old_.damping + p_new.damping);
+    energy_.impacts += 0.5 * h * (p_old_.impacts + p_new.impacts);
+    energy_.friction += 0.5 * h * (p_old_.friction + p_new.friction);
+    p_old_ = p_new;
+    update_state_energy();
+    energy_.close();
+  }
+
+  System& system_;
+  const ComplianceOptions& options_;
+  Recorder& recorder_;
+  const Progress& progress_;
+  Core core_;
+  int n_, m_;
+  // Per-contact state of the gap elements: closed, and located to close at the target time.
+  std::vector<char> closed_, pending_;
+  Rodas stepper_;
+  RunResult stats_;
+  EnergyBalance energy_;
+  Powers p_old_;
+  double t_ = 0.0;
+  double target_ = std::numeric_limits<double>::infinity();  // closure time to land on
+  State x_, xnew_;
+};
+
 }  // namespace
 
 std::string_view to_string(DampingLaw law) {
@@ -400,243 +715,11 @@ void ComplianceOptions::validate() const {
 RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder,
                      const Progress& progress) {
   options.validate();
-  const auto wall_start = std::chrono::steady_clock::now();
-  RunResult stats;
-  stats.method = "compliance";
-  const double t0 = system.initial_time();
-  if (!(options.end_time > t0)) {
+  if (!(options.end_time > system.initial_time())) {
     throw std::invalid_argument("compliance options: end_time: must be > the initial time");
   }
-
-  Core core(system, options);
-  const int n = core.dofs();
-  const int m = core.contacts();
-  const double k = options.stiffness;
-
-  State x = State::Zero(2 * n), xnew = State::Zero(2 * n);
-  {
-    const Vector q0 = system.initial_position();
-    const Vector u0 = system.initial_velocity();
-    if (q0.size() != n || u0.size() != n) {
-      throw std::invalid_argument("compliance: initial state size differs from dofs()");
-    }
-    x.head(n) = q0;
-    x.tail(n) = u0;
-  }
-
-  // Per-contact state of the gap elements: closed flag and approach velocity v_minus.
-  std::vector<char> closed(static_cast<std::size_t>(m), 0);
-  std::vector<char> pending(static_cast<std::size_t>(m), 0);
-  double t = t0;
-  core.evaluate(t, x, false);
-  for (int i = 0; i < m; ++i) {
-    const ContactData& c = core.contacts_[static_cast<std::size_t>(i)];
-    core.chi_[i] = damping_factor(options.law, c.restitution);
-  }
-  const auto close_contact = [&](int i, double time) {
-    const ContactData& c = core.contacts_[static_cast<std::size_t>(i)];
-    closed[static_cast<std::size_t>(i)] = 1;
-    core.v_minus_[i] = std::max(-c.gap_rate(core.u_), options.min_impact_velocity);
-    recorder.event(time, i + 1, EventKind::kClose);
-  };
-  for (int i = 0; i < m; ++i) {
-    const ContactData& c = core.contacts_[static_cast<std::size_t>(i)];
-    if (!c.far && c.gap_normal <= 0.0) close_contact(i, t);
-  }
-  core.evaluate(t, x, false);
-  system.commit();
-
-  // Energy balance terms, accumulated by the trapezoidal rule over accepted steps.
-  const Matrix& M = system.mass();
-  const auto contact_potential = [&]() {
-    double v = 0.0;
-    for (const ContactData& c : core.contacts_) {
-      if (!c.far && c.gap_normal < 0.0) v += 0.4 * k * std::pow(-c.gap_normal, 2.5);
-    }
-    return v;
-  };
-  const auto powers = [&]() {
-    Powers p;
-    const PowerTerms s = system.power(t, core.q_, core.u_);
-    p.external = s.external;
-    p.ground = s.ground;
-    p.damping = s.damping;
-    for (int i = 0; i < m; ++i) {
-      const ContactData& c = core.contacts_[static_cast<std::size_t>(i)];
-      // Work of the contact forces on the system: lambda (W^T u) = lambda (gdot - what).
-      // The spring part of lambda_N is stored energy (contact_potential); the rest of the
-      // normal work is the dissipation of the dashpot; the what-terms are work done by
-      // moving obstacles (ground).
-      p.impacts += core.damping_part_[i] * c.gap_rate(core.u_);
-      p.ground -= core.lambda_n_[i] * c.what_normal + core.lambda_t_[i] * c.what_tangent;
-      p.friction += core.lambda_t_[i] * c.slip_rate(core.u_);
-    }
-    return p;
-  };
-  EnergyBalance energy;
-  const auto update_state_energy = [&]() {
-    energy.kinetic = 0.5 * core.u_.dot(M * core.u_);
-    const EnergyState es = system.energy(t, core.q_);
-    energy.stored = es.stored + contact_potential();
-    energy.hysteretic = es.hysteretic;
-  };
-  update_state_energy();
-  energy.initial = energy.kinetic + energy.stored;
-  energy.close();
-  Powers p_old = powers();
-  recorder.sample(t, core.q_, core.u_, core.contacts_, core.lambda_n_, core.lambda_t_, 0.0);
-
-  Rodas stepper(core, options.tolerance, options.tolerance, options.max_step);
-
-  double dt = std::min(options.initial_step, options.max_step);
-  double target = std::numeric_limits<double>::infinity();  // closure time to land on
-  const double time_scale = std::max(1.0, std::abs(options.end_time));
-  while (t < options.end_time) {
-    if (stats.steps + stats.rejected_steps >= options.max_steps) {
-      stats.message = "max_steps reached";
-      break;
-    }
-    dt = std::min({dt, options.end_time - t, target - t});
-    if (dt < kMinRelativeStep * std::max(1.0, std::abs(t))) {
-      std::ostringstream os;
-      os << "step size underflow at t = " << t;
-      stats.message = os.str();
-      break;
-    }
-    const double dt_try = dt;
-    double t_new = t;
-    ++stats.factorizations;
-    const bool ok = stepper.try_step(x, t_new, xnew, dt);
-    if (!ok || !finite(xnew)) {
-      if (ok) dt = 0.5 * dt_try;  // a finite error estimate but a non-finite state: halve
-      ++stats.rejected_steps;
-      continue;
-    }
-    // Landing exactly on the end time or the closure target must not be missed by round-off.
-    if (std::abs(t_new - options.end_time) <= 1e-14 * time_scale) t_new = options.end_time;
-    const bool landed = std::abs(t_new - target) <= 1e-14 * time_scale;
-    if (landed) t_new = target;
-
-    // Closure search over the gaps that are open at the start of the step: the first probe
-    // point where one is negative, then bisection on the interpolant between it and the
-    // previous probe. On a step that landed on a located closure, the contacts found then
-    // close now and are not searched again.
-    const auto searched = [&](int i, const ContactData& c) {
-      const auto ii = static_cast<std::size_t>(i);
-      return !closed[ii] && !c.far && !(landed && pending[ii]);
-    };
-    const auto min_open_gap = [&](double s) {
-      double g = std::numeric_limits<double>::infinity();
-      const auto& cs = core.gaps_at(t, x, t_new, xnew, s);
-      for (int i = 0; i < m; ++i) {
-        const ContactData& c = cs[static_cast<std::size_t>(i)];
-        if (searched(i, c)) g = std::min(g, c.gap_normal);
-      }
-      return g;
-    };
-    double s_lo = 0.0, s_hi = -1.0;
-    for (int j = 1; m > 0 && j <= kClosureProbes; ++j) {
-      const double s = static_cast<double>(j) / kClosureProbes;
-      if (min_open_gap(s) < 0.0) {
-        s_hi = s;
-        s_lo = static_cast<double>(j - 1) / kClosureProbes;
-        break;
-      }
-    }
-    bool close_at_start = false;
-    if (s_hi > 0.0) {
-      for (int it = 0; it < kMaxBisections && s_hi - s_lo > kClosureRelativeWidth; ++it) {
-        const double mid = 0.5 * (s_lo + s_hi);
-        (min_open_gap(mid) < 0.0 ? s_hi : s_lo) = mid;
-      }
-      const double t_close = t + s_lo * (t_new - t);
-      // The contacts that close first: their interpolated gap at s_hi is negative.
-      const auto& cs = core.gaps_at(t, x, t_new, xnew, s_hi);
-      std::fill(pending.begin(), pending.end(), 0);
-      for (int i = 0; i < m; ++i) {
-        const ContactData& c = cs[static_cast<std::size_t>(i)];
-        if (searched(i, c) && c.gap_normal < 0.0) pending[static_cast<std::size_t>(i)] = 1;
-      }
-      if (t_close - t > 10.0 * kMinRelativeStep * std::max(1.0, std::abs(t))) {
-        // Retake the step so that it ends at the closure: contact onset is a step boundary.
-        target = t_close;
-        dt = t_close - t;
-        ++stats.rejected_steps;
-        continue;
-      }
-      // The closure is at the start of the step: the pending contacts close now.
-      close_at_start = true;
-    }
-
-    // Accept the step. Openings: a closed gap that is positive at the end of the step; the
-    // crossing is located on the interpolant for the event time only (the force is
-    // continuous there).
-    const double h = t_new - t;
-    for (int i = 0; i < m; ++i) {
-      const auto ii = static_cast<std::size_t>(i);
-      if (!closed[ii]) continue;
-      if (!(core.gaps_at(t, x, t_new, xnew, 1.0)[ii].gap_normal > 0.0)) continue;
-      double lo = 0.0, hi = 1.0;
-      for (int it = 0; it < kMaxBisections && hi - lo > kClosureRelativeWidth; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (core.gaps_at(t, x, t_new, xnew, mid)[ii].gap_normal > 0.0 ? hi : lo) = mid;
-      }
-      closed[ii] = 0;
-      recorder.event(t + hi * h, i + 1, EventKind::kOpen);
-    }
-    x = xnew;
-    t = t_new;
-    ++stats.steps;
-    core.evaluate(t, x, false);
-    system.commit();
-    bool closed_now = false;
-    for (int i = 0; i < m; ++i) {
-      const auto ii = static_cast<std::size_t>(i);
-      const ContactData& c = core.contacts_[ii];
-      if (closed[ii] || c.far) {
-        pending[ii] = 0;
-        continue;
-      }
-      if (c.gap_normal < 0.0 || (pending[ii] && (landed || close_at_start))) {
-        close_contact(i, t);
-        pending[ii] = 0;
-        closed_now = true;
-      }
-    }
-    if (landed) {
-      target = std::numeric_limits<double>::infinity();
-      std::fill(pending.begin(), pending.end(), 0);
-    }
-    if (closed_now) core.evaluate(t, x, false);  // forces with the new v_minus, for the record
-
-    const Powers p_new = powers();
-    energy.external += 0.5 * h * (p_old.external + p_new.external);
-    energy.ground += 0.5 * h * (p_old.ground + p_new.ground);
-    energy.damping += 0.5 * h * (p_old.damping + p_new.damping);
-    energy.impacts += 0.5 * h * (p_old.impacts + p_new.impacts);
-    energy.friction += 0.5 * h * (p_old.friction + p_new.friction);
-    p_old = p_new;
-    update_state_energy();
-    energy.close();
-    recorder.sample(t, core.q_, core.u_, core.contacts_, core.lambda_n_, core.lambda_t_,
-                    energy.error);
-    if (progress && stats.steps % kProgressInterval == 0) progress(t);
-  }
-  if (progress) progress(t);
-  stats.completed = (t >= options.end_time);
-  stats.end_time = t;
-  stats.energy = energy;
-  recorder.sample_now(t, core.q_, core.u_, core.contacts_, core.lambda_n_, core.lambda_t_,
-                      energy.error);
-  if (!stats.completed && stats.message.empty()) stats.message = "stopped before end_time";
-  // A non-finite state is never accepted (the step is halved), so a run that cannot advance
-  // past one ends in a step underflow: stalled, like max_steps. A non-finite energy balance
-  // is divergence.
-  finish_status(stats, !std::isfinite(energy.error), !stats.completed);
-  if (!succeeded(stats.status)) stats.failure_time = t;
-  stats.wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  return stats;
+  ComplianceRun run(system, options, recorder, progress);
+  return run.integrate();
 }
 
 }  // namespace nsb::integrators

@@ -2,8 +2,57 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace nsb::integrators {
+
+SystemBase::SystemBase(std::vector<std::string> coordinate_names,
+                       std::vector<std::string> velocity_names)
+    : coordinates_(std::move(coordinate_names)), velocities_(std::move(velocity_names)) {
+  if (coordinates_.empty() || coordinates_.size() != velocities_.size()) {
+    throw std::invalid_argument(
+        "SystemBase: give one coordinate name and one velocity name per degree of freedom");
+  }
+  const int n = dofs();
+  mass_ = Matrix::Identity(n, n);
+  q0_ = Vector::Zero(n);
+  u0_ = Vector::Zero(n);
+}
+
+void SystemBase::set_mass(Matrix mass) { mass_ = std::move(mass); }
+
+void SystemBase::set_initial_state(Vector position, Vector velocity) {
+  q0_ = std::move(position);
+  u0_ = std::move(velocity);
+}
+
+void SystemBase::forces(double, const Vector&, const Vector&, Vector& f) { f.setZero(); }
+
+void SystemBase::tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) {
+  K.setZero(dofs(), dofs());
+  C.setZero(dofs(), dofs());
+}
+
+void SystemBase::contact_data(double, const Vector&, const Vector&,
+                              std::vector<ContactData>&) const {}
+
+PowerTerms SystemBase::power(double, const Vector&, const Vector&) const { return {}; }
+
+EnergyState SystemBase::energy(double, const Vector&) const { return {}; }
+
+void set_fixed_contact(ContactData& c, double gap, const Vector& w_normal,
+                       const Vector& w_tangent, double restitution, double friction) {
+  c.gap_normal = gap;
+  c.w_normal = w_normal;
+  c.w_tangent = w_tangent;
+  c.what_normal = 0.0;
+  c.what_tangent = 0.0;
+  c.wbar_normal = 0.0;
+  c.wbar_tangent = 0.0;
+  c.restitution = restitution;
+  c.friction = friction;
+  c.far = false;
+}
 
 Matrix checked_inverse_mass(const System& system, std::string_view method) {
   const auto fail = [method](const std::string& what) {

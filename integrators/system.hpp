@@ -104,6 +104,49 @@ class System {
   }
 };
 
+// The defaults of the optional answers, so that a system writes only what it has: a unit
+// mass matrix and a state at rest unless set_mass() / set_initial_state() say otherwise, no
+// smooth force, no tangent (K = C = 0, right for forces independent of q and u), no internal
+// state (commit and revert do nothing, the tangent never changes), no contacts, no energy
+// flows and no stored energy. A system whose forces depend on q or u overrides tangent();
+// one with contacts overrides contacts() and contact_data(); one with springs or loads
+// overrides power() and energy().
+class SystemBase : public System {
+ public:
+  int dofs() const override { return static_cast<int>(coordinates_.size()); }
+  std::vector<std::string> coordinate_names() const override { return coordinates_; }
+  std::vector<std::string> velocity_names() const override { return velocities_; }
+  const Matrix& mass() const override { return mass_; }
+  Vector initial_position() const override { return q0_; }
+  Vector initial_velocity() const override { return u0_; }
+  void forces(double t, const Vector& q, const Vector& u, Vector& f) override;
+  void tangent(double t, const Vector& q, const Vector& u, Matrix& K, Matrix& C) override;
+  int contacts() const override { return 0; }
+  void contact_data(double t, const Vector& q, const Vector& u,
+                    std::vector<ContactData>& out) const override;
+  PowerTerms power(double t, const Vector& q, const Vector& u) const override;
+  EnergyState energy(double t, const Vector& q) const override;
+
+ protected:
+  // One degree of freedom per coordinate name; the velocity names, of the same count, label
+  // u in the outputs. Throws std::invalid_argument for no names or unequal counts.
+  SystemBase(std::vector<std::string> coordinate_names, std::vector<std::string> velocity_names);
+  // M, dofs() x dofs() (checked_inverse_mass checks it is symmetric positive definite).
+  void set_mass(Matrix mass);
+  // q0, u0 of size dofs().
+  void set_initial_state(Vector position, Vector velocity);
+
+ private:
+  std::vector<std::string> coordinates_, velocities_;
+  Matrix mass_;
+  Vector q0_, u0_;
+};
+
+// A contact with a fixed obstacle (scleronomic: no rheonomic terms) and constant columns
+// W_N, W_T, so that gddot = W^T udot exactly (wbar = 0); never far.
+void set_fixed_contact(ContactData& c, double gap, const Vector& w_normal,
+                       const Vector& w_tangent, double restitution, double friction);
+
 // Checks what every integrator relies on and throws std::invalid_argument, the message
 // prefixed with `method`, when the system breaks it: dofs() > 0, contacts() >= 0, a finite
 // symmetric positive definite dofs() x dofs() mass matrix, and a finite initial state of size

@@ -401,31 +401,22 @@ State1 friction_oscillator_state(const FrictionOscillator& p, double t) {
 // =======================================================================================
 // Deck impact
 
-void DeckGeometry::validate() const {
+void DeckBody::validate() const {
   require(std::isfinite(mass) && mass > 0.0, "mass: must be > 0 [t]");
   require(std::isfinite(inertia) && inertia > 0.0, "inertia: must be > 0 [t m^2]");
-  require(std::isfinite(length) && length > 0.0, "length: must be > 0 [m]");
-  require(std::isfinite(width) && width > 0.0, "width: must be > 0 [m]");
-  require(std::isfinite(skew_deg) && std::abs(skew_deg) < 90.0, "skew_deg: must be in (-90, 90)");
+  deck.validate();
 }
 
 Eigen::Vector2d deck_corner(const DeckGeometry& g, int corner) {
   g.validate();
   require(corner >= 1 && corner <= 4, "corner: must be 1, 2, 3 or 4");
-  const double ta = std::tan(deg2rad(g.skew_deg));
-  const double end = corner <= 2 ? -1.0 : 1.0;              // left, right
-  const double side = (corner % 2 == 1) ? 1.0 : -1.0;       // +W/2, -W/2
-  const double yb = side * g.width / 2.0;
-  // End line x_b = +-L/2 + y_b tan(alpha).
-  return {end * g.length / 2.0 + yb * ta, yb};
+  return g.corner(corner - 1);
 }
 
 ContactColumns deck_contact_columns(const DeckGeometry& g, int corner) {
   const Eigen::Vector2d r = deck_corner(g, corner);
-  const double a = deg2rad(g.skew_deg);
   // Unit normal of the abutment face, pointing from the abutment to the deck.
-  const Eigen::Vector2d n = corner <= 2 ? Eigen::Vector2d(std::cos(a), -std::sin(a))
-                                        : Eigen::Vector2d(-std::cos(a), std::sin(a));
+  const Eigen::Vector2d n = g.face_normal(corner - 1);
   const Eigen::Vector2d t(-n.y(), n.x());  // n rotated by +90 degrees
   auto cross = [&](const Eigen::Vector2d& v) { return r.x() * v.y() - r.y() * v.x(); };
   return {Eigen::Vector3d(n.x(), n.y(), cross(n)), Eigen::Vector3d(t.x(), t.y(), cross(t))};
@@ -554,7 +545,7 @@ ImpactCases solve_impact_by_cases(const ImpactProblem& p) {
   return out;
 }
 
-DeckImpact deck_impact(const DeckGeometry& g, const std::vector<int>& corners,
+DeckImpact deck_impact(const DeckBody& g, const std::vector<int>& corners,
                        const Eigen::Vector3d& velocity_before, double restitution,
                        double friction) {
   g.validate();
@@ -563,7 +554,7 @@ DeckImpact deck_impact(const DeckGeometry& g, const std::vector<int>& corners,
   const auto m = static_cast<Eigen::Index>(corners.size());
   Eigen::MatrixXd W(3, 2 * m);  // [W_N W_T]
   for (Eigen::Index i = 0; i < m; ++i) {
-    const auto cc = deck_contact_columns(g, corners[static_cast<std::size_t>(i)]);
+    const auto cc = deck_contact_columns(g.deck, corners[static_cast<std::size_t>(i)]);
     W.col(i) = cc.w_normal;
     W.col(m + i) = cc.w_tangent;
   }

@@ -9,6 +9,7 @@
 // throw std::invalid_argument naming the argument.
 #pragma once
 
+#include "models/deck_geometry.hpp"
 #include "models/simple_systems.hpp"
 
 #include <Eigen/Dense>
@@ -119,19 +120,17 @@ State1 friction_oscillator_state(const FrictionOscillator& p, double t);
 
 // ---------------------------------------------------------------------------------------
 // Frictional impact of a free rigid planar deck (3 DOF: x, y, theta; M = diag(m, m, I))
-// against its rigid abutments, with the deck geometry of models/rigid_deck.hpp:
+// against its rigid abutments, with the deck geometry of models/deck_geometry.hpp:
 // parallelogram of length L along the axis and width W, skew alpha; corners
 // (+-L/2 +- (W/2) tan(alpha), +-W/2), numbered 1 (left, +W/2), 2 (left, -W/2),
 // 3 (right, +W/2), 4 (right, -W/2). At the right abutment n = (-cos a, sin a), at the left
 // n = (cos a, -sin a); t = n rotated by +90 degrees. For a corner at r from the centre
 // (deck at theta = 0): W_N = (n_x, n_y, r x n), W_T = (t_x, t_y, r x t).
-struct DeckGeometry {
-  double mass = 1.0;      // m [t], > 0
-  double inertia = 1.0;   // I [t m^2], > 0
-  double length = 1.0;    // L [m], > 0
-  double width = 1.0;     // W [m], > 0
-  double skew_deg = 0.0;  // alpha [deg], in (-90, 90)
-  void validate() const;
+struct DeckBody {
+  double mass = 1.0;     // m [t], > 0
+  double inertia = 1.0;  // I [t m^2], > 0
+  DeckGeometry deck{.length = 1.0, .width = 1.0};  // L, W, alpha; the gaps play no part
+  void validate() const;  // throws std::invalid_argument naming the field
 };
 // Corner position r (deck frame, theta = 0) and contact columns W_N, W_T. corner in 1..4.
 Eigen::Vector2d deck_corner(const DeckGeometry& g, int corner);
@@ -178,7 +177,7 @@ struct DeckImpact {
   ImpactProblem problem;                                      // the problem solved
   int solutions = 0;  // solutions with distinct post-impact velocities
 };
-DeckImpact deck_impact(const DeckGeometry& g, const std::vector<int>& corners,
+DeckImpact deck_impact(const DeckBody& g, const std::vector<int>& corners,
                        const Eigen::Vector3d& velocity_before, double restitution,
                        double friction);
 

@@ -117,7 +117,8 @@ void Bridge::Parameters::validate() const {
 // Bridge
 
 Bridge::Bridge(const Parameters& p, Excitation excitation)
-    : p_(p), excitation_(std::move(excitation)) {
+    : SystemBase({"x", "y", "theta"}, {"vx", "vy", "omega"}), p_(p),
+      excitation_(std::move(excitation)) {
   p_.validate();
   const std::size_t nb = p_.bents.size();
   if (!excitation_.bents.empty() && excitation_.bents.size() != nb) {
@@ -126,9 +127,11 @@ Bridge::Bridge(const Parameters& p, Excitation excitation)
       << " bents; give none or one per bent";
     throw std::invalid_argument(s.str());
   }
-  mass_ = integrators::Matrix::Zero(3, 3);
-  mass_(0, 0) = mass_(1, 1) = p_.mass;
-  mass_(2, 2) = p_.inertia;
+  integrators::Matrix mass = integrators::Matrix::Zero(3, 3);
+  mass(0, 0) = mass(1, 1) = p_.mass;
+  mass(2, 2) = p_.inertia;
+  set_mass(mass);
+  set_initial_state(p_.initial_position, p_.initial_velocity);
 
   for (const auto& b : p_.bents) {
     springs_x_.emplace_back(b.longitudinal);
@@ -142,9 +145,9 @@ Bridge::Bridge(const Parameters& p, Excitation excitation)
     qs_x_.push_back(k0_ldlt.solve(Eigen::Vector3d(b.longitudinal.k0, 0.0, 0.0)));
     qs_y_.push_back(k0_ldlt.solve(b.transverse.k0 * Eigen::Vector3d(0.0, 1.0, b.position)));
   }
-  rayleigh_ = rayleigh(mass_, integrators::Matrix(k0_), p_.damping_mode_i, p_.damping_ratio_i,
+  rayleigh_ = rayleigh(mass, integrators::Matrix(k0_), p_.damping_mode_i, p_.damping_ratio_i,
                        p_.damping_mode_j, p_.damping_ratio_j);
-  c_ = rayleigh_.a0 * mass_ + rayleigh_.a1 * k0_;
+  c_ = rayleigh_.a0 * mass + rayleigh_.a1 * k0_;
 
   corners_ = p_.deck.corner_faces();
   faces_ = p_.deck.face_points();

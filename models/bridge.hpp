@@ -28,6 +28,7 @@
 
 #include "integrators/system.hpp"
 #include "models/contact_geometry.hpp"
+#include "models/deck_geometry.hpp"
 #include "models/ground_motion.hpp"
 #include "models/rayleigh.hpp"
 #include "models/rigid_deck.hpp"
@@ -63,7 +64,7 @@ struct BentDesign {
   takeda::Parameters takeda() const;   // bilinear Takeda of the whole bent
 };
 
-class Bridge final : public integrators::System {
+class Bridge final : public integrators::SystemBase {
  public:
   struct Bent {
     double position = 0.0;                // s_j along the deck axis from the centre [m]
@@ -117,12 +118,6 @@ class Bridge final : public integrators::System {
   double bent_force_longitudinal(int j) const { return springs_x_[static_cast<std::size_t>(j)].force(); }
   double bent_force_transverse(int j) const { return springs_y_[static_cast<std::size_t>(j)].force(); }
 
-  int dofs() const override { return 3; }
-  std::vector<std::string> coordinate_names() const override { return {"x", "y", "theta"}; }
-  std::vector<std::string> velocity_names() const override { return {"vx", "vy", "omega"}; }
-  const integrators::Matrix& mass() const override { return mass_; }
-  integrators::Vector initial_position() const override { return p_.initial_position; }
-  integrators::Vector initial_velocity() const override { return p_.initial_velocity; }
   void forces(double t, const integrators::Vector& q, const integrators::Vector& u,
               integrators::Vector& f) override;
   void tangent(double t, const integrators::Vector& q, const integrators::Vector& u,
@@ -181,7 +176,6 @@ class Bridge final : public integrators::System {
   // us = sum_j (qs_x[j] u_gx,j + qs_y[j] u_gy,j): columns of K0^-1 k0_j b_j.
   std::vector<Eigen::Vector3d> qs_x_, qs_y_;
   RayleighDamping rayleigh_;
-  integrators::Matrix mass_;
 };
 
 }  // namespace nsb::models

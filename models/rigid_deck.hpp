@@ -2,21 +2,16 @@
 // gravity in the plane: the deck model of the rotation criterion (eq. 1) and of the impact
 // law (eq. 3-7) of Shi & Dimitrakopoulos (2017).
 //
-// Geometry (docs/bridge.md): deck centre (x, y), rotation theta (counter-clockwise), axis along
-// global x at theta = 0; length L along the axis, width W across it; skew angle alpha. The deck
-// ends and the abutment faces are the lines x_b = +-L/2 + y_b tan(alpha), so the corners are
-// (+-L/2 +- (W/2) tan(alpha), +-W/2). Contacts (paper, Figure 2):
-//   1 = left end, y_b = +W/2;  2 = left end, y_b = -W/2;
-//   3 = right end, y_b = +W/2; 4 = right end, y_b = -W/2.
-// gap_right / gap_left: clear distance along the deck axis at x = y = theta = 0 (the normal
-// gap is gap cos(alpha)). W_N opens the gap; the tangent is the face normal n (from the
-// abutment towards the deck) rotated +90 degrees.
+// Geometry, contact numbering and gaps: models/deck_geometry.hpp (the paper's contacts 1..4
+// are indices 0..3 there). W_N opens the gap; the tangent is the face normal n (from the abutment
+// towards the deck) rotated +90 degrees.
 //
 // Units: kN, t, m, s, rad.
 #pragma once
 
 #include "integrators/system.hpp"
 #include "models/contact_geometry.hpp"
+#include "models/deck_geometry.hpp"
 
 #include <array>
 #include <string>
@@ -36,68 +31,33 @@ inline constexpr double kFarHorizon = 0.1;  // [s]
 // tolerance absorbs round-off of the corner coordinates (1e-12 of a 30 m deck is ~1e-11 m).
 inline constexpr double kPenetrationTolerance = 1e-9;  // [m]
 
-// Deck and abutment geometry shared by RigidDeck and Bridge.
-struct DeckGeometry {
-  double length = 0.0;     // L [m], > 0
-  double width = 0.0;      // W [m], > 0
-  double skew_deg = 0.0;   // alpha [deg], |alpha| < 80
-  double gap_right = 0.0;  // clear gap along the axis at the right end [m], >= 0
-  double gap_left = 0.0;   // clear gap along the axis at the left end [m], >= 0
-  // Throws std::invalid_argument naming the field (prefix is prepended to the field name).
-  void validate(const std::string& prefix = "") const;
-  // Corner-face pairs for contacts 1..4 (index 0..3). Each face point is the origin of its
-  // abutment frame: the abutment pose is (reference_face_point, 0) plus the abutment motion.
-  std::array<CornerFace, 4> corner_faces() const;
-  // Reference position (at rest) of the left (0) and right (1) face point on the deck axis.
-  std::array<Eigen::Vector2d, 2> face_points() const;
-  // Abutment (0 = left, 1 = right) of contact i (0-based).
-  static int abutment_of(int contact) { return contact < 2 ? 0 : 1; }
-};
-
-class RigidDeck final : public integrators::System {
+class RigidDeck final : public integrators::SystemBase {
  public:
   struct Parameters {
     double mass = 0;         // m [t], > 0
     double inertia = 0;      // I about the centre [t m^2], > 0
-    double length = 0;       // L [m], > 0
-    double width = 0;        // W [m], > 0
-    double skew_deg = 0;     // alpha [deg], |alpha| < 80
-    double gap_right = 0;    // [m], >= 0
-    double gap_left = 0;     // [m], >= 0
+    DeckGeometry deck;       // L, W, alpha and the two gaps (models/deck_geometry.hpp)
     double restitution = 0;  // eps_N in [0, 1], all four contacts
     double friction = 0;     // mu >= 0, all four contacts
     Eigen::Vector3d initial_position = Eigen::Vector3d::Zero(),  // (x, y, theta) [m, m, rad]
         initial_velocity = Eigen::Vector3d::Zero();              // (vx, vy, omega)
     // Throws std::invalid_argument naming the field; also rejects an initial penetration.
     void validate() const;
-    DeckGeometry geometry() const { return {length, width, skew_deg, gap_right, gap_left}; }
   };
   explicit RigidDeck(const Parameters&);
 
   const Parameters& parameters() const { return p_; }
 
-  int dofs() const override { return 3; }
-  std::vector<std::string> coordinate_names() const override { return {"x", "y", "theta"}; }
-  std::vector<std::string> velocity_names() const override { return {"vx", "vy", "omega"}; }
-  const integrators::Matrix& mass() const override { return mass_; }
-  integrators::Vector initial_position() const override { return p_.initial_position; }
-  integrators::Vector initial_velocity() const override { return p_.initial_velocity; }
-  void forces(double t, const integrators::Vector& q, const integrators::Vector& u,
-              integrators::Vector& f) override;
-  void tangent(double t, const integrators::Vector& q, const integrators::Vector& u,
-               integrators::Matrix& K, integrators::Matrix& C) override;
+  // No piers, no gravity in the plane, fixed abutments: no smooth force, no stored energy and
+  // no energy flow (SystemBase's defaults); only the four contacts.
   int contacts() const override { return 4; }
   void contact_data(double t, const integrators::Vector& q, const integrators::Vector& u,
                     std::vector<integrators::ContactData>& out) const override;
-  integrators::PowerTerms power(double t, const integrators::Vector& q,
-                                const integrators::Vector& u) const override;
-  integrators::EnergyState energy(double t, const integrators::Vector& q) const override;
 
  private:
   Parameters p_;
   std::array<CornerFace, 4> corners_;
   std::array<PlanarMotion, 2> abutments_;  // fixed poses
-  integrators::Matrix mass_;
 };
 
 // Writes one ContactKinematics into a ContactData (sizes already 3).

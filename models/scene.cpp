@@ -408,12 +408,12 @@ std::unique_ptr<integrators::System> build_rigid_deck(Section& m) {
   RigidDeck::Parameters p;
   p.mass = m.number("mass", p.mass, positive, "must be > 0 [t]");
   p.inertia = m.number("inertia", p.inertia, positive, "must be > 0 [t m^2]");
-  p.length = m.number("length", p.length, positive, "must be > 0 [m]");
-  p.width = m.number("width", p.width, positive, "must be > 0 [m]");
-  p.skew_deg = m.number("skew_deg", p.skew_deg, [](double v) { return std::abs(v) < 80; },
+  p.deck.length = m.number("length", p.deck.length, positive, "must be > 0 [m]");
+  p.deck.width = m.number("width", p.deck.width, positive, "must be > 0 [m]");
+  p.deck.skew_deg = m.number("skew_deg", p.deck.skew_deg, [](double v) { return std::abs(v) < 80; },
                         "must be in (-80, 80) [deg]");
-  p.gap_right = m.number("gap_right", p.gap_right, non_negative, "must be >= 0 [m]");
-  p.gap_left = m.number("gap_left", p.gap_left, non_negative, "must be >= 0 [m]");
+  p.deck.gap_right = m.number("gap_right", p.deck.gap_right, non_negative, "must be >= 0 [m]");
+  p.deck.gap_left = m.number("gap_left", p.deck.gap_left, non_negative, "must be >= 0 [m]");
   p.restitution = m.number("restitution", p.restitution, unit_interval, "must be in [0, 1]");
   p.friction = m.number("friction", p.friction, non_negative, "must be >= 0");
   p.initial_position = m.vec3("initial_position", p.initial_position);

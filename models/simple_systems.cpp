@@ -29,20 +29,6 @@ void require_finite(const std::string& field, double value) {
   require(std::isfinite(value), field, "must be finite", value);
 }
 
-void fill_contact(ContactData& c, double gap, const Vector& w_n, const Vector& w_t,
-                  double restitution, double friction) {
-  c.gap_normal = gap;
-  c.w_normal = w_n;
-  c.w_tangent = w_t;
-  c.what_normal = 0.0;  // fixed obstacle: no rheonomic terms
-  c.what_tangent = 0.0;
-  c.wbar_normal = 0.0;  // W constant in q and t: gddot = W^T udot exactly
-  c.wbar_tangent = 0.0;
-  c.restitution = restitution;
-  c.friction = friction;
-  c.far = false;
-}
-
 // Harmonic forcing F0 sin(2 pi f t); f = 0 gives sin(0) = 0, i.e. no force.
 double harmonic(double amplitude, double frequency_hz, double t) {
   return amplitude * std::sin(2.0 * std::numbers::pi * frequency_hz * t);
@@ -63,31 +49,22 @@ void BouncingBall::Parameters::validate() const {
   require(std::isfinite(gravity) && gravity >= 0.0, "gravity", "must be >= 0 [m/s^2]", gravity);
 }
 
-BouncingBall::BouncingBall(const Parameters& p) : p_(p) {
+BouncingBall::BouncingBall(const Parameters& p) : SystemBase({"y"}, {"vy"}), p_(p) {
   p_.validate();
-  mass_ = Matrix::Constant(1, 1, p_.mass);
+  set_mass(Matrix::Constant(1, 1, p_.mass));
+  set_initial_state(Vector::Constant(1, p_.height), Vector::Constant(1, p_.velocity));
 }
-
-Vector BouncingBall::initial_position() const { return Vector::Constant(1, p_.height); }
-Vector BouncingBall::initial_velocity() const { return Vector::Constant(1, p_.velocity); }
 
 void BouncingBall::forces(double, const Vector&, const Vector&, Vector& f) {
   f(0) = -p_.mass * p_.gravity;
-}
-
-void BouncingBall::tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) {
-  K.setZero(1, 1);
-  C.setZero(1, 1);
 }
 
 void BouncingBall::contact_data(double, const Vector& q, const Vector&,
                                 std::vector<ContactData>& out) const {
   static const Vector kWn = Vector::Constant(1, 1.0);
   static const Vector kWt = Vector::Zero(1);
-  fill_contact(out.at(0), q(0), kWn, kWt, p_.restitution, 0.0);
+  integrators::set_fixed_contact(out.at(0), q(0), kWn, kWt, p_.restitution, 0.0);
 }
-
-PowerTerms BouncingBall::power(double, const Vector&, const Vector&) const { return {}; }
 
 EnergyState BouncingBall::energy(double, const Vector& q) const {
   EnergyState e;
@@ -117,17 +94,12 @@ void ImpactOscillator::Parameters::validate() const {
           "must be >= 0 [Hz]", force_frequency);
 }
 
-ImpactOscillator::ImpactOscillator(const Parameters& p) : p_(p) {
+ImpactOscillator::ImpactOscillator(const Parameters& p) : SystemBase({"x"}, {"vx"}), p_(p) {
   p_.validate();
   c_ = 2.0 * p_.damping_ratio * std::sqrt(p_.stiffness * p_.mass);
-  mass_ = Matrix::Constant(1, 1, p_.mass);
-}
-
-Vector ImpactOscillator::initial_position() const {
-  return Vector::Constant(1, p_.initial_position);
-}
-Vector ImpactOscillator::initial_velocity() const {
-  return Vector::Constant(1, p_.initial_velocity);
+  set_mass(Matrix::Constant(1, 1, p_.mass));
+  set_initial_state(Vector::Constant(1, p_.initial_position),
+                    Vector::Constant(1, p_.initial_velocity));
 }
 
 double ImpactOscillator::external_force(double t) const {
@@ -147,7 +119,7 @@ void ImpactOscillator::contact_data(double, const Vector& q, const Vector&,
                                     std::vector<ContactData>& out) const {
   static const Vector kWn = Vector::Constant(1, -1.0);  // d(gap - x)/dx
   static const Vector kWt = Vector::Zero(1);
-  fill_contact(out.at(0), p_.gap - q(0), kWn, kWt, p_.restitution, 0.0);
+  integrators::set_fixed_contact(out.at(0), p_.gap - q(0), kWn, kWt, p_.restitution, 0.0);
 }
 
 PowerTerms ImpactOscillator::power(double t, const Vector&, const Vector& u) const {
@@ -179,19 +151,16 @@ void SlidingBlock::Parameters::validate() const {
           "must be in (-90, 90) [deg]", incline_deg);
 }
 
-SlidingBlock::SlidingBlock(const Parameters& p) : p_(p) {
+SlidingBlock::SlidingBlock(const Parameters& p)
+    : SystemBase({"x", "y"}, {"vx", "vy"}), p_(p) {
   p_.validate();
   const double beta = p_.incline_deg * std::numbers::pi / 180.0;
   gx_ = -p_.mass * p_.gravity * std::sin(beta);
   gy_ = -p_.mass * p_.gravity * std::cos(beta);
-  mass_ = Matrix::Identity(2, 2) * p_.mass;
-}
-
-Vector SlidingBlock::initial_position() const { return Vector::Zero(2); }
-Vector SlidingBlock::initial_velocity() const {
-  Vector u = Vector::Zero(2);
-  u(0) = p_.initial_velocity;
-  return u;
+  set_mass(Matrix::Identity(2, 2) * p_.mass);
+  Vector u0 = Vector::Zero(2);
+  u0(0) = p_.initial_velocity;
+  set_initial_state(Vector::Zero(2), u0);
 }
 
 double SlidingBlock::driving_force(double t) const {
@@ -203,17 +172,12 @@ void SlidingBlock::forces(double t, const Vector&, const Vector&, Vector& f) {
   f(1) = gy_;
 }
 
-void SlidingBlock::tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) {
-  K.setZero(2, 2);
-  C.setZero(2, 2);
-}
-
 void SlidingBlock::contact_data(double, const Vector& q, const Vector&,
                                 std::vector<ContactData>& out) const {
   static const Vector kWn = (Vector(2) << 0.0, 1.0).finished();
   static const Vector kWt = (Vector(2) << 1.0, 0.0).finished();
   // Restitution 0: the block rests on the ground; the contact is persistent.
-  fill_contact(out.at(0), q(1), kWn, kWt, 0.0, p_.friction);
+  integrators::set_fixed_contact(out.at(0), q(1), kWn, kWt, 0.0, p_.friction);
 }
 
 PowerTerms SlidingBlock::power(double t, const Vector&, const Vector& u) const {

@@ -17,7 +17,7 @@ namespace nsb::models {
 // A point mass falling onto the fixed ground y = 0 under gravity.
 // 1 DOF: q = (y), the height, which is also the gap g_N = y; W_N = (1). No friction
 // (W_T = 0, mu = 0). Stored energy: m g y.
-class BouncingBall final : public integrators::System {  // 1 DOF: y (height = gap)
+class BouncingBall final : public integrators::SystemBase {  // 1 DOF: y (height = gap)
  public:
   struct Parameters {
     double mass = 1.0;         // m [t], > 0
@@ -31,32 +31,21 @@ class BouncingBall final : public integrators::System {  // 1 DOF: y (height = g
 
   const Parameters& parameters() const { return p_; }
 
-  int dofs() const override { return 1; }
-  std::vector<std::string> coordinate_names() const override { return {"y"}; }
-  std::vector<std::string> velocity_names() const override { return {"vy"}; }
-  const integrators::Matrix& mass() const override { return mass_; }
-  integrators::Vector initial_position() const override;
-  integrators::Vector initial_velocity() const override;
   void forces(double t, const integrators::Vector& q, const integrators::Vector& u,
               integrators::Vector& f) override;
-  void tangent(double t, const integrators::Vector& q, const integrators::Vector& u,
-               integrators::Matrix& K, integrators::Matrix& C) override;
   int contacts() const override { return 1; }
   void contact_data(double t, const integrators::Vector& q, const integrators::Vector& u,
                     std::vector<integrators::ContactData>& out) const override;
-  integrators::PowerTerms power(double t, const integrators::Vector& q,
-                                const integrators::Vector& u) const override;
   integrators::EnergyState energy(double t, const integrators::Vector& q) const override;
 
  private:
   Parameters p_;
-  integrators::Matrix mass_;
 };
 
 // A linear oscillator m x'' + c x' + k x = F0 sin(2 pi f t) against a rigid stop at x = gap.
 // 1 DOF: q = (x). Gap g_N = gap - x, so W_N = (-1) (x increasing closes the gap). No
 // friction. c = 2 zeta sqrt(k m). Stored energy: k x^2 / 2. No gravity.
-class ImpactOscillator final : public integrators::System {  // 1 DOF: x; stop at x = gap
+class ImpactOscillator final : public integrators::SystemBase {  // 1 DOF: x; stop at x = gap
  public:
   struct Parameters {
     double mass = 1.0;               // m [t], > 0
@@ -75,12 +64,6 @@ class ImpactOscillator final : public integrators::System {  // 1 DOF: x; stop a
   const Parameters& parameters() const { return p_; }
   double damping_coefficient() const { return c_; }  // c [kN s/m]
 
-  int dofs() const override { return 1; }
-  std::vector<std::string> coordinate_names() const override { return {"x"}; }
-  std::vector<std::string> velocity_names() const override { return {"vx"}; }
-  const integrators::Matrix& mass() const override { return mass_; }
-  integrators::Vector initial_position() const override;
-  integrators::Vector initial_velocity() const override;
   void forces(double t, const integrators::Vector& q, const integrators::Vector& u,
               integrators::Vector& f) override;
   void tangent(double t, const integrators::Vector& q, const integrators::Vector& u,
@@ -96,7 +79,6 @@ class ImpactOscillator final : public integrators::System {  // 1 DOF: x; stop a
   double external_force(double t) const;
   Parameters p_;
   double c_ = 0.0;
-  integrators::Matrix mass_;
 };
 
 // A block on the ground y = 0 with Coulomb friction, driven along x by a constant force
@@ -105,7 +87,7 @@ class ImpactOscillator final : public integrators::System {  // 1 DOF: x; stop a
 // incline_deg = beta tilts gravity: the ground is a slope of angle beta in the (x, y) frame
 // attached to it, so gravity is (-m g sin(beta), -m g cos(beta)) (positive beta pulls the
 // block towards -x, downhill). Stored energy: gravity potential m g (x sin(beta) + y cos(beta)).
-class SlidingBlock final : public integrators::System {  // 2 DOF: x, y; ground contact g_N = y
+class SlidingBlock final : public integrators::SystemBase {  // 2 DOF: x, y; ground contact g_N = y
  public:
   struct Parameters {
     double mass = 1.0;               // m [t], > 0
@@ -122,16 +104,8 @@ class SlidingBlock final : public integrators::System {  // 2 DOF: x, y; ground 
 
   const Parameters& parameters() const { return p_; }
 
-  int dofs() const override { return 2; }
-  std::vector<std::string> coordinate_names() const override { return {"x", "y"}; }
-  std::vector<std::string> velocity_names() const override { return {"vx", "vy"}; }
-  const integrators::Matrix& mass() const override { return mass_; }
-  integrators::Vector initial_position() const override;
-  integrators::Vector initial_velocity() const override;
   void forces(double t, const integrators::Vector& q, const integrators::Vector& u,
               integrators::Vector& f) override;
-  void tangent(double t, const integrators::Vector& q, const integrators::Vector& u,
-               integrators::Matrix& K, integrators::Matrix& C) override;
   int contacts() const override { return 1; }
   void contact_data(double t, const integrators::Vector& q, const integrators::Vector& u,
                     std::vector<integrators::ContactData>& out) const override;
@@ -144,7 +118,6 @@ class SlidingBlock final : public integrators::System {  // 2 DOF: x, y; ground 
  private:
   Parameters p_;
   double gx_ = 0.0, gy_ = 0.0;  // gravity force components [kN]
-  integrators::Matrix mass_;
 };
 
 }  // namespace nsb::models

@@ -370,7 +370,15 @@ double Spring::tangent_of(const State& s) const {
 
 double Spring::set_trial(double d) {
   if (!std::isfinite(d)) {
-    throw std::invalid_argument("takeda::Spring::set_trial: displacement must be finite");
+    // A non-finite trial displacement comes from a numerical blow-up of the integration, not
+    // from a caller's input: it yields a non-finite force and tangent, which the integrator
+    // reports as divergence. The committed state is untouched, so revert() recovers it.
+    trial_ = committed_;
+    trial_.d = d;
+    trial_.f = std::numeric_limits<double>::quiet_NaN();
+    trial_.work = std::numeric_limits<double>::quiet_NaN();
+    trial_tangent_ = std::numeric_limits<double>::quiet_NaN();
+    return trial_.f;
   }
   if (both_elastic(committed_, trial_) && std::abs(d) <= d_crack_) {
     // Rule 1 without the general machinery. A state that never left the elastic branch

@@ -57,7 +57,9 @@ struct State {
 class Spring {  // one uniaxial Takeda spring with committed and trial state
  public:
   explicit Spring(const Parameters& p);
-  double set_trial(double d);          // trial displacement [m] -> trial force [kN]
+  // Trial displacement [m] -> trial force [kN]. A non-finite d (a diverged integration)
+  // gives a NaN force, tangent and energy instead of throwing; revert() recovers.
+  double set_trial(double d);
   double force() const;                // trial force
   double tangent() const;              // trial tangent stiffness [kN/m]
   bool tangent_changed() const;        // trial tangent differs from the committed one

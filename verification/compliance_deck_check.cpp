@@ -27,21 +27,19 @@ constexpr double kBaseStiffness = 2.747e7;  // [kN/m^1.5]
 // rotation of W_N during the finite contact, of order omega t_c ~ 1e-3.
 constexpr double kFrictionlessTolerance = 0.01;
 
-nsb::models::analytic::DeckGeometry analytic_geometry() {
-  nsb::models::analytic::DeckGeometry g;
+nsb::models::analytic::DeckBody analytic_geometry() {
+  nsb::models::analytic::DeckBody g;
   g.mass = kMass;
   g.inertia = kInertia;
-  g.length = kLength;
-  g.width = kWidth;
-  g.skew_deg = kSkewDeg;
+  g.deck = {.length = kLength, .width = kWidth, .skew_deg = kSkewDeg};
   return g;
 }
 
 // A pre-impact velocity with corner 3 closing at 0.25 m/s and corner 4 opening at 0.05 m/s.
 Eigen::Vector3d pre_impact_velocity() {
   const auto g = analytic_geometry();
-  const Eigen::Vector3d w3 = nsb::models::analytic::deck_contact_columns(g, 3).w_normal;
-  const Eigen::Vector3d w4 = nsb::models::analytic::deck_contact_columns(g, 4).w_normal;
+  const Eigen::Vector3d w3 = nsb::models::analytic::deck_contact_columns(g.deck, 3).w_normal;
+  const Eigen::Vector3d w4 = nsb::models::analytic::deck_contact_columns(g.deck, 4).w_normal;
   // Solve w3 . u = -0.25, w4 . u = +0.05 with vy = 0.02 for (vx, omega).
   const double vy = 0.02;
   Eigen::Matrix2d A;
@@ -62,11 +60,8 @@ Outcome compliance_impact(DampingLaw law, double e, double mu, double k) {
   nsb::models::RigidDeck::Parameters p;
   p.mass = kMass;
   p.inertia = kInertia;
-  p.length = kLength;
-  p.width = kWidth;
-  p.skew_deg = kSkewDeg;
-  p.gap_right = 0.0;
-  p.gap_left = 5.0;
+  p.deck = {.length = kLength, .width = kWidth, .skew_deg = kSkewDeg, .gap_right = 0.0,
+            .gap_left = 5.0};
   p.restitution = e;
   p.friction = mu;
   p.initial_velocity = pre_impact_velocity();
@@ -144,8 +139,8 @@ TEST_CASE("compliance: frictional free-deck corner impact against eq. (6)") {
   // must share: the same normal impulse direction and a dissipative outcome.
   const auto g = analytic_geometry();
   const Eigen::Vector3d u_minus = pre_impact_velocity();
-  const Eigen::Vector3d w3 = nsb::models::analytic::deck_contact_columns(g, 3).w_normal;
-  const Eigen::Vector3d wt3 = nsb::models::analytic::deck_contact_columns(g, 3).w_tangent;
+  const Eigen::Vector3d w3 = nsb::models::analytic::deck_contact_columns(g.deck, 3).w_normal;
+  const Eigen::Vector3d wt3 = nsb::models::analytic::deck_contact_columns(g.deck, 3).w_tangent;
   const Eigen::Vector3d m_diag(kMass, kMass, kInertia);
   const auto kinetic = [&](const Eigen::Vector3d& u) {
     return 0.5 * u.dot(m_diag.cwiseProduct(u));

@@ -3,6 +3,7 @@
 // docs/compliance.md), its independence of k and of the masses, and the undamped Hertz
 // impact against Goldsmith's closed form at the bridge's scale.
 #include "integrators/compliance.hpp"
+#include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
 
@@ -23,47 +24,12 @@ using nsb::integrators::Vector;
 
 // Two free point masses on a line, x_1 < x_2, one contact g_N = x_2 - x_1 (touching at
 // the start is avoided by a small initial gap). No other forces.
-class TwoBodies final : public nsb::integrators::System {
- public:
-  TwoBodies(double m1, double m2, double v1, double v2, double e) : e_(e) {
-    M_ = Matrix::Zero(2, 2);
-    M_(0, 0) = m1;
-    M_(1, 1) = m2;
-    q0_ = Vector(2);
-    q0_ << 0.0, kInitialGap;
-    u0_ = Vector(2);
-    u0_ << v1, v2;
-  }
-  static constexpr double kInitialGap = 1e-3;  // [m]
-  int dofs() const override { return 2; }
-  std::vector<std::string> coordinate_names() const override { return {"x1", "x2"}; }
-  std::vector<std::string> velocity_names() const override { return {"v1", "v2"}; }
-  const Matrix& mass() const override { return M_; }
-  Vector initial_position() const override { return q0_; }
-  Vector initial_velocity() const override { return u0_; }
-  void forces(double, const Vector&, const Vector&, Vector& f) override { f.setZero(); }
-  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
-    K.setZero();
-    C.setZero();
-  }
-  int contacts() const override { return 1; }
-  void contact_data(double, const Vector& q, const Vector&,
-                    std::vector<ContactData>& out) const override {
-    out[0].gap_normal = q[1] - q[0];
-    out[0].w_normal << -1.0, 1.0;
-    out[0].w_tangent.setZero();
-    out[0].restitution = e_;
-  }
-  nsb::integrators::PowerTerms power(double, const Vector&, const Vector&) const override {
-    return {};
-  }
-  nsb::integrators::EnergyState energy(double, const Vector&) const override { return {}; }
-
- private:
-  double e_;
-  Matrix M_;
-  Vector q0_, u0_;
-};
+constexpr double kInitialGap = 1e-3;  // [m]
+nsb::testsupport::TwoMasses two_bodies(double m1, double m2, double v1, double v2, double e) {
+  return nsb::testsupport::TwoMasses({.mass1 = m1, .mass2 = m2, .position1 = 0.0,
+                                      .position2 = kInitialGap, .velocity1 = v1,
+                                      .velocity2 = v2, .restitution = e});
+}
 
 // The bridge's deck mass against an equal body; default Hertz k of the scene.
 constexpr double kDeckMass = 140.5;         // [t], paper §3
@@ -87,7 +53,7 @@ struct Impact {
 Impact central_impact(DampingLaw law, double e, double k, double m1 = kDeckMass,
                       double m2 = kDeckMass, double v1 = 0.2, double v2 = -0.1,
                       double max_step = 1.0, double end_time = 0.0) {
-  TwoBodies s(m1, m2, v1, v2, e);
+  auto s = two_bodies(m1, m2, v1, v2, e);
   ComplianceOptions o;
   o.law = law;
   o.stiffness = k;
@@ -98,7 +64,7 @@ Impact central_impact(DampingLaw law, double e, double k, double m1 = kDeckMass,
   const double dmax = std::pow(5.0 * (m1 * m2 / (m1 + m2)) * (v1 - v2) * (v1 - v2) / (4.0 * k), 0.4);
   o.end_time = end_time > 0.0
                    ? end_time
-                   : TwoBodies::kInitialGap / (v1 - v2) + 5.0 * dmax / (1e-3 * (v1 - v2)) + 1.0;
+                   : kInitialGap / (v1 - v2) + 5.0 * dmax / (1e-3 * (v1 - v2)) + 1.0;
   Recorder rec(s, 0.0);
   const auto st = compliance(s, o, rec);
   REQUIRE(st.completed);
@@ -176,7 +142,7 @@ TEST_CASE("compliance: undamped Hertz impact of the deck mass against Goldsmith 
   const double tc = 2.94328 * dmax / v0;
   // Sampled every tc / 400 until half a contact time after the separation.
   const Impact r = central_impact(DampingLaw::kHertzDamp, 1.0, k, kDeckMass, kDeckMass, 0.2,
-                                  -0.1, tc / 400.0, TwoBodies::kInitialGap / v0 + 1.5 * tc);
+                                  -0.1, tc / 400.0, kInitialGap / v0 + 1.5 * tc);
   std::printf("# undamped Hertz: t_c = %.6e s (closed form %.6e), F_max = %.6e kN (%.6e), "
               "delta_max = %.6e m (%.6e)\n",
               r.duration, tc, r.peak_force, k * std::pow(dmax, 1.5), r.max_penetration, dmax);

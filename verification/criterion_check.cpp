@@ -43,12 +43,12 @@ struct Impact {
 };
 
 // Eq. (6) via the lcp module for the corners of the deck.
-Impact solve_with_lcp(const an::DeckGeometry& g, const std::vector<int>& corners,
+Impact solve_with_lcp(const an::DeckBody& g, const std::vector<int>& corners,
                       const Eigen::Vector3d& u, double e, double mu, lcp::Solver solver) {
   const auto m = static_cast<Eigen::Index>(corners.size());
   Eigen::MatrixXd W(3, 2 * m);
   for (Eigen::Index i = 0; i < m; ++i) {
-    const auto c = an::deck_contact_columns(g, corners[static_cast<std::size_t>(i)]);
+    const auto c = an::deck_contact_columns(g.deck, corners[static_cast<std::size_t>(i)]);
     W.col(i) = c.w_normal;
     W.col(m + i) = c.w_tangent;
   }
@@ -93,8 +93,8 @@ TEST_CASE("criterion: derived eta predicts the rotation of the two-corner impact
             if (std::abs(std::abs(pred.eta) - 1.0) < kBand) continue;
             // Vary the inertia: the criterion does not depend on it.
             const double inertia = (0.5 + (checked % 3)) * 140.5 * length * length / 12.0;
-            const an::DeckGeometry g{.mass = 140.5, .inertia = inertia, .length = length,
-                                     .width = in.width, .skew_deg = skew};
+            const an::DeckBody g{.mass = 140.5, .inertia = inertia, .deck = {.length = length,
+                                     .width = in.width, .skew_deg = skew}};
             const Eigen::Vector3d u(vx, vy, 0.0);
             CAPTURE(skew);
             CAPTURE(wl);
@@ -160,9 +160,9 @@ TEST_CASE("criterion: max |eta+-| > 1 iff some sliding approach rotates the deck
             std::abs(std::abs(crit.eta_minus) - 1.0) < kBand) {
           continue;
         }
-        const an::DeckGeometry g{.mass = 10.0, .inertia = 10.0 * length * length / 12.0,
-                                 .length = length, .width = in.width, .skew_deg = skew};
-        const auto cols = an::deck_contact_columns(g, 3);
+        const an::DeckBody g{.mass = 10.0, .inertia = 10.0 * length * length / 12.0,
+                                 .deck = {.length = length, .width = in.width, .skew_deg = skew}};
+        const auto cols = an::deck_contact_columns(g.deck, 3);
         const Eigen::Vector2d n = cols.w_normal.head<2>(), t = cols.w_tangent.head<2>();
         bool any = false;
         for (double s : {1.0, -1.0}) {
@@ -194,7 +194,7 @@ TEST_CASE("criterion: straight deck with transverse sliding, threshold mu L / W 
   // along the end face has arm L/2 and the normal impulses can balance at most P_N W/2, so
   // the deck rotates iff mu L / W > 1 (derived), not 2 mu L / W > 1 (printed).
   const double length = 10.0, width = 2.0;  // L/W = 5: threshold mu = 0.2 (printed 0.1)
-  const an::DeckGeometry g{.mass = 140.5, .inertia = 13090.0, .length = length, .width = width};
+  const an::DeckBody g{.mass = 140.5, .inertia = 13090.0, .deck = {.length = length, .width = width}};
   const Eigen::Vector3d u(0.5, 2.0, 0.0);  // sliding: |gdot_T| = 2 > mu (1 + e) 0.5
   for (double mu : {0.12, 0.18, 0.199, 0.201, 0.25}) {
     CAPTURE(mu);
@@ -221,8 +221,8 @@ TEST_CASE("criterion: single-corner and two-corner impacts agree across LCP solv
       for (double mu : {0.0, 0.3, 0.7}) {
         for (const std::vector<int>& corners :
              {std::vector<int>{3}, std::vector<int>{4}, std::vector<int>{3, 4}}) {
-          const an::DeckGeometry g{.mass = 2.0, .inertia = 5.0, .length = 6.0, .width = 1.5,
-                                   .skew_deg = skew};
+          const an::DeckBody g{.mass = 2.0, .inertia = 5.0, .deck = {.length = 6.0, .width = 1.5,
+                                   .skew_deg = skew}};
           const Eigen::Vector3d u(1.0, -0.4, 0.05);
           const auto cases = an::deck_impact(g, corners, u, 0.3, mu);
           const auto r = solve_with_lcp(g, corners, u, 0.3, mu, solver);
@@ -251,25 +251,20 @@ TEST_CASE("criterion: the analytic deck geometry is the one of models::RigidDeck
     nsb::models::RigidDeck::Parameters p;
     p.mass = 140.5;
     p.inertia = 13090.0;
-    p.length = 30.0;
-    p.width = 4.0;
-    p.skew_deg = skew;
-    p.gap_right = 0.05;
-    p.gap_left = 0.05;
+    p.deck = {.length = 30.0, .width = 4.0, .skew_deg = skew, .gap_right = 0.05, .gap_left = 0.05};
     p.restitution = 0.0;
     p.friction = 0.5;
     const nsb::models::RigidDeck deck(p);
     auto c = deck.make_contact_buffer();
     deck.contact_data(0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), c);
-    const an::DeckGeometry g{.mass = p.mass, .inertia = p.inertia, .length = p.length,
-                             .width = p.width, .skew_deg = skew};
+    const an::DeckBody g{.mass = p.mass, .inertia = p.inertia, .deck = p.deck};
     for (int corner = 1; corner <= 4; ++corner) {
       CAPTURE(skew);
       CAPTURE(corner);
-      const auto ref = an::deck_contact_columns(g, corner);
+      const auto ref = an::deck_contact_columns(g.deck, corner);
       const auto& ci = c[static_cast<std::size_t>(corner - 1)];
-      CHECK((ci.w_normal - ref.w_normal).cwiseAbs().maxCoeff() <= kSameColumn * p.length);
-      CHECK((ci.w_tangent - ref.w_tangent).cwiseAbs().maxCoeff() <= kSameColumn * p.length);
+      CHECK((ci.w_normal - ref.w_normal).cwiseAbs().maxCoeff() <= kSameColumn * p.deck.length);
+      CHECK((ci.w_tangent - ref.w_tangent).cwiseAbs().maxCoeff() <= kSameColumn * p.deck.length);
       // Normal gap at rest: gap along the axis times cos(alpha).
       CHECK(ci.gap_normal == doctest::Approx(0.05 * std::cos(skew * kPi / 180.0)));
     }

@@ -170,11 +170,8 @@ nm::RigidDeck::Parameters deck_parameters() {
   nm::RigidDeck::Parameters p;
   p.mass = 140.5;
   p.inertia = 13090.0;
-  p.length = 33.35;
-  p.width = 2.44;
-  p.skew_deg = 0.0;
-  p.gap_right = 0.0127;
-  p.gap_left = 0.0127;
+  p.deck = {.length = 33.35, .width = 2.44, .skew_deg = 0.0, .gap_right = 0.0127,
+            .gap_left = 0.0127};
   p.restitution = 0.5;
   p.friction = 0.5;
   return p;
@@ -203,13 +200,13 @@ TEST_CASE("free deck: two-corner impacts against the analytic solution and eta")
   for (const auto& [skew, vy] : std::vector<std::pair<double, double>>{
            {0.0, 0.0}, {0.0, 0.05}, {0.0, 0.5}, {30.0, 0.0}, {30.0, -0.5}, {5.0, 0.02}}) {
     auto p = deck_parameters();
-    p.skew_deg = skew;
+    p.deck.skew_deg = skew;
     p.initial_velocity = {0.5, vy, 0.0};
     nm::RigidDeck deck(p);
     ni::Recorder rec(deck, 0.0);
     // The normal gap is gap cos(a), closed at the normal speed vx cos(a) - vy sin(a)...
     // with vy != 0 on a skewed deck; the face moves along itself otherwise.
-    const double t1 = p.gap_right * std::cos(skew * M_PI / 180.0) /
+    const double t1 = p.deck.gap_right * std::cos(skew * M_PI / 180.0) /
                       (p.initial_velocity.x() * std::cos(skew * M_PI / 180.0) -
                        vy * std::sin(skew * M_PI / 180.0));
     const auto stats = ni::event_driven(deck, options(t1 + 0.01, 1e-11), rec);
@@ -217,12 +214,12 @@ TEST_CASE("free deck: two-corner impacts against the analytic solution and eta")
     const auto impacts = events_of(rec, ni::EventKind::kImpact);
     REQUIRE(impacts.size() >= 2);
     CHECK(std::abs(impacts[0].t - t1) < kEventTimeTol);
-    na::DeckGeometry g{p.mass, p.inertia, p.length, p.width, p.skew_deg};
+    na::DeckBody g{p.mass, p.inertia, p.deck};
     const auto exact = na::deck_impact(g, {3, 4}, p.initial_velocity, p.restitution, p.friction);
     const Eigen::Vector3d u = velocity_after(rec, impacts[0].t);
     CHECK_MESSAGE((u - exact.velocity_after).cwiseAbs().maxCoeff() < kVelocityTol, "skew ", skew,
                   " vy = ", vy);
-    const auto pred = na::predict_right_end_impact({p.skew_deg, p.width, p.length, p.friction},
+    const auto pred = na::predict_right_end_impact({p.deck.skew_deg, p.deck.width, p.deck.length, p.friction},
                                                    p.initial_velocity.x(), vy, p.restitution);
     CHECK_MESSAGE(pred.rotation == (std::abs(u.z()) > 1e-9), "skew ", skew, " vy = ", vy,
                   " eta = ", pred.eta);
@@ -284,7 +281,7 @@ TEST_CASE("stress cases end with a result, no NaN, no hang") {
     auto p = deck_parameters();
     p.restitution = c.restitution;
     p.friction = c.friction;
-    p.gap_right = p.gap_left = c.gap;
+    p.deck.gap_right = p.deck.gap_left = c.gap;
     p.initial_velocity = c.velocity;
     nm::RigidDeck deck(p);
     ni::Recorder rec(deck, 0.001);

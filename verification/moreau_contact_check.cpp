@@ -3,6 +3,7 @@
 #include "integrators/moreau_jean.hpp"
 #include "models/analytic.hpp"
 #include "models/simple_systems.hpp"
+#include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
 
@@ -32,45 +33,10 @@ RunResult run(integrators::System& s, Recorder& rec, double h, double end_time) 
 
 // m x'' + k x = -mu m g sgn(x') on the ground: 2 DOF (x, y), spring k along x, contact
 // g_N = y with W_N = (0, 1), W_T = (1, 0), gravity along -y. Released from rest at x0.
-class FrictionOscillatorSystem final : public integrators::System {
- public:
-  FrictionOscillatorSystem(double m, double k, double mu, double g, double x0)
-      : m_(m), k_(k), mu_(mu), g_(g), x0_(x0), mass_(Matrix::Identity(2, 2) * m) {}
-  int dofs() const override { return 2; }
-  std::vector<std::string> coordinate_names() const override { return {"x", "y"}; }
-  std::vector<std::string> velocity_names() const override { return {"vx", "vy"}; }
-  const Matrix& mass() const override { return mass_; }
-  Vector initial_position() const override { return Vector::Unit(2, 0) * x0_; }
-  Vector initial_velocity() const override { return Vector::Zero(2); }
-  void forces(double, const Vector& q, const Vector&, Vector& f) override {
-    f[0] = -k_ * q[0];
-    f[1] = -m_ * g_;
-  }
-  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
-    K.setZero();
-    K(0, 0) = k_;
-    C.setZero();
-  }
-  int contacts() const override { return 1; }
-  void contact_data(double, const Vector& q, const Vector&,
-                    std::vector<ContactData>& out) const override {
-    out[0].gap_normal = q[1];
-    out[0].w_normal << 0.0, 1.0;
-    out[0].w_tangent << 1.0, 0.0;
-    out[0].restitution = 0.0;
-    out[0].friction = mu_;
-  }
-  PowerTerms power(double, const Vector&, const Vector& u) const override {
-    return {0.0, 0.0, -m_ * g_ * u[1]};
-  }
-  EnergyState energy(double, const Vector& q) const override {
-    return {0.5 * k_ * q[0] * q[0], 0.0};
-  }
-
- private:
-  double m_, k_, mu_, g_, x0_;
-  Matrix mass_;
-};
+testsupport::Block friction_oscillator(double m, double k, double mu, double g, double x0) {
+  return testsupport::Block(
+      {.mass = m, .gravity = g, .friction = mu, .stiffness = k, .initial_position = x0});
+}
 
 }  // namespace
 
@@ -149,7 +115,7 @@ TEST_CASE("friction oscillator: turning points decay by 2 mu g / w^2, then stick
   const auto turning = models::analytic::friction_oscillator_turning_points(fo);
   REQUIRE(turning.size() >= 3);
   const double h = 1e-4;
-  FrictionOscillatorSystem s(m, k, mu, g, x0);
+  auto s = friction_oscillator(m, k, mu, g, x0);
   Recorder rec(s, 0.0);
   const RunResult stats = run(s, rec, h, 2.0);
   CHECK(stats.completed);

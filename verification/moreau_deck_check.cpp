@@ -29,11 +29,8 @@ models::RigidDeck::Parameters deck(double skew_deg, double mu, const Eigen::Vect
   models::RigidDeck::Parameters p;
   p.mass = 140.5;
   p.inertia = 13090.0;
-  p.length = 33.35;
-  p.width = 2.44;
-  p.skew_deg = skew_deg;
-  p.gap_right = 0.01;
-  p.gap_left = 1.0;  // far: only the right abutment is struck
+  p.deck = {.length = 33.35, .width = 2.44, .skew_deg = skew_deg, .gap_right = 0.01,
+            .gap_left = 1.0};  // far: only the right abutment is struck
   p.restitution = 0.3;
   p.friction = mu;
   p.initial_position = q0;
@@ -152,7 +149,7 @@ TEST_CASE("double frictional impact of a free deck: both corners of the right en
       const ImpactStep s = first_impact(p, 1e-4);
       CHECK(s.corners == std::vector<int>{3, 4});
       check_against_references(p, s);
-      models::analytic::DeckGeometry g{p.mass, p.inertia, p.length, p.width, p.skew_deg};
+      models::analytic::DeckBody g{p.mass, p.inertia, p.deck};
       const auto exact = models::analytic::deck_impact(g, {3, 4}, s.before, p.restitution,
                                                        p.friction);
       CHECK((s.after - exact.velocity_after).cwiseAbs().maxCoeff() <= kExact);

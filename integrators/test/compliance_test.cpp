@@ -1,4 +1,5 @@
 #include "integrators/compliance.hpp"
+#include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
 
@@ -17,88 +18,14 @@ using nsb::integrators::Recorder;
 using nsb::integrators::RunResult;
 using nsb::integrators::Vector;
 
-// Point masses on a line, body j at x_j with mass m_j, linear springs to the ground
-// (stiffness s_j, so that a contact-free run has a closed form), one gap between body 0 and
-// either a fixed wall at x = 0 (one body: g_N = x_0) or body 1 (two bodies:
-// g_N = x_1 - x_0 - gap0). Optionally a second, tangential DOF with gravity pressing the
-// body onto a floor (the block). Counts commits to check the per-step commit.
-class Line final : public nsb::integrators::System {
- public:
-  explicit Line(std::vector<double> masses) : masses_(std::move(masses)) {
-    const auto n = static_cast<Eigen::Index>(masses_.size());
-    M_ = Matrix::Zero(n, n);
-    for (Eigen::Index i = 0; i < n; ++i) M_(i, i) = masses_[static_cast<std::size_t>(i)];
-    q0_ = Vector::Zero(n);
-    u0_ = Vector::Zero(n);
-    springs_ = Vector::Zero(n);
-  }
-  Vector q0_, u0_, springs_;
-  double restitution = 0.5;
-  double friction = 0.0;
-  double gap0 = 0.0;     // two bodies: g_N = x_1 - x_0 - gap0
-  double wall_velocity = 0.0;  // one body: the wall moves, g_N = x_0 - V t (rheonomic)
-  bool block = false;    // 2 DOF (x, y): floor contact g_N = y, slip along x, gravity on y
-  double gravity = 9.81;
-  int commits = 0;
+namespace ts = nsb::testsupport;
 
-  int dofs() const override { return static_cast<int>(masses_.size()); }
-  std::vector<std::string> coordinate_names() const override {
-    std::vector<std::string> r;
-    for (int i = 0; i < dofs(); ++i) r.push_back(std::string(1, 'x').append(std::to_string(i)));
-    return r;
-  }
-  std::vector<std::string> velocity_names() const override {
-    std::vector<std::string> r;
-    for (int i = 0; i < dofs(); ++i) r.push_back(std::string(1, 'v').append(std::to_string(i)));
-    return r;
-  }
-  const Matrix& mass() const override { return M_; }
-  Vector initial_position() const override { return q0_; }
-  Vector initial_velocity() const override { return u0_; }
-  void forces(double, const Vector& q, const Vector&, Vector& f) override {
-    f = -springs_.cwiseProduct(q);
-    if (block) f[1] -= masses_[1] * gravity;
-  }
-  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
-    K = springs_.asDiagonal();
-    C.setZero();
-  }
-  void commit() override { ++commits; }
-  int contacts() const override { return 1; }
-  void contact_data(double t, const Vector& q, const Vector&,
-                    std::vector<ContactData>& out) const override {
-    ContactData& c = out[0];
-    c.w_normal.setZero();
-    c.w_tangent.setZero();
-    if (block) {
-      c.gap_normal = q[1];
-      c.w_normal[1] = 1.0;
-      c.w_tangent[0] = 1.0;
-    } else if (dofs() == 1) {
-      c.gap_normal = q[0] - wall_velocity * t;
-      c.w_normal[0] = 1.0;
-      c.what_normal = -wall_velocity;
-    } else {
-      c.gap_normal = q[1] - q[0] - gap0;
-      c.w_normal[0] = -1.0;
-      c.w_normal[1] = 1.0;
-    }
-    c.restitution = restitution;
-    c.friction = friction;
-  }
-  nsb::integrators::PowerTerms power(double, const Vector&, const Vector& u) const override {
-    nsb::integrators::PowerTerms p;
-    if (block) p.external = -masses_[1] * gravity * u[1];
-    return p;
-  }
-  nsb::integrators::EnergyState energy(double, const Vector& q) const override {
-    return {0.5 * q.dot(springs_.cwiseProduct(q)), 0.0};
-  }
-
- private:
-  std::vector<double> masses_;
-  Matrix M_;
-};
+// One body of mass m on the line against a wall at x_w = V t: g_N = x - V t.
+ts::SpringMass::Parameters against_wall(double m, double x0, double v0, double e,
+                                        double wall_velocity = 0.0) {
+  return {.mass = m, .initial_position = x0, .initial_velocity = v0, .wall = true,
+          .wall_velocity = wall_velocity, .restitution = e};
+}
 
 // Integration tolerance of the impact runs: e_effective is then exact to ~1e-7.
 constexpr double kTightTolerance = 1e-11;
@@ -110,10 +37,7 @@ constexpr double kRestitutionTolerance = 1e-5;
 // body flies freely after the impact) and the stats.
 double wall_restitution(DampingLaw law, double e, double k, double m = 1.0, double v0 = 1.0,
                         RunResult* stats = nullptr, Recorder* rec_out = nullptr) {
-  Line s({m});
-  s.q0_[0] = 0.01;
-  s.u0_[0] = -v0;
-  s.restitution = e;
+  ts::SpringMass s(against_wall(m, 0.01, -v0, e));
   ComplianceOptions o;
   o.law = law;
   o.stiffness = k;
@@ -127,7 +51,7 @@ double wall_restitution(DampingLaw law, double e, double k, double m = 1.0, doub
   REQUIRE(st.completed);
   if (stats) *stats = st;
   if (rec_out) *rec_out = rec;
-  const auto v = rec.series("v0");
+  const auto v = rec.series("vx");
   return -v.back() / (-v0);
 }
 
@@ -222,7 +146,7 @@ TEST_CASE("compliance: damping law names and option validation") {
   bad([](ComplianceOptions& b) { b.max_step = 0.0; }, "max_step");
   bad([](ComplianceOptions& b) { b.min_impact_velocity = -1.0; }, "min_impact_velocity");
   bad([](ComplianceOptions& b) { b.law = static_cast<DampingLaw>(99); }, "law");
-  Line s({1.0});
+  ts::SpringMass s(against_wall(1.0, 0.0, 0.0, 0.5));
   Recorder rec(s, 0.0);
   o.end_time = 0.0;  // not after the initial time
   CHECK_THROWS_AS(compliance(s, o, rec), std::invalid_argument);
@@ -270,10 +194,7 @@ TEST_CASE("compliance: undamped Hertz impact duration and peak force (Goldsmith 
   const double m = 2.0, k = 1e7, v0 = 0.8;
   const double dmax = std::pow(5.0 * m * v0 * v0 / (4.0 * k), 0.4);
   const double tc = 2.0 * 0.4 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9) * dmax / v0;
-  Line s({m});
-  s.q0_[0] = 1e-3;
-  s.u0_[0] = -v0;
-  s.restitution = 1.0;  // chi = 0 for every law
+  ts::SpringMass s(against_wall(m, 1e-3, -v0, 1.0));  // e = 1: chi = 0 for every law
   ComplianceOptions o;
   o.stiffness = k;
   o.tolerance = kTightTolerance;
@@ -295,7 +216,7 @@ TEST_CASE("compliance: undamped Hertz impact duration and peak force (Goldsmith 
   for (double f : rec.series("lambdaN1")) peak = std::max(peak, f);
   // Sampling at tc/400 misses the peak by at most ~ (pi/400)^2 / 2 relative.
   CHECK(peak == doctest::Approx(k * std::pow(dmax, 1.5)).epsilon(1e-4));
-  CHECK(-rec.series("v0").back() == doctest::Approx(-v0).epsilon(1e-7));
+  CHECK(-rec.series("vx").back() == doctest::Approx(-v0).epsilon(1e-7));
   // Elastic contact: the energy balance closes (kinetic <-> contact potential).
   CHECK(st.energy.error < 1e-7);
   CHECK(std::abs(st.energy.impacts) < 1e-9);
@@ -305,10 +226,8 @@ TEST_CASE("compliance: two free bodies follow the reduced-mass wall result") {
   // Central impact of m1 = 2 (v = +1) on m2 = 1 (v = -0.5), gap 0.01: with
   // e = hunt_crossley_restitution(chi) the post-impact velocities are
   // v1' = v1 - (1 + e) m2 / (m1 + m2) (v1 - v2), v2' = v2 + (1 + e) m1 / (m1 + m2) (v1 - v2).
-  Line s({2.0, 1.0});
-  s.q0_ << 0.0, 0.01;
-  s.u0_ << 1.0, -0.5;
-  s.restitution = 0.3;
+  ts::TwoMasses s({.mass1 = 2.0, .mass2 = 1.0, .position1 = 0.0, .position2 = 0.01,
+                   .velocity1 = 1.0, .velocity2 = -0.5, .restitution = 0.3});
   ComplianceOptions o;
   o.law = DampingLaw::kFlores;
   o.stiffness = 1e7;
@@ -320,19 +239,16 @@ TEST_CASE("compliance: two free bodies follow the reduced-mass wall result") {
   const double e = nsb::integrators::hunt_crossley_restitution(
       nsb::integrators::damping_factor(DampingLaw::kFlores, 0.3));
   const double vrel = 1.5;
-  CHECK(rec.series("v0").back() ==
-        doctest::Approx(1.0 - (1 + e) * 1.0 / 3.0 * vrel).epsilon(kRestitutionTolerance));
   CHECK(rec.series("v1").back() ==
+        doctest::Approx(1.0 - (1 + e) * 1.0 / 3.0 * vrel).epsilon(kRestitutionTolerance));
+  CHECK(rec.series("v2").back() ==
         doctest::Approx(-0.5 + (1 + e) * 2.0 / 3.0 * vrel).epsilon(kRestitutionTolerance));
 }
 
 TEST_CASE("compliance: a closure is never stepped over, however large max_step") {
   // Free flight from x = 1 at -1 m/s: with nothing acting, the error estimate is zero and
   // the controller would step straight through the wall at x = 0.
-  Line s({1.0});
-  s.q0_[0] = 1.0;
-  s.u0_[0] = -1.0;
-  s.restitution = 0.5;
+  ts::SpringMass s(against_wall(1.0, 1.0, -1.0, 0.5));
   ComplianceOptions o;
   o.law = DampingLaw::kHuntCrossleyExact;
   o.stiffness = 1e8;
@@ -344,7 +260,7 @@ TEST_CASE("compliance: a closure is never stepped over, however large max_step")
   CHECK(rec.count(EventKind::kClose) == 1);
   CHECK(rec.count(EventKind::kOpen) == 1);
   CHECK(rec.events().front().t == doctest::Approx(1.0).epsilon(1e-9));
-  CHECK(rec.series("v0").back() == doctest::Approx(0.5).epsilon(1e-4));
+  CHECK(rec.series("vx").back() == doctest::Approx(0.5).epsilon(1e-4));
   // The step that crossed the wall was retaken to end at the closure (free flight has no
   // error-control rejections, so every rejected step here is such a retake).
   CHECK(st.rejected_steps >= 1);
@@ -360,13 +276,12 @@ TEST_CASE("compliance: contact-free harmonic oscillator matches the closed form"
   o.tolerance = 1e-10;
   o.end_time = 2.0;
   o.max_step = 0.05;
-  Line two({2.0, 1.0});
-  two.springs_ << 8.0, 0.0;
-  two.q0_ << 0.1, 10.0;
+  ts::TwoMasses two({.mass1 = 2.0, .mass2 = 1.0, .stiffness1 = 8.0, .position1 = 0.1,
+                     .position2 = 10.0});
   Recorder rec(two, 0.0);
   const RunResult st = compliance(two, o, rec);
   REQUIRE(st.completed);
-  CHECK(rec.series("x0").back() == doctest::Approx(0.1 * std::cos(4.0)).epsilon(1e-7));
+  CHECK(rec.series("x1").back() == doctest::Approx(0.1 * std::cos(4.0)).epsilon(1e-7));
   CHECK(st.energy.error < 1e-8);
   CHECK(rec.count(EventKind::kClose) == 0);
 }
@@ -377,14 +292,10 @@ TEST_CASE("compliance: a block sliding on a compliant floor stops where Coulomb 
   // v0 = 1 m/s, mu = 0.4: it decelerates at mu g and stops
   // after t = v0 / (mu g), x = v0^2 / (2 mu g). Below eps_v the regularised law creeps on
   // for ~eps_v / (mu g) s, adding at most eps_v^2 / (mu g) to x.
-  Line s({1.0, 1.0});
-  s.block = true;
-  s.friction = 0.4;
-  s.restitution = 0.5;
-  s.u0_ << 1.0, 0.0;
   ComplianceOptions o;
   o.stiffness = 1e6;
-  s.q0_ << 0.0, -std::pow(9.81 / o.stiffness, 2.0 / 3.0);
+  ts::Block s({.mass = 1.0, .friction = 0.4, .initial_velocity = 1.0,
+               .initial_height = -std::pow(9.81 / o.stiffness, 2.0 / 3.0), .restitution = 0.5});
   o.tolerance = 1e-9;
   o.end_time = 0.5;
   Recorder rec(s, 0.0);
@@ -392,8 +303,8 @@ TEST_CASE("compliance: a block sliding on a compliant floor stops where Coulomb 
   REQUIRE(st.completed);
   const double g = 9.81, stop = 1.0 / (0.4 * g), dist = 1.0 / (2 * 0.4 * g);
   const auto t = rec.series("t");
-  const auto x = rec.series("x0");
-  const auto v = rec.series("v0");
+  const auto x = rec.series("x");
+  const auto v = rec.series("vx");
   // Time at which |v| first falls below eps_v: the sliding phase ends within eps_v/(mu g).
   double t_stop = -1.0;
   for (std::size_t i = 0; i < t.size(); ++i) {
@@ -416,10 +327,7 @@ TEST_CASE("compliance: a moving wall (rheonomic contact) strikes a body at rest"
   // frame the body approaches at V and leaves at e V, so afterwards u = V (1 + e). The
   // exact law makes e_effective = e_set. The moving wall's work is `ground`.
   const double V = 1.0, e = 0.5, m = 2.0;
-  Line s({m});
-  s.wall_velocity = V;
-  s.q0_[0] = 0.01;
-  s.restitution = e;
+  ts::SpringMass s(against_wall(m, 0.01, 0.0, e, V));
   ComplianceOptions o;
   o.law = DampingLaw::kHuntCrossleyExact;
   o.stiffness = 1e7;
@@ -432,7 +340,7 @@ TEST_CASE("compliance: a moving wall (rheonomic contact) strikes a body at rest"
   REQUIRE(rec.count(EventKind::kClose) == 1);
   CHECK(rec.events().front().t == doctest::Approx(0.01 / V).epsilon(1e-9));
   const double u_after = V * (1 + e);
-  CHECK(rec.series("v0").back() == doctest::Approx(u_after).epsilon(kRestitutionTolerance));
+  CHECK(rec.series("vx").back() == doctest::Approx(u_after).epsilon(kRestitutionTolerance));
   // Energy: kinetic gain = work of the wall - dashpot loss; the balance closes.
   CHECK(st.energy.kinetic == doctest::Approx(0.5 * m * u_after * u_after).epsilon(1e-5));
   CHECK(st.energy.ground > st.energy.kinetic);

@@ -1,6 +1,7 @@
 // Unit tests of the event-driven integrator on small systems defined here, each with a
 // closed-form answer derived in the comments.
 #include "integrators/event_driven.hpp"
+#include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
 
@@ -23,89 +24,7 @@ constexpr double kTimeTol = 1e-9;
 // Positions after many smooth steps at tolerance 1e-10.
 constexpr double kStateTol = 1e-7;
 
-// A point mass above a support at height yp(t) = A sin(w t) (A = 0: fixed ground), under
-// gravity and an optional upward force F(t) = ramp * t. 1 DOF: y. Gap g_N = y - yp(t),
-// W_N = 1, what_N = -yp'(t), wbar_N = -yp''(t). Frictionless.
-class Ball final : public ni::System {
- public:
-  double m = 1.0, g = 9.81, y0 = 1.0, v0 = 0.0, e = 0.5, ramp = 0.0, A = 0.0, w = 0.0;
-  int dofs() const override { return 1; }
-  std::vector<std::string> coordinate_names() const override { return {"y"}; }
-  std::vector<std::string> velocity_names() const override { return {"vy"}; }
-  const Matrix& mass() const override {
-    M_ = Matrix::Constant(1, 1, m);
-    return M_;
-  }
-  Vector initial_position() const override { return Vector::Constant(1, y0); }
-  Vector initial_velocity() const override { return Vector::Constant(1, v0); }
-  void forces(double t, const Vector&, const Vector&, Vector& f) override {
-    f[0] = -m * g + ramp * t;
-  }
-  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
-    K.setZero();
-    C.setZero();
-  }
-  int contacts() const override { return 1; }
-  void contact_data(double t, const Vector& q, const Vector&,
-                    std::vector<ni::ContactData>& out) const override {
-    auto& c = out[0];
-    c.gap_normal = q[0] - A * std::sin(w * t);
-    c.w_normal[0] = 1.0;
-    c.w_tangent[0] = 0.0;
-    c.what_normal = -A * w * std::cos(w * t);
-    c.wbar_normal = A * w * w * std::sin(w * t);
-    c.restitution = e;
-    c.friction = 0.0;
-  }
-  ni::PowerTerms power(double t, const Vector&, const Vector& u) const override {
-    return {0.0, 0.0, ramp * t * u[0]};
-  }
-  ni::EnergyState energy(double, const Vector& q) const override { return {m * g * q[0], 0.0}; }
-
- private:
-  mutable Matrix M_;
-};
-
-// A block on the ground y = 0 pushed along x by F(t) = F0 + F1 sin(W t). 2 DOF: (x, y).
-// g_N = y, W_N = (0, 1), W_T = (1, 0), Coulomb friction mu.
-class Block final : public ni::System {
- public:
-  double m = 2.0, g = 9.81, mu = 0.5, F0 = 0.0, F1 = 0.0, W = 0.0, vx0 = 0.0;
-  int dofs() const override { return 2; }
-  std::vector<std::string> coordinate_names() const override { return {"x", "y"}; }
-  std::vector<std::string> velocity_names() const override { return {"vx", "vy"}; }
-  const Matrix& mass() const override {
-    M_ = m * Matrix::Identity(2, 2);
-    return M_;
-  }
-  Vector initial_position() const override { return Vector::Zero(2); }
-  Vector initial_velocity() const override { return Vector{{vx0, 0.0}}; }
-  void forces(double t, const Vector&, const Vector&, Vector& f) override {
-    f[0] = F0 + F1 * std::sin(W * t);
-    f[1] = -m * g;
-  }
-  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
-    K.setZero();
-    C.setZero();
-  }
-  int contacts() const override { return 1; }
-  void contact_data(double, const Vector& q, const Vector&,
-                    std::vector<ni::ContactData>& out) const override {
-    auto& c = out[0];
-    c.gap_normal = q[1];
-    c.w_normal << 0.0, 1.0;
-    c.w_tangent << 1.0, 0.0;
-    c.restitution = 0.0;
-    c.friction = mu;
-  }
-  ni::PowerTerms power(double t, const Vector&, const Vector& u) const override {
-    return {0.0, 0.0, (F0 + F1 * std::sin(W * t)) * u[0]};
-  }
-  ni::EnergyState energy(double, const Vector& q) const override { return {m * g * q[1], 0.0}; }
-
- private:
-  mutable Matrix M_;
-};
+namespace ts = nsb::testsupport;
 
 std::vector<double> times_of(const ni::Recorder& r, ni::EventKind kind) {
   std::vector<double> t;
@@ -128,7 +47,8 @@ TEST_CASE("options are validated") {
   o = {};
   o.end_time = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(o.validate(), std::invalid_argument);
-  Ball b;
+  ts::Ball::Parameters bp;
+  ts::Ball b(bp);
   ni::Recorder r(b, 0.0);
   o = {};
   o.end_time = -1.0;  // before the initial time 0
@@ -139,23 +59,24 @@ TEST_CASE("bouncing ball: impact times, accumulation, rest") {
   // Dropped from y0 with v0 = 0: t1 = sqrt(2 y0 / g), v1 = g t1. Between impacts k and k+1
   // the flight lasts 2 e^k v1 / g, so t_{k+1} = t_k + 2 e^k v1 / g and the impacts
   // accumulate at t_inf = t1 + 2 v1 e / (g (1 - e)).
-  Ball b;
-  b.e = 0.5;
+  ts::Ball::Parameters bp;
+  bp.restitution = 0.5;
+  ts::Ball b(bp);
   ni::EventDrivenOptions o;
   o.end_time = 3.0;
   o.tolerance = 1e-10;
   ni::Recorder r(b, 0.01);
   const ni::RunResult s = ni::event_driven(b, o, r);
   REQUIRE(s.completed);
-  const double t1 = std::sqrt(2.0 * b.y0 / b.g), v1 = b.g * t1;
+  const double t1 = std::sqrt(2.0 * bp.initial_height / bp.gravity), v1 = bp.gravity * t1;
   const auto impacts = times_of(r, ni::EventKind::kImpact);
   REQUIRE(impacts.size() >= 10);
   double tk = t1;
   for (int k = 0; k < 10; ++k) {
     CHECK(std::abs(impacts[static_cast<std::size_t>(k)] - tk) < kTimeTol);
-    tk += 2.0 * std::pow(b.e, k + 1) * v1 / b.g;
+    tk += 2.0 * std::pow(bp.restitution, k + 1) * v1 / bp.gravity;
   }
-  const double t_inf = t1 + 2.0 * v1 * b.e / (b.g * (1.0 - b.e));
+  const double t_inf = t1 + 2.0 * v1 * bp.restitution / (bp.gravity * (1.0 - bp.restitution));
   const auto closes = times_of(r, ni::EventKind::kClose);
   REQUIRE(!closes.empty());
   // The closing velocity 10 * tolerance = 1e-9 m/s cuts the remaining flights, which last
@@ -165,7 +86,7 @@ TEST_CASE("bouncing ball: impact times, accumulation, rest") {
   const auto y = r.series("y");
   const auto lam = r.series("lambdaN1");
   CHECK(std::abs(y.back()) < kStateTol);
-  CHECK(lam.back() == doctest::Approx(b.m * b.g));
+  CHECK(lam.back() == doctest::Approx(bp.mass * bp.gravity));
   // e < 1 dissipates: impacts' work is negative and the balance closes.
   CHECK(s.energy.impacts < 0.0);
   CHECK(s.energy.error < 1e-6);
@@ -175,15 +96,16 @@ TEST_CASE("bouncing ball: impact times, accumulation, rest") {
 TEST_CASE("elastic ball keeps its energy; plastic ball stays closed") {
   SUBCASE("eps = 1") {
     // Every flight lasts 2 v1 / g and the apex stays at y0.
-    Ball b;
-    b.e = 1.0;
+    ts::Ball::Parameters bp;
+    bp.restitution = 1.0;
+    ts::Ball b(bp);
     ni::EventDrivenOptions o;
     o.end_time = 5.0;
     o.tolerance = 1e-10;
     ni::Recorder r(b, 0.0);
     const auto s = ni::event_driven(b, o, r);
     REQUIRE(s.completed);
-    const double t1 = std::sqrt(2.0 * b.y0 / b.g);
+    const double t1 = std::sqrt(2.0 * bp.initial_height / bp.gravity);
     const auto impacts = times_of(r, ni::EventKind::kImpact);
     REQUIRE(impacts.size() == static_cast<std::size_t>(std::floor((5.0 - t1) / (2 * t1)) + 1));
     for (std::size_t k = 0; k < impacts.size(); ++k) {
@@ -193,8 +115,9 @@ TEST_CASE("elastic ball keeps its energy; plastic ball stays closed") {
     CHECK(s.energy.error < 1e-6);
   }
   SUBCASE("eps = 0") {
-    Ball b;
-    b.e = 0.0;
+    ts::Ball::Parameters bp;
+    bp.restitution = 0.0;
+    ts::Ball b(bp);
     ni::EventDrivenOptions o;
     o.end_time = 2.0;
     ni::Recorder r(b, 0.0);
@@ -204,15 +127,16 @@ TEST_CASE("elastic ball keeps its energy; plastic ball stays closed") {
     CHECK(r.count(ni::EventKind::kClose) == 1);
     CHECK(r.count(ni::EventKind::kOpen) == 0);
     // The kinetic energy at impact, m g y0, is lost.
-    CHECK(s.energy.impacts == doctest::Approx(-b.m * b.g * b.y0).epsilon(1e-6));
+    CHECK(s.energy.impacts == doctest::Approx(-bp.mass * bp.gravity * bp.initial_height).epsilon(1e-6));
   }
 }
 
 TEST_CASE("lift-off under a growing force") {
   // At rest on the ground, F(t) = ramp t lifts the ball when lambda_N = m g - ramp t = 0.
-  Ball b;
-  b.y0 = 0.0;
-  b.ramp = 20.0;
+  ts::Ball::Parameters bp;
+  bp.initial_height = 0.0;
+  bp.ramp = 20.0;
+  ts::Ball b(bp);
   ni::EventDrivenOptions o;
   o.end_time = 1.0;
   ni::Recorder r(b, 0.0);
@@ -220,13 +144,13 @@ TEST_CASE("lift-off under a growing force") {
   REQUIRE(s.completed);
   const auto opens = times_of(r, ni::EventKind::kOpen);
   REQUIRE(opens.size() == 1);
-  CHECK(std::abs(opens[0] - b.m * b.g / b.ramp) < kTimeTol);
+  CHECK(std::abs(opens[0] - bp.mass * bp.gravity / bp.ramp) < kTimeTol);
   // Afterwards y = (ramp/6)(t - t0)^3 - (g/2)(t - t0)^2 ... check at the end:
   // m y'' = ramp t - m g  => y(t) = ramp/(6m) (t^3 - t0^3) - ramp t0/(2m) (t^2 - t0^2)
   //                               ... integrated from rest at t0 = m g / ramp.
-  const double t0 = b.m * b.g / b.ramp, T = 1.0;
+  const double t0 = bp.mass * bp.gravity / bp.ramp, T = 1.0;
   const double dt = T - t0;
-  const double y_exact = b.ramp / (6.0 * b.m) * dt * dt * dt;  // (ramp t - m g) = ramp (t - t0)
+  const double y_exact = bp.ramp / (6.0 * bp.mass) * dt * dt * dt;  // (ramp t - m g) = ramp (t - t0)
   CHECK(r.series("y").back() == doctest::Approx(y_exact).epsilon(1e-8));
 }
 
@@ -234,11 +158,12 @@ TEST_CASE("rheonomic support: the ball leaves a shaking table when it accelerate
   // Table yp = A sin(w t) with A w^2 > g. The ball rides on it while the contact force
   // lambda_N = m (g + yp'') = m (g - A w^2 sin(w t)) >= 0: it lifts off at
   // sin(w t) = g / (A w^2).
-  Ball b;
-  b.y0 = 0.0;
-  b.A = 0.05;
-  b.w = 20.0;  // A w^2 = 20 m/s^2
-  b.e = 0.0;
+  ts::Ball::Parameters bp;
+  bp.initial_height = 0.0;
+  bp.floor_amplitude = 0.05;
+  bp.floor_frequency = 20.0;  // A w^2 = 20 m/s^2
+  bp.restitution = 0.0;
+  ts::Ball b(bp);
   ni::EventDrivenOptions o;
   o.end_time = 0.1;
   ni::Recorder r(b, 0.0);
@@ -246,7 +171,7 @@ TEST_CASE("rheonomic support: the ball leaves a shaking table when it accelerate
   REQUIRE(s.completed);
   const auto opens = times_of(r, ni::EventKind::kOpen);
   REQUIRE(!opens.empty());
-  const double t_lift = std::asin(b.g / (b.A * b.w * b.w)) / b.w;
+  const double t_lift = std::asin(bp.gravity / (bp.floor_amplitude * bp.floor_frequency * bp.floor_frequency)) / bp.floor_frequency;
   CHECK(std::abs(opens[0] - t_lift) < kTimeTol);
   // The table does the work on the ball (-lambda_N what_N, booked as ground input); the
   // contact itself does none while closed, and the plastic re-impact (e = 0) dissipates.
@@ -256,51 +181,55 @@ TEST_CASE("rheonomic support: the ball leaves a shaking table when it accelerate
 }
 
 TEST_CASE("block under a constant force: stick below mu m g, exact slip above") {
-  Block k;
+  ts::Block::Parameters k;
   ni::EventDrivenOptions o;
   o.end_time = 1.0;
   o.tolerance = 1e-10;
   SUBCASE("stick") {
-    k.F0 = 0.9 * k.mu * k.m * k.g;
-    ni::Recorder r(k, 0.0);
-    const auto s = ni::event_driven(k, o, r);
+    k.force = 0.9 * k.friction * k.mass * k.gravity;
+    ts::Block block(k);
+    ni::Recorder r(block, 0.0);
+    const auto s = ni::event_driven(block, o, r);
     REQUIRE(s.completed);
     CHECK(std::abs(r.series("x").back()) < 1e-12);
     // Sticking: lambda_T balances F exactly.
-    CHECK(r.series("lambdaT1").back() == doctest::Approx(-k.F0));
+    CHECK(r.series("lambdaT1").back() == doctest::Approx(-k.force));
     CHECK(r.count(ni::EventKind::kStick) == 1);
   }
   SUBCASE("slip") {
     // a = F/m - mu g, x(1) = a / 2.
-    k.F0 = 1.5 * k.mu * k.m * k.g;
-    ni::Recorder r(k, 0.0);
-    const auto s = ni::event_driven(k, o, r);
+    k.force = 1.5 * k.friction * k.mass * k.gravity;
+    ts::Block block(k);
+    ni::Recorder r(block, 0.0);
+    const auto s = ni::event_driven(block, o, r);
     REQUIRE(s.completed);
-    const double a = k.F0 / k.m - k.mu * k.g;
+    const double a = k.force / k.mass - k.friction * k.gravity;
     CHECK(r.series("x").back() == doctest::Approx(0.5 * a).epsilon(1e-9));
-    CHECK(r.series("lambdaT1").back() == doctest::Approx(-k.mu * k.m * k.g));
+    CHECK(r.series("lambdaT1").back() == doctest::Approx(-k.friction * k.mass * k.gravity));
     // Friction work = -mu m g x; balance closes.
-    CHECK(s.energy.friction == doctest::Approx(-k.mu * k.m * k.g * 0.5 * a).epsilon(1e-8));
+    CHECK(s.energy.friction == doctest::Approx(-k.friction * k.mass * k.gravity * 0.5 * a).epsilon(1e-8));
     CHECK(s.energy.error < 1e-8);
   }
   SUBCASE("sliding block stops") {
     // No force, vx0 > 0: decelerates at mu g and sticks at t = vx0 / (mu g).
-    k.vx0 = 2.0;
-    ni::Recorder r(k, 0.0);
-    const auto s = ni::event_driven(k, o, r);
+    k.initial_velocity = 2.0;
+    ts::Block block(k);
+    ni::Recorder r(block, 0.0);
+    const auto s = ni::event_driven(block, o, r);
     REQUIRE(s.completed);
     const auto sticks = times_of(r, ni::EventKind::kStick);
     REQUIRE(sticks.size() == 1);
-    CHECK(std::abs(sticks[0] - k.vx0 / (k.mu * k.g)) < kTimeTol);
-    CHECK(r.series("x").back() == doctest::Approx(k.vx0 * k.vx0 / (2 * k.mu * k.g)).epsilon(1e-9));
+    CHECK(std::abs(sticks[0] - k.initial_velocity / (k.friction * k.gravity)) < kTimeTol);
+    CHECK(r.series("x").back() == doctest::Approx(k.initial_velocity * k.initial_velocity / (2 * k.friction * k.gravity)).epsilon(1e-9));
   }
 }
 
 TEST_CASE("accumulating impacts terminate and results stay finite") {
   // A very low closing velocity forces many impacts; the event bound must stop the cascade
   // with a warning rather than hang.
-  Ball b;
-  b.e = 0.95;
+  ts::Ball::Parameters bp;
+  bp.restitution = 0.95;
+  ts::Ball b(bp);
   ni::EventDrivenOptions o;
   o.end_time = 20.0;
   o.closing_velocity = 1e-300;

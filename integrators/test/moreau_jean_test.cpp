@@ -1,6 +1,7 @@
 // Unit tests of the Moreau–Jean scheme on small systems defined here, with the expected values
 // from closed forms derived in the comments and from Siconos's reference output.
 #include "integrators/moreau_jean.hpp"
+#include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
 
@@ -35,170 +36,33 @@ void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 namespace nsb::integrators {
 namespace {
 
-// A point mass m under gravity g above a platform moving upward at constant speed V:
-// q = (y), gap g_N = y - V t, so gdot_N = u - V (W_N = 1, what_N = -V). Stored energy m g y.
-class Ball final : public System {
- public:
-  Ball(double y0, double v0, double e, double platform_speed = 0.0, double m = 1.0,
-       double g = 9.81)
-      : y0_(y0), v0_(v0), e_(e), speed_(platform_speed), m_(m), g_(g),
-        mass_(Matrix::Constant(1, 1, m)) {}
-  int dofs() const override { return 1; }
-  std::vector<std::string> coordinate_names() const override { return {"y"}; }
-  std::vector<std::string> velocity_names() const override { return {"vy"}; }
-  const Matrix& mass() const override { return mass_; }
-  Vector initial_position() const override { return Vector::Constant(1, y0_); }
-  Vector initial_velocity() const override { return Vector::Constant(1, v0_); }
-  void forces(double, const Vector&, const Vector&, Vector& f) override { f[0] = -m_ * g_; }
-  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
-    K.setZero();
-    C.setZero();
-  }
-  int contacts() const override { return 1; }
-  void contact_data(double t, const Vector& q, const Vector&,
-                    std::vector<ContactData>& out) const override {
-    out[0].gap_normal = q[0] - speed_ * t;
-    out[0].w_normal[0] = 1.0;
-    out[0].w_tangent[0] = 0.0;
-    out[0].what_normal = -speed_;
-    out[0].restitution = e_;
-    out[0].friction = 0.0;
-  }
-  PowerTerms power(double, const Vector&, const Vector& u) const override {
-    return {0.0, 0.0, -m_ * g_ * u[0]};
-  }
-  EnergyState energy(double, const Vector&) const override { return {0.0, 0.0}; }
+namespace ts = nsb::testsupport;
 
- private:
-  double y0_, v0_, e_, speed_, m_, g_;
-  Matrix mass_;
-};
+// A point mass m = 1 under gravity g = 9.81 above a platform moving upward at constant speed
+// V: gap g_N = y - V t, so gdot_N = u - V (W_N = 1, what_N = -V).
+ts::Ball::Parameters ball_on_platform(double y0, double v0, double e, double platform_speed = 0.0) {
+  return {.initial_height = y0, .initial_velocity = v0, .restitution = e,
+          .floor_velocity = platform_speed};
+}
 
-// m x'' + c x' + k x = F0 sin(w t), no contact. Stored energy k x^2 / 2.
-class Oscillator final : public System {
- public:
-  Oscillator(double m, double k, double c, double x0, double v0, double f0 = 0.0, double w = 0.0)
-      : m_(m), k_(k), c_(c), x0_(x0), v0_(v0), f0_(f0), w_(w), mass_(Matrix::Constant(1, 1, m)) {}
-  int dofs() const override { return 1; }
-  std::vector<std::string> coordinate_names() const override { return {"x"}; }
-  std::vector<std::string> velocity_names() const override { return {"vx"}; }
-  const Matrix& mass() const override { return mass_; }
-  Vector initial_position() const override { return Vector::Constant(1, x0_); }
-  Vector initial_velocity() const override { return Vector::Constant(1, v0_); }
-  void forces(double t, const Vector& q, const Vector& u, Vector& f) override {
-    f[0] = -k_ * q[0] - c_ * u[0] + f0_ * std::sin(w_ * t);
-  }
-  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
-    K(0, 0) = k_;
-    C(0, 0) = c_;
-  }
-  int contacts() const override { return 0; }
-  void contact_data(double, const Vector&, const Vector&,
-                    std::vector<ContactData>&) const override {}
-  PowerTerms power(double t, const Vector&, const Vector& u) const override {
-    return {c_ * u[0] * u[0], 0.0, f0_ * std::sin(w_ * t) * u[0]};
-  }
-  EnergyState energy(double, const Vector& q) const override {
-    return {0.5 * k_ * q[0] * q[0], 0.0};
-  }
+// m x'' + c x' + k x = F0 sin(w t), no contact.
+ts::SpringMass::Parameters oscillator(double m, double k, double c, double x0, double v0,
+                                      double f0 = 0.0, double w = 0.0) {
+  return {.mass = m, .stiffness = k, .damping = c, .force_amplitude = f0, .force_frequency = w,
+          .initial_position = x0, .initial_velocity = v0};
+}
 
- private:
-  double m_, k_, c_, x0_, v0_, f0_, w_;
-  Matrix mass_;
-};
+// An elastic-perfectly-plastic spring (stiffness k, yield force fy) driven by F0 sin(w t): its
+// tangent switches between k and 0 as it yields and unloads, so the scheme re-factorizes
+// inside the run.
+ts::PlasticOscillator::Parameters plastic(double k, double fy, double f0, double w) {
+  return {.stiffness = k, .yield_force = fy, .force_amplitude = f0, .force_frequency = w};
+}
 
-// An elastic-perfectly-plastic spring (stiffness k, yield force fy) with trial and commit
-// state, driven by F0 sin(w t): its tangent switches between k and 0 as it yields and
-// unloads, so the scheme re-factorizes inside the run.
-class PlasticOscillator final : public System {
- public:
-  PlasticOscillator(double k, double fy, double f0, double w)
-      : k_(k), fy_(fy), f0_(f0), w_(w), mass_(Matrix::Constant(1, 1, 1.0)) {}
-  int dofs() const override { return 1; }
-  std::vector<std::string> coordinate_names() const override { return {"x"}; }
-  std::vector<std::string> velocity_names() const override { return {"vx"}; }
-  const Matrix& mass() const override { return mass_; }
-  Vector initial_position() const override { return Vector::Zero(1); }
-  Vector initial_velocity() const override { return Vector::Zero(1); }
-  void forces(double t, const Vector& q, const Vector&, Vector& f) override {
-    double s = k_ * (q[0] - plastic_);
-    trial_plastic_ = plastic_;
-    trial_yielding_ = false;
-    if (std::abs(s) > fy_) {
-      const double sign = s > 0.0 ? 1.0 : -1.0;
-      trial_plastic_ = q[0] - sign * fy_ / k_;
-      s = sign * fy_;
-      trial_yielding_ = true;
-    }
-    trial_force_ = s;
-    f[0] = -s + f0_ * std::sin(w_ * t);
-  }
-  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
-    K(0, 0) = trial_yielding_ ? 0.0 : k_;
-    C(0, 0) = 0.0;
-  }
-  bool tangent_changed() const override { return trial_yielding_ != yielding_; }
-  void commit() override {
-    plastic_ = trial_plastic_;
-    yielding_ = trial_yielding_;
-    ++commits;
-  }
-  int contacts() const override { return 0; }
-  void contact_data(double, const Vector&, const Vector&,
-                    std::vector<ContactData>&) const override {}
-  PowerTerms power(double t, const Vector&, const Vector& u) const override {
-    return {0.0, 0.0, f0_ * std::sin(w_ * t) * u[0]};
-  }
-  EnergyState energy(double, const Vector&) const override {
-    return {0.5 * trial_force_ * trial_force_ / k_, 0.0};
-  }
-  long commits = 0;
-
- private:
-  double k_, fy_, f0_, w_;
-  double plastic_ = 0.0, trial_plastic_ = 0.0, trial_force_ = 0.0;
-  bool yielding_ = false, trial_yielding_ = false;
-  Matrix mass_;
-};
-
-// A block of mass m on the ground y = 0 with Coulomb friction mu, sliding at v0 along x.
-// q = (x, y); contact g_N = y, W_N = (0, 1), W_T = (1, 0); gravity -m g along y.
-class Block final : public System {
- public:
-  Block(double v0, double mu, double m = 2.0, double g = 9.81)
-      : v0_(v0), mu_(mu), m_(m), g_(g), mass_(Matrix::Identity(2, 2) * m) {}
-  int dofs() const override { return 2; }
-  std::vector<std::string> coordinate_names() const override { return {"x", "y"}; }
-  std::vector<std::string> velocity_names() const override { return {"vx", "vy"}; }
-  const Matrix& mass() const override { return mass_; }
-  Vector initial_position() const override { return Vector::Zero(2); }
-  Vector initial_velocity() const override { return Vector::Unit(2, 0) * v0_; }
-  void forces(double, const Vector&, const Vector&, Vector& f) override {
-    f[0] = 0.0;
-    f[1] = -m_ * g_;
-  }
-  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
-    K.setZero();
-    C.setZero();
-  }
-  int contacts() const override { return 1; }
-  void contact_data(double, const Vector& q, const Vector&,
-                    std::vector<ContactData>& out) const override {
-    out[0].gap_normal = q[1];
-    out[0].w_normal << 0.0, 1.0;
-    out[0].w_tangent << 1.0, 0.0;
-    out[0].restitution = 0.0;
-    out[0].friction = mu_;
-  }
-  PowerTerms power(double, const Vector&, const Vector& u) const override {
-    return {0.0, 0.0, -m_ * g_ * u[1]};
-  }
-  EnergyState energy(double, const Vector&) const override { return {0.0, 0.0}; }
-
- private:
-  double v0_, mu_, m_, g_;
-  Matrix mass_;
-};
+// A block of mass 2 on the ground y = 0 with Coulomb friction mu, sliding at v0 along x.
+ts::Block::Parameters sliding(double v0, double mu) {
+  return {.friction = mu, .initial_velocity = v0};
+}
 
 // Reads data/siconos-bouncing-ball/result.ref: a "rows cols" line, then rows of t q v p lambda.
 std::vector<std::vector<double>> read_siconos_reference() {
@@ -238,7 +102,7 @@ TEST_CASE("options are validated, naming the field") {
   o.lcp_tolerance = -1.0;
   CHECK_THROWS_WITH_AS(o.validate(), doctest::Contains("lcp_tolerance"), std::invalid_argument);
 
-  Oscillator s(1.0, 1.0, 0.0, 1.0, 0.0);
+  ts::SpringMass s(oscillator(1.0, 1.0, 0.0, 1.0, 0.0));
   Recorder rec(s, 0.0);
   MoreauJeanOptions bad;
   bad.end_time = 0.0;  // not after the initial time 0
@@ -252,7 +116,7 @@ TEST_CASE("Siconos's bouncing-ball reference output is reproduced to 1e-10") {
   constexpr double kTolerance = 1e-10;  // the brief's bound; both compute the same arithmetic
   const auto ref = read_siconos_reference();
   REQUIRE(ref.size() == 2001);
-  Ball ball(1.0, 0.0, 0.9);
+  ts::Ball ball(ball_on_platform(1.0, 0.0, 0.9));
   Recorder rec(ball, 0.0);
   MoreauJeanOptions o;
   o.step = 0.005;
@@ -285,7 +149,7 @@ TEST_CASE("theta = 1/2 conserves the energy of an undamped linear oscillator") {
   // For a linear system the linearisation is exact and theta = 1/2 is the trapezoidal rule,
   // which conserves (1/2) m u^2 + (1/2) k q^2 exactly (up to round-off).
   constexpr double kRoundOff = 1e-12;  // relative, 10^4 steps of O(1e-16) each
-  Oscillator s(2.0, 50.0, 0.0, 0.1, 0.3);
+  ts::SpringMass s(oscillator(2.0, 50.0, 0.0, 0.1, 0.3));
   Recorder rec(s, 0.0);
   MoreauJeanOptions o;
   o.step = 1e-3;
@@ -310,7 +174,7 @@ TEST_CASE("the damped oscillator converges at order 2 for theta = 1/2 and 1 for 
   const double exact = std::exp(-zeta * w * T) *
                        (x0 * std::cos(wd * T) + (v0 + zeta * w * x0) / wd * std::sin(wd * T));
   auto error = [&](double h, double theta) {
-    Oscillator s(m, k, c, x0, v0);
+    ts::SpringMass s(oscillator(m, k, c, x0, v0));
     Recorder rec(s, 1e9);
     MoreauJeanOptions o;
     o.step = h;
@@ -327,7 +191,7 @@ TEST_CASE("the damped oscillator converges at order 2 for theta = 1/2 and 1 for 
 }
 
 TEST_CASE("a shortened last step is taken with its own factorization") {
-  Oscillator s(1.0, 1.0, 0.1, 1.0, 0.0);
+  ts::SpringMass s(oscillator(1.0, 1.0, 0.1, 1.0, 0.0));
   Recorder rec(s, 0.0);
   MoreauJeanOptions o;
   o.step = 0.03;
@@ -341,7 +205,7 @@ TEST_CASE("a shortened last step is taken with its own factorization") {
 TEST_CASE("an inelastic ball comes to rest on the ground with no drift") {
   // e = 0, dropped from 0.5 m: impact at t* = sqrt(2 * 0.5 / 9.81) = 0.3193 s; after it the
   // ball rests: the velocity is zero and the height constant (no drift through the ground).
-  Ball ball(0.5, 0.0, 0.0);
+  ts::Ball ball(ball_on_platform(0.5, 0.0, 0.0));
   Recorder rec(ball, 0.0);
   MoreauJeanOptions o;
   o.step = 1e-3;
@@ -373,7 +237,7 @@ TEST_CASE("an inelastic ball comes to rest on the ground with no drift") {
 TEST_CASE("a ball on a rising platform moves with it (rheonomic contact)") {
   // Platform y_p(t) = V t, V = 0.5 m/s; ball starts on it at rest, e = 0: Newton's law on
   // gdot_N = u - V gives u = V after the first step, and the gap stays at zero.
-  Ball ball(0.0, 0.0, 0.0, 0.5);
+  ts::Ball ball(ball_on_platform(0.0, 0.0, 0.0, 0.5));
   Recorder rec(ball, 0.0);
   MoreauJeanOptions o;
   o.step = 1e-3;
@@ -394,7 +258,7 @@ TEST_CASE("a sliding block stops at v0 / (mu g) after v0^2 / (2 mu g)") {
   // mu g h per step: the stop is within one step of t_s = v0 / (mu g) and the distance within
   // v0 h of v0^2 / (2 mu g).
   const double v0 = 2.0, mu = 0.4, g = 9.81, h = 1e-3;
-  Block block(v0, mu);
+  ts::Block block(sliding(v0, mu));
   Recorder rec(block, 0.0);
   MoreauJeanOptions o;
   o.step = h;
@@ -427,7 +291,7 @@ TEST_CASE("every LCP solver gives the same sliding block") {
   for (lcp::Solver solver : {lcp::Solver::kLemke, lcp::Solver::kPgs, lcp::Solver::kNewtonFb,
                              lcp::Solver::kEnumeration}) {
     CAPTURE(lcp::to_string(solver));
-    Block block(2.0, 0.4);
+    ts::Block block(sliding(2.0, 0.4));
     Recorder rec(block, 0.0);
     MoreauJeanOptions o;
     o.step = 1e-3;
@@ -447,7 +311,7 @@ TEST_CASE("every LCP solver gives the same sliding block") {
 }
 
 TEST_CASE("hysteresis is committed once per accepted step and the tangent is refactorized") {
-  PlasticOscillator s(100.0, 1.0, 2.0, 3.0);
+  ts::PlasticOscillator s(plastic(100.0, 1.0, 2.0, 3.0));
   Recorder rec(s, 0.0);
   MoreauJeanOptions o;
   o.step = 1e-3;
@@ -467,22 +331,23 @@ TEST_CASE("a step allocates nothing") {
     return allocations_of([&] { moreau_jean(s, o, rec); });
   };
   SUBCASE("no contact") {
-    Oscillator a(1.0, 10.0, 0.1, 0.1, 0.0, 1.0, 2.0), b(1.0, 10.0, 0.1, 0.1, 0.0, 1.0, 2.0);
+    ts::SpringMass a(oscillator(1.0, 10.0, 0.1, 0.1, 0.0, 1.0, 2.0));
+    ts::SpringMass b(oscillator(1.0, 10.0, 0.1, 0.1, 0.0, 1.0, 2.0));
     const long short_run = run(a, 1.0);
     CHECK(short_run > 0);  // the counter sees the workspace being set up
     CHECK(short_run == run(b, 2.0));
   }
   SUBCASE("refactorizations") {
-    PlasticOscillator a(100.0, 1.0, 2.0, 3.0), b(100.0, 1.0, 2.0, 3.0);
+    ts::PlasticOscillator a(plastic(100.0, 1.0, 2.0, 3.0)), b(plastic(100.0, 1.0, 2.0, 3.0));
     CHECK(run(a, 3.0) == run(b, 6.0));
   }
   SUBCASE("a resting contact") {
-    Ball a(0.1, 0.0, 0.0), b(0.1, 0.0, 0.0);
+    ts::Ball a(ball_on_platform(0.1, 0.0, 0.0)), b(ball_on_platform(0.1, 0.0, 0.0));
     CHECK(run(a, 1.0) == run(b, 2.0));
   }
   SUBCASE("a frictional contact problem in every step (Lemke workspace)") {
     // The block slides until t = 0.51 s, then sticks: both runs see the same events.
-    Block a(2.0, 0.4), b(2.0, 0.4);
+    ts::Block a(sliding(2.0, 0.4)), b(sliding(2.0, 0.4));
     CHECK(run(a, 0.6) == run(b, 1.2));
   }
 }

@@ -1,6 +1,7 @@
 // Tests of the output files: their columns and keys (the contract of docs/outputs.md), exact
 // round trip of numbers, no partial file on failure.
 #include "integrators/output.hpp"
+#include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
 
@@ -15,29 +16,8 @@
 namespace nsb::integrators {
 namespace {
 
-// Two DOF, two contacts: enough to name every kind of column.
-class TwoBodies final : public System {
- public:
-  int dofs() const override { return 2; }
-  std::vector<std::string> coordinate_names() const override { return {"x", "theta"}; }
-  std::vector<std::string> velocity_names() const override { return {"vx", "omega"}; }
-  const Matrix& mass() const override { return mass_; }
-  Vector initial_position() const override { return Vector::Zero(2); }
-  Vector initial_velocity() const override { return Vector::Zero(2); }
-  void forces(double, const Vector&, const Vector&, Vector& f) override { f.setZero(); }
-  void tangent(double, const Vector&, const Vector&, Matrix& K, Matrix& C) override {
-    K.setZero();
-    C.setZero();
-  }
-  int contacts() const override { return 2; }
-  void contact_data(double, const Vector&, const Vector&,
-                    std::vector<ContactData>&) const override {}
-  PowerTerms power(double, const Vector&, const Vector&) const override { return {}; }
-  EnergyState energy(double, const Vector&) const override { return {}; }
-
- private:
-  Matrix mass_ = Matrix::Identity(2, 2);
-};
+// Three DOF, two contacts: enough to name every kind of column.
+using TwoCorners = nsb::testsupport::TwoCornerBody;
 
 std::string read(const std::filesystem::path& p) {
   std::ifstream f(p);
@@ -53,19 +33,19 @@ std::filesystem::path fresh_dir(const std::string& name) {
   return d;
 }
 
-Recorder filled_recorder(TwoBodies& s) {
+Recorder filled_recorder(TwoCorners& s) {
   Recorder rec(s, 0.0);
   auto c = s.make_contact_buffer();
   c[0].gap_normal = 0.1;
   c[1].gap_normal = -1.0 / 3.0;
-  Vector q(2), u(2), ln(2), lt(2);
-  q << 1.0 / 3.0, -2e-7;
-  u << 0.5, 1e300;
+  Vector q(3), u(3), ln(2), lt(2);
+  q << 1.0 / 3.0, 0.0, -2e-7;
+  u << 0.5, 0.0, 1e300;
   ln << 144.0, 0.0;
   lt << -72.0, 0.0;
   rec.sample(0.0, q, u, c, ln, lt, 1e-9);
   q[0] = -2.0;
-  u[1] = NAN;
+  u[2] = NAN;
   rec.sample(0.25, q, u, c, ln, lt, 2e-9);
   rec.event(0.125, 1, EventKind::kImpact);
   rec.event(0.25, 2, EventKind::kSlip);
@@ -76,28 +56,28 @@ Recorder filled_recorder(TwoBodies& s) {
 }  // namespace
 
 TEST_CASE("history.csv has the documented columns and round-trips numbers exactly") {
-  TwoBodies s;
+  TwoCorners s({});
   const Recorder rec = filled_recorder(s);
   const std::string csv = history_csv(rec);
   std::istringstream in(csv);
   std::string header;
   std::getline(in, header);
   CHECK(header ==
-        "t,x,theta,vx,omega,gN1,lambdaN1,lambdaT1,gN2,lambdaN2,lambdaT2,energy_error");
+        "t,x,y,theta,vx,vy,omega,gN1,lambdaN1,lambdaT1,gN2,lambdaN2,lambdaT2,energy_error");
   std::string row;
   std::getline(in, row);
   // Shortest round-trip form: 1/3 reads back bit for bit.
-  CHECK(row.rfind("0,0.3333333333333333,-2e-07,0.5,1e+300,0.1,144,-72,", 0) == 0);
+  CHECK(row.rfind("0,0.3333333333333333,0,-2e-07,0.5,0,1e+300,0.1,144,-72,", 0) == 0);
   CHECK(std::stod(row.substr(2, row.find(',', 2) - 2)) == 1.0 / 3.0);
   std::getline(in, row);
   // A non-finite value is an empty field, never "nan".
   CHECK(row.find("nan") == std::string::npos);
-  CHECK(row.rfind("0.25,-2,-2e-07,0.5,,", 0) == 0);
+  CHECK(row.rfind("0.25,-2,0,-2e-07,0.5,0,,", 0) == 0);
   CHECK(!std::getline(in, row));
 }
 
 TEST_CASE("events.csv lists t, contact, kind and a quoted note") {
-  TwoBodies s;
+  TwoCorners s({});
   const Recorder rec = filled_recorder(s);
   CHECK(events_csv(rec) ==
         "t,contact,kind,note\n0.125,1,impact,\n0.25,2,slip,\n"
@@ -105,7 +85,7 @@ TEST_CASE("events.csv lists t, contact, kind and a quoted note") {
 }
 
 TEST_CASE("summary.json holds the documented keys") {
-  TwoBodies s;
+  TwoCorners s({});
   const Recorder rec = filled_recorder(s);
   RunResult stats;
   stats.method = "moreau";
@@ -133,7 +113,7 @@ TEST_CASE("summary.json holds the documented keys") {
 }
 
 TEST_CASE("write_outputs writes the three files and leaves no temporary behind") {
-  TwoBodies s;
+  TwoCorners s({});
   const Recorder rec = filled_recorder(s);
   RunResult stats;
   const auto dir = fresh_dir("ok") / "nested";
@@ -148,7 +128,7 @@ TEST_CASE("write_outputs writes the three files and leaves no temporary behind")
 }
 
 TEST_CASE("a failed write throws naming the path and leaves no half file") {
-  TwoBodies s;
+  TwoCorners s({});
   const Recorder rec = filled_recorder(s);
   const auto base = fresh_dir("fail");
   std::filesystem::create_directories(base);

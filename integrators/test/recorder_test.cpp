@@ -1,4 +1,5 @@
 #include "integrators/recorder.hpp"
+#include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
 
@@ -7,39 +8,16 @@ namespace {
 using nsb::integrators::ContactData;
 using nsb::integrators::Vector;
 
-// A one-DOF, one-contact system whose only job is to give the recorder its names.
-class Point final : public nsb::integrators::System {
- public:
-  int dofs() const override { return 1; }
-  std::vector<std::string> coordinate_names() const override { return {"y"}; }
-  std::vector<std::string> velocity_names() const override { return {"vy"}; }
-  const nsb::integrators::Matrix& mass() const override { return m_; }
-  Vector initial_position() const override { return Vector::Zero(1); }
-  Vector initial_velocity() const override { return Vector::Zero(1); }
-  void forces(double, const Vector&, const Vector&, Vector& f) override { f.setZero(); }
-  void tangent(double, const Vector&, const Vector&, nsb::integrators::Matrix& K,
-               nsb::integrators::Matrix& C) override {
-    K.setZero();
-    C.setZero();
-  }
-  int contacts() const override { return 1; }
-  void contact_data(double, const Vector& q, const Vector&,
-                    std::vector<ContactData>& out) const override {
-    out[0].gap_normal = q[0];
-  }
-  nsb::integrators::PowerTerms power(double, const Vector&, const Vector&) const override {
-    return {};
-  }
-  nsb::integrators::EnergyState energy(double, const Vector&) const override { return {}; }
-
- private:
-  nsb::integrators::Matrix m_ = nsb::integrators::Matrix::Identity(1, 1);
-};
+// A one-DOF, one-contact system whose only job is to give the recorder its names: y, vy and
+// the gap g_N = y.
+nsb::testsupport::Ball point() {
+  return nsb::testsupport::Ball({.gravity = 0.0, .initial_height = 0.0});
+}
 
 }  // namespace
 
 TEST_CASE("recorder names its columns after the system and samples at sample_dt") {
-  Point p;
+  auto p = point();
   nsb::integrators::Recorder rec(p, 0.1);
   CHECK(rec.columns() ==
         std::vector<std::string>{"t", "y", "vy", "gN1", "lambdaN1", "lambdaT1", "energy_error"});
@@ -76,7 +54,7 @@ TEST_CASE("energy balance error is relative to the largest term") {
 }
 
 TEST_CASE("a negative sample interval is a caller's mistake") {
-  Point p;
+  auto p = point();
   CHECK_THROWS_AS(nsb::integrators::Recorder(p, -1.0), std::invalid_argument);
 }
 

@@ -295,7 +295,7 @@ void check_impact_conditions(const an::ImpactProblem& p, const an::ImpactSolutio
 }  // namespace
 
 TEST_CASE("deck impact: hand-solved frictionless cases") {
-  const an::DeckGeometry g{.mass = 2.0, .inertia = 3.0, .length = 4.0, .width = 1.0};
+  const an::DeckBody g{.mass = 2.0, .inertia = 3.0, .deck = {.length = 4.0, .width = 1.0}};
   SUBCASE("straight deck, both right corners, central: u+ = (-e v, 0, 0)") {
     const auto r = an::deck_impact(g, {3, 4}, Eigen::Vector3d(1.5, 0.0, 0.0), 0.6, 0.0);
     CHECK(r.solutions == 1);
@@ -318,7 +318,7 @@ TEST_CASE("deck impact: hand-solved frictionless cases") {
     CHECK(r.contact.gdot_n_plus(0) == doctest::Approx(0.5).epsilon(kSolve));
   }
   SUBCASE("corner geometry of the contract") {
-    const an::DeckGeometry sk{.length = 4.0, .width = 2.0, .skew_deg = 45.0};
+    const nsb::models::DeckGeometry sk{.length = 4.0, .width = 2.0, .skew_deg = 45.0};
     // tan 45 = 1: corners (+-2 +- 1, +-1) with (end, side).
     CHECK(an::deck_corner(sk, 1).isApprox(Eigen::Vector2d(-1.0, 1.0)));
     CHECK(an::deck_corner(sk, 2).isApprox(Eigen::Vector2d(-3.0, -1.0)));
@@ -342,7 +342,7 @@ TEST_CASE("deck impact: one corner with friction, stick and slide by hand") {
   // Straight deck, corner 3 at r = (L/2, W/2) = (2, 0.5), m = 2, I = 3. n = (-1, 0),
   // t = (0, -1): W_N = (-1, 0, 0.5), W_T = (0, -1, -2).
   // G_NN = 1/2 + 0.25/3 = 7/12, G_NT = 0.5*(-2)/3 = -1/3, G_TT = 1/2 + 4/3 = 11/6.
-  const an::DeckGeometry g{.mass = 2.0, .inertia = 3.0, .length = 4.0, .width = 1.0};
+  const an::DeckBody g{.mass = 2.0, .inertia = 3.0, .deck = {.length = 4.0, .width = 1.0}};
   SUBCASE("stick (e = 0, mu large)") {
     // u- = (1, 0, 0): gdot_N- = -1, gdot_T- = 0. Stick: G [LN; LT] = [1; 0]
     // -> det = 77/72 - 1/9 = 69/72; LN = (11/6)/(69/72) = 132/69, LT = (1/3)/(69/72) = 24/69.
@@ -392,9 +392,9 @@ TEST_CASE("impact by cases: random problems satisfy eqs. (3)-(7)") {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   int multiple = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    const an::DeckGeometry g{.mass = 0.5 + 2.0 * u01(rng), .inertia = 0.2 + 3.0 * u01(rng),
-                             .length = 1.0 + 4.0 * u01(rng), .width = 0.3 + 1.5 * u01(rng),
-                             .skew_deg = -60.0 + 120.0 * u01(rng)};
+    const an::DeckBody g{.mass = 0.5 + 2.0 * u01(rng), .inertia = 0.2 + 3.0 * u01(rng),
+                             .deck = {.length = 1.0 + 4.0 * u01(rng), .width = 0.3 + 1.5 * u01(rng),
+                             .skew_deg = -60.0 + 120.0 * u01(rng)}};
     const Eigen::Vector3d v(0.2 + u01(rng), -1.0 + 2.0 * u01(rng), -0.5 + u01(rng));
     const double e = u01(rng), mu = 0.8 * u01(rng);
     const std::vector<int> corners = trial % 2 ? std::vector<int>{3, 4} : std::vector<int>{3};
@@ -456,8 +456,8 @@ TEST_CASE("rotation criterion against the two-corner impact solved by cases") {
             if (-vx * std::cos(a) + vy * std::sin(a) >= 0.0) continue;  // not approaching
             const auto pred = an::predict_right_end_impact(in, vx, vy, e);
             if (std::abs(std::abs(pred.eta) - 1.0) < kBand) continue;
-            const an::DeckGeometry g{.mass = 3.0, .inertia = 3.0 * length * length / 12.0,
-                                     .length = length, .width = in.width, .skew_deg = skew};
+            const an::DeckBody g{.mass = 3.0, .inertia = 3.0 * length * length / 12.0,
+                                     .deck = {.length = length, .width = in.width, .skew_deg = skew}};
             const auto r = an::deck_impact(g, {3, 4}, Eigen::Vector3d(vx, vy, 0.0), e, mu);
             CAPTURE(skew);
             CAPTURE(wl);

@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -130,6 +131,24 @@ TEST_CASE("with zero ground motion and zero initial state the forces, powers and
     CHECK(ci.gap_normal == doctest::Approx(0.0127).epsilon(kAlgebraTol));
     CHECK(ci.restitution == 0.0);
     CHECK(ci.friction == 0.5);
+  }
+}
+
+// A blown-up integration hands the bridge a non-finite trial state. Its Takeda springs used to
+// throw std::invalid_argument (the app's "bad input", exit 2); now the forces are non-finite,
+// which the integrators report as divergence, and revert() restores the committed springs.
+TEST_CASE("a non-finite trial state gives non-finite forces, not an exception") {
+  Bridge b(Bridge::Parameters::benchmark());
+  const Vector z = Vector::Zero(3);
+  Vector f = Vector::Zero(3);
+  for (double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    Vector q = z;
+    q(0) = bad;
+    CHECK_NOTHROW(b.forces(0.5, q, z, f));
+    CHECK_FALSE(f.allFinite());
+    b.revert();
+    b.forces(0.5, z, z, f);
+    CHECK(f.norm() == 0.0);
   }
 }
 

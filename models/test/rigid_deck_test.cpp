@@ -24,11 +24,8 @@ RigidDeck::Parameters deck(double skew_deg) {
   RigidDeck::Parameters p;
   p.mass = 140.5;
   p.inertia = 13090.0;
-  p.length = 33.35;
-  p.width = 2.44;
-  p.skew_deg = skew_deg;
-  p.gap_right = 0.02;
-  p.gap_left = 0.03;
+  p.deck = {.length = 33.35, .width = 2.44, .skew_deg = skew_deg, .gap_right = 0.02,
+            .gap_left = 0.03};
   p.restitution = 0.3;
   p.friction = 0.5;
   return p;
@@ -153,10 +150,10 @@ TEST_CASE("bad parameters name the field") {
   p.restitution = 1.5;
   CHECK(error_of(p).find("restitution") != std::string::npos);
   p = deck(0.0);
-  p.skew_deg = 85.0;
+  p.deck.skew_deg = 85.0;
   CHECK(error_of(p).find("skew_deg") != std::string::npos);
   p = deck(0.0);
-  p.gap_left = -0.01;
+  p.deck.gap_left = -0.01;
   CHECK(error_of(p).find("gap_left") != std::string::npos);
   p = deck(0.0);
   p.inertia = std::nan("");

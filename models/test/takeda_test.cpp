@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -259,7 +259,39 @@ TEST_CASE("takeda: trial state is idempotent; revert restores the committed stat
   CHECK_FALSE(s.tangent_changed());
   s.set_trial(0.019);  // unloading: slope k_u instead of the post-yield slope
   CHECK(s.tangent_changed());
-  CHECK_THROWS_AS(s.set_trial(std::nan("")), std::invalid_argument);
+}
+
+// A diverged integration hands the spring a non-finite trial displacement. That is a
+// numerical outcome, not bad input: no exception, a NaN force and tangent that the
+// integrator's finiteness check reports as divergence, and the committed state intact.
+TEST_CASE("takeda: a non-finite trial displacement gives a non-finite force, not an exception") {
+  for (const Parameters& p : parameter_sets()) {
+    Spring s(p);
+    s.set_trial(3.0 * p.d_yield);  // leave the elastic branch, so both code paths are used
+    s.commit();
+    const double f_committed = s.force();
+    for (double d : {std::nan(""), std::numeric_limits<double>::infinity(),
+                     -std::numeric_limits<double>::infinity()}) {
+      double f = 0.0;
+      CHECK_NOTHROW(f = s.set_trial(d));
+      CHECK_FALSE(std::isfinite(f));
+      CHECK_FALSE(std::isfinite(s.force()));
+      CHECK_FALSE(std::isfinite(s.tangent()));
+      CHECK_FALSE(std::isfinite(s.dissipated_energy()));
+      s.revert();
+      CHECK(s.force() == f_committed);
+      CHECK(s.displacement() == 3.0 * p.d_yield);
+    }
+    Spring fresh(p);  // still on the initial elastic branch
+    CHECK_NOTHROW(fresh.set_trial(std::nan("")));
+    CHECK_FALSE(std::isfinite(fresh.force()));
+    fresh.revert();
+    CHECK(fresh.set_trial(0.5 * p.d_yield) == doctest::Approx(fresh.backbone(0.5 * p.d_yield)));
+  }
+  // Bad parameters are still a caller's mistake.
+  Parameters bad = parameter_sets().front();
+  bad.d_yield = std::nan("");
+  CHECK_THROWS_AS(Spring{bad}, std::invalid_argument);
 }
 
 TEST_CASE("takeda: random paths stay within the backbone envelope") {
