@@ -20,6 +20,7 @@
 #include "models/analytic.hpp"
 #include "models/rigid_deck.hpp"
 #include "models/scene.hpp"
+#include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
 
@@ -79,7 +80,21 @@ SceneCase from_file(std::string file, double end_time, double h, bool conservati
 constexpr double kBridgeWindow = 4.0;
 constexpr double kBridgeNormalLoad = 2000.0;
 
-std::vector<SceneCase> later_scenes() { return {}; }  // a block against a moving wall joins here
+// A block pressed with P = 10 kN against a wall that starts from rest and accelerates into it
+// at a = 1 m/s^2 (testsupport::WallBlock, m = 1 t): a persistent contact with a moving
+// obstacle, whose force is P + m a = 11 kN and whose contact work is positive (the wall pushes).
+std::vector<SceneCase> moving_obstacle_scenes() {
+  SceneCase c;
+  c.name = "wall-block (moving wall)";
+  c.normal_load = 11.0;
+  c.make = [](nm::SolverSettings& settings) -> std::unique_ptr<ni::System> {
+    settings = nm::SolverSettings{};
+    settings.end_time = 1.0;
+    settings.step = 1e-3;
+    return std::make_unique<nsb::testsupport::WallBlock>(nsb::testsupport::WallBlock::Parameters{});
+  };
+  return {c};
+}
 
 std::vector<SceneCase> scene_cases() {
   // Normal loads: ball and block m g = 9.81 kN; oscillator k (gap + A) < 1 kN; free deck 0.
@@ -94,7 +109,7 @@ std::vector<SceneCase> scene_cases() {
     s.push_back(from_file("bridge-exc" + std::to_string(exc) + ".toml", kBridgeWindow, 1e-4,
                           false, kBridgeNormalLoad));
   }
-  for (auto& c : later_scenes()) s.push_back(std::move(c));
+  for (auto& c : moving_obstacle_scenes()) s.push_back(std::move(c));
   return s;
 }
 
