@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -286,10 +287,14 @@ void apply_override(toml::table& root, const std::string& text, Context& ctx) {
       }
       cur = next;
     } else if (auto* a = cur->as_array(); a != nullptr && is_index(p)) {
-      const std::size_t k = std::stoul(p);
-      if (k >= a->size()) {
-        throw std::invalid_argument(ctx.file + ": override \"" + text + "\": " + path +
-                                    " has " + std::to_string(a->size()) + " elements");
+      // Any run of digits is an index; one too large for size_t is out of range like any
+      // other index past the end.
+      std::size_t k = 0;
+      const auto [end, ec] = std::from_chars(p.data(), p.data() + p.size(), k);
+      if (ec != std::errc() || end != p.data() + p.size() || k >= a->size()) {
+        throw std::invalid_argument(ctx.file + ": override \"" + text + "\": " + path + "." +
+                                    p + ": index out of range; " + path + " has " +
+                                    std::to_string(a->size()) + " elements (0-based)");
       }
       path += "[" + p + "]";
       cur = a->get(k);
