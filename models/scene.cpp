@@ -39,6 +39,8 @@ struct Context {
   std::string file;
   fs::path dir;
   std::set<std::string> overridden;  // key paths set by overrides, e.g. "model.bents[0].height"
+  mutable double record_step = 0.0;  // shortest sampling interval of the records read, before
+                                     //   time scaling [s]; 0 when no record was read
 
   [[noreturn]] void fail(const toml::node* n, const std::string& key,
                          const std::string& what) const {
@@ -492,6 +494,10 @@ Record read_record(Section& s, const std::string& key, const std::string& name, 
                       std::to_string(i + 1));
     }
   }
+  for (std::size_t i = 1; i < r.t.size(); ++i) {
+    const double dt = r.t[i] - r.t[i - 1];
+    if (c.record_step == 0.0 || dt < c.record_step) c.record_step = dt;
+  }
   return r;
 }
 
@@ -835,6 +841,9 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   scene.solver.validate();
   scene.output.validate();
   scene.run = make_run_config(scene.solver);
+  // Every record of a scene shares the excitation's time_scale (validated above).
+  scene.record_step = ctx.record_step *
+                      root.at_path("model.excitation.time_scale").value<double>().value_or(1.0);
   return scene;
 }
 
