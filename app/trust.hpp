@@ -44,7 +44,9 @@ std::vector<std::string> step_warnings(integrators::System& system,
                                        const integrators::RunConfig& config, double record_step,
                                        const TrustLimits& limits = {});
 
-// Warnings about a finished run: its energy-balance error and its deepest penetration.
+// Warnings about a finished run: its energy-balance error and, for the rigid-contact methods
+// (not compliance, whose penetration is the modelled contact deformation), its deepest
+// penetration.
 std::vector<std::string> result_warnings(const integrators::Recorder& recorder,
                                          const integrators::RunResult& result,
                                          const TrustLimits& limits = {});
