@@ -10,6 +10,7 @@ packages=(
   doctest-dev libcli11-dev libtomlplusplus-dev
   libgnuplot-iostream-dev libboost-iostreams-dev libboost-system-dev libboost-filesystem-dev
   gnuplot-nox
+  clang libfuzzer-14-dev libclang-rt-14-dev
 )
 if [[ "${1:-}" == "--with-siconos" ]]; then
   packages+=(libsiconos-numerics-dev)
