@@ -111,7 +111,7 @@ void print_summary(const models::Scene& scene, const integrators::Recorder& reco
   std::cout << "events     " << recorder.count(integrators::EventKind::kImpact) << " impacts, "
             << recorder.count(integrators::EventKind::kSlip) << " slips, "
             << recorder.count(integrators::EventKind::kStick) << " sticks, "
-            << recorder.count(integrators::EventKind::kWarning) << " warnings\n";
+            << recorder.count(integrators::EventKind::kWarning) << " warning events\n";
   // Peak of every generalized coordinate.
   const std::size_t ncoord = static_cast<std::size_t>(scene.system->dofs());
   std::cout << "peaks     ";

@@ -182,6 +182,7 @@ expect 2 'bouncing-ball\.toml: the initial velocity \(1e\+160 in magnitude\) mak
   -- run "$root/scenes/bouncing-ball.toml" --set model.velocity=1e160 --out "$tmp/x"
 # Record files: only regular files, every bad number named with its file and line.
 mkdir -p "$tmp/rec/ground-motions"
+cp "$root/data/ground-motions/RSN1084_NORTHR_SCS052.AT2" "$tmp/rec/ground-motions/"
 sed 's#ground-motions/RSN1084_NORTHR_SCS142.AT2#ground-motions/fifo.AT2#' \
   "$root/scenes/bridge-exc7.toml" > "$tmp/rec/fifo.toml"
 mkfifo "$tmp/rec/ground-motions/fifo.AT2"
