@@ -482,6 +482,19 @@ GroundMotion::GroundMotion(const Record& r, const GroundMotionOptions& o) {
   }
   for (double& b : d->baseline) b *= factor;
   d->pga = std::abs(factor) * pga_raw;
+  // Finite samples can still overflow the exact integrals (a time span of 1e124 s makes
+  // h^5 infinite): such a record is bad input, never a motion that is silently NaN.
+  const auto finite = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+  };
+  const bool baseline_finite = std::all_of(std::begin(d->baseline), std::end(d->baseline),
+                                           [](double x) { return std::isfinite(x); });
+  if (!(finite(d->c0) && finite(d->c1) && finite(d->c2) && finite(d->c3) &&
+        finite(d->v_knot) && finite(d->d_knot) && baseline_finite && std::isfinite(d->pga))) {
+    throw std::invalid_argument("record '" + r.source + "': its velocity or displacement "
+                                "overflows (time span " + std::to_string(d->t1 - d->t0) +
+                                " s); expected times and accelerations of a ground motion");
+  }
   data_ = std::move(d);
 }
 
