@@ -211,13 +211,14 @@ if command -v git >/dev/null && git -C "$root" rev-parse HEAD >/dev/null 2>&1; t
   check "--version names the checked-out revision" \
     grep -q "revision   $(git -C "$root" rev-parse --short=12 HEAD)" <<<"$("$nsb" --version)"
 fi
-slow=("$root/scenes/bridge-exc7.toml" --set solver.step=2e-5 --set solver.end_time=11 --out "$tmp/slow")
+# Long enough (2.2e6 steps, about 3 s) for the bar, which appears after 1 s.
+slow=("$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/slow")
 "$nsb" run "${slow[@]}" 2>"$tmp/stderr.txt" >/dev/null
 check "no progress bar when standard error is not a terminal" test ! -s "$tmp/stderr.txt"
 if command -v script >/dev/null; then
   script -qec "'$nsb' run ${slow[*]}" /dev/null > "$tmp/tty.txt" 2>&1
   check "a progress bar on a terminal: time reached, speed and time left" \
-    grep -Eq 't = [0-9.]+ / 11 s .* x real time .* s left' "$tmp/tty.txt"
+    grep -Eq 't = [0-9.]+ / 22 s .* x real time .* s left' "$tmp/tty.txt"
   script -qec "'$nsb' run ${slow[*]} --quiet" /dev/null > "$tmp/tty-quiet.txt" 2>&1
   check "--quiet silences it" bash -c "! grep -q 'real time .* left' '$tmp/tty-quiet.txt'"
 fi
