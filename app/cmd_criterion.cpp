@@ -1,6 +1,7 @@
 // nsbridge criterion: the rotation criterion eta of eq. (1), in the form derived from the
 // impact law (eqs. 3-7; docs/criterion.md), with the formula as printed for comparison.
 #include "app/commands.hpp"
+#include "app/format.hpp"
 #include "models/analytic.hpp"
 
 #include <cmath>
@@ -21,15 +22,7 @@ struct CriterionArgs {
   bool json = false;
 };
 
-// Shortest text that reads back to the same double (17 significant digits at most).
-std::string number(double x) {
-  char buf[32];
-  for (int precision = 6; precision <= 17; ++precision) {
-    std::snprintf(buf, sizeof buf, "%.*g", precision, x);
-    if (std::stod(buf) == x) break;
-  }
-  return buf;
-}
+std::string number(double x) { return shortest(x); }
 
 // Six significant digits for people to read.
 std::string short_number(double x) {
@@ -54,6 +47,20 @@ void run_criterion(const CriterionArgs& a) {
     throw InputError("criterion: --" + what + " (got " + number(given) + ")");
   }
   const auto c = models::analytic::rotation_criterion(in);
+  // eta scales with L/W: valid inputs whose ratio overflows or underflows a double
+  // (--width 1e-300 --length 1e300) make eta infinite or NaN. Such a result is no answer, and
+  // it is refused rather than printed. W/L must be a normal double so that L/W is finite too.
+  const double ratio = a.width / a.length;
+  const bool finite = std::isnormal(ratio) && std::isfinite(c.eta_plus) &&
+                      std::isfinite(c.eta_minus) && std::isfinite(c.printed_eta_plus) &&
+                      std::isfinite(c.printed_eta_minus);
+  if (!finite) {
+    throw InputError("criterion: --width " + number(a.width) + " and --length " +
+                     number(a.length) + " (W/L = " + number(ratio) +
+                     ", mu = " + number(a.friction) +
+                     ") make eta non-finite; expected W/L, L/W and mu L/W within the range of "
+                     "a double");
+  }
   const char* yes_no[] = {"no", "yes"};
   if (a.json) {
     std::cout << "{\"skew_deg\": " << number(a.skew) << ", \"width\": " << number(a.width)

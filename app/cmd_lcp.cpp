@@ -1,6 +1,7 @@
 // nsbridge lcp: solve one LCP read from a file in Siconos's .dat format (lcp/siconos_format.hpp)
 // and print z, w, the status, the iterations, both residuals and the time.
 #include "app/commands.hpp"
+#include "app/format.hpp"
 #include "lcp/siconos_format.hpp"
 #include "lcp/solve.hpp"
 
@@ -22,16 +23,7 @@ struct LcpArgs {
   bool json = false;
 };
 
-// Shortest text that reads back to the same double; JSON has no inf/NaN, so those are null.
-std::string number(double x, bool json) {
-  if (!std::isfinite(x)) return json ? "null" : (std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf"));
-  char buf[32];
-  for (int precision = 6; precision <= 17; ++precision) {
-    std::snprintf(buf, sizeof buf, "%.*g", precision, x);
-    if (std::stod(buf) == x) break;
-  }
-  return buf;
-}
+std::string number(double x, bool json) { return json ? json_number(x) : shortest(x); }
 
 std::string vector_text(const lcp::Vector& v, bool json) {
   std::string s = json ? "[" : "";
@@ -40,23 +32,6 @@ std::string vector_text(const lcp::Vector& v, bool json) {
     s += number(v(i), json);
   }
   return json ? s + "]" : s;
-}
-
-std::string json_string(const std::string& text) {
-  std::string s = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') {
-      s += '\\';
-      s += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      s += buf;
-    } else {
-      s += c;
-    }
-  }
-  return s + "\"";
 }
 
 void run_lcp(const LcpArgs& a) {
@@ -77,32 +52,35 @@ void run_lcp(const LcpArgs& a) {
     throw InputError(e.what());
   }
   const lcp::Result r = lcp::solve(problem, *solver, options);
-  const bool json = a.json;
-  if (json) {
-    std::cout << "{\"file\": " << json_string(a.file) << ", \"n\": " << problem.size()
-              << ", \"solver\": \"" << lcp::to_string(*solver) << "\", \"status\": \""
-              << lcp::to_string(r.status) << "\", \"iterations\": " << r.iterations
-              << ", \"residual\": " << number(r.residual, true)
-              << ", \"siconos_error\": " << number(r.siconos_error, true)
-              << ", \"wall_time\": " << number(r.wall_time, true)
-              << ", \"tolerance\": " << number(a.tolerance, true)
-              << ", \"message\": " << json_string(r.message)
-              << ", \"z\": " << vector_text(r.z, true) << ", \"w\": " << vector_text(r.w, true)
-              << "}\n";
+  // The whole output is composed first and written at once: nothing reaches standard output
+  // unless it is complete.
+  std::ostringstream out;
+  if (a.json) {
+    out << "{\"file\": " << json_string(a.file) << ", \"n\": " << problem.size()
+          << ", \"solver\": \"" << lcp::to_string(*solver) << "\", \"status\": \""
+          << lcp::to_string(r.status) << "\", \"iterations\": " << r.iterations
+          << ", \"residual\": " << number(r.residual, true)
+          << ", \"siconos_error\": " << number(r.siconos_error, true)
+          << ", \"wall_time\": " << number(r.wall_time, true)
+          << ", \"tolerance\": " << number(a.tolerance, true)
+          << ", \"message\": " << json_string(r.message)
+          << ", \"z\": " << vector_text(r.z, true) << ", \"w\": " << vector_text(r.w, true)
+          << "}\n";
   } else {
-    std::cout << "file:          " << a.file << " (n = " << problem.size() << ")\n"
-              << "solver:        " << lcp::to_string(*solver) << '\n'
-              << "status:        " << lcp::to_string(r.status) << " (" << r.message << ")\n"
-              << "iterations:    " << r.iterations << '\n'
-              << "residual:      " << number(r.residual, false)
-              << "   (||min(z, w)||_inf / (1 + ||q||_inf), tolerance " << number(a.tolerance, false)
-              << ")\n"
-              << "siconos error: " << number(r.siconos_error, false)
-              << "   (||z - max(0, z - w)||_2 / ||q||_2)\n"
-              << "time:          " << number(r.wall_time, false) << " s\n"
-              << "z:             " << vector_text(r.z, false) << '\n'
-              << "w:             " << vector_text(r.w, false) << '\n';
+    out << "file:          " << a.file << " (n = " << problem.size() << ")\n"
+          << "solver:        " << lcp::to_string(*solver) << '\n'
+          << "status:        " << lcp::to_string(r.status) << " (" << r.message << ")\n"
+          << "iterations:    " << r.iterations << '\n'
+          << "residual:      " << number(r.residual, false)
+          << "   (||min(z, w)||_inf / (1 + ||q||_inf), tolerance " << number(a.tolerance, false)
+          << ")\n"
+          << "siconos error: " << number(r.siconos_error, false)
+          << "   (||z - max(0, z - w)||_2 / ||q||_2)\n"
+          << "time:          " << number(r.wall_time, false) << " s\n"
+          << "z:             " << vector_text(r.z, false) << '\n'
+          << "w:             " << vector_text(r.w, false) << '\n';
   }
+  std::cout << out.str() << std::flush;
   exit_code() = r.ok() ? 0 : 1;
 }
 

@@ -1,11 +1,15 @@
 // nsbridge run SCENE.toml [--out DIR] [--method moreau|event_driven|compliance]
-//                         [--set key=value ...]
+//                         [--set key=value ...] [--quiet] [--strict]
 //
-// Loads a scene (with overrides), integrates it with the chosen method, and writes
-// history.csv, events.csv and summary.json (docs/outputs.md) into DIR, by default
-// out/<scene name>/. Exit code 1 when the run stopped early or a contact problem stayed
-// unsolved; the files are still written, and say so.
+// Loads a scene (with overrides), checks the output directory and the initial state, then
+// integrates the scene with the chosen method, and writes history.csv, events.csv and
+// summary.json (docs/outputs.md) into DIR, by default out/<scene name>/, as one set
+// (integrators::write_file_set). Exit code 1 when the run stopped early or a contact problem
+// stayed unsolved (the files are still written, and say so), or with --strict when a warning
+// says the run is not to be trusted (docs/cli.md).
 #include "app/commands.hpp"
+#include "app/format.hpp"
+#include "app/trust.hpp"
 
 #include "integrators/output.hpp"
 #include "integrators/run.hpp"
@@ -31,42 +35,60 @@ namespace {
 struct RunArgs {
   std::string scene;
   std::string out;
+  bool out_given = false;  // --out was on the command line (possibly as "")
   std::string method;
   std::vector<std::string> overrides;
+  bool quiet = false;
+  bool strict = false;
 };
 
 // A progress bar on stderr, drawn only when stderr is a terminal and only once the run has
-// lasted kDelay: short runs and redirected output stay clean.
+// lasted kDelay: short runs and redirected output stay clean. It shows the simulated time
+// reached, the speed (simulated seconds per wall-clock second) and the time left at that
+// speed, for every method (each calls the run's Progress callback).
 class ProgressBar {
  public:
-  ProgressBar(double t0, double t1)
-      : t0_(t0), t1_(t1), enabled_(::isatty(STDERR_FILENO) == 1),
+  ProgressBar(double t0, double t1, bool enabled)
+      : t0_(t0), t1_(t1), enabled_(enabled && ::isatty(STDERR_FILENO) == 1),
         start_(std::chrono::steady_clock::now()) {}
-  ~ProgressBar() {
-    if (drawn_) std::fputs("\n", stderr);
-  }
+  ~ProgressBar() { finish(); }
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+
   void update(double t) {
     if (!enabled_) return;
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    if (elapsed < kDelay) return;
-    const double fraction = std::clamp((t - t0_) / (t1_ - t0_), 0.0, 1.0);
-    constexpr int kWidth = 40;
-    const int filled = static_cast<int>(fraction * kWidth);
-    std::string bar(static_cast<std::size_t>(filled), '#');
+    const double elapsed = seconds_since(start_);
+    if (elapsed < kDelay || elapsed - last_draw_ < kRedraw) return;
+    last_draw_ = elapsed;
+    const double span = t1_ - t0_;
+    const double fraction = span > 0.0 ? std::clamp((t - t0_) / span, 0.0, 1.0) : 1.0;
+    constexpr int kWidth = 30;
+    std::string bar(static_cast<std::size_t>(fraction * kWidth), '#');
     bar.resize(kWidth, ' ');
-    const double remaining = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-    std::fprintf(stderr, "\r[%s] %3.0f%%  t = %.3f s  %.0f s left ", bar.c_str(),
-                 100.0 * fraction, t, remaining);
+    const double speed = (t - t0_) / elapsed;  // simulated s per wall s
+    char left[32] = "?";
+    if (speed > 0.0) std::snprintf(left, sizeof left, "%.0f s", (t1_ - t) / speed);
+    std::fprintf(stderr, "\r[%s] %3.0f%%  t = %.4g / %.4g s  %.3g x real time  %s left ",
+                 bar.c_str(), 100.0 * fraction, t, t1_, speed, left);
     std::fflush(stderr);
     drawn_ = true;
   }
+  // Ends the bar's line, so that what follows starts on a fresh line.
+  void finish() {
+    if (drawn_) std::fputs("\n", stderr);
+    drawn_ = false;
+  }
 
  private:
-  static constexpr double kDelay = 2.0;  // [s] of wall time before the bar appears
+  static double seconds_since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  }
+  static constexpr double kDelay = 1.0;   // [s] of wall time before the bar appears
+  static constexpr double kRedraw = 0.2;  // [s] of wall time between redraws
   double t0_, t1_;
   bool enabled_;
   bool drawn_ = false;
+  double last_draw_ = 0.0;
   std::chrono::steady_clock::time_point start_;
 };
 
@@ -89,7 +111,7 @@ void print_summary(const models::Scene& scene, const integrators::Recorder& reco
   std::cout << "events     " << recorder.count(integrators::EventKind::kImpact) << " impacts, "
             << recorder.count(integrators::EventKind::kSlip) << " slips, "
             << recorder.count(integrators::EventKind::kStick) << " sticks, "
-            << recorder.count(integrators::EventKind::kWarning) << " warnings\n";
+            << recorder.count(integrators::EventKind::kWarning) << " warning events\n";
   // Peak of every generalized coordinate.
   const std::size_t ncoord = static_cast<std::size_t>(scene.system->dofs());
   std::cout << "peaks     ";
@@ -101,7 +123,9 @@ void print_summary(const models::Scene& scene, const integrators::Recorder& reco
     std::cout << " |" << recorder.columns()[c] << "| " << peak;
   }
   std::cout << '\n';
-  std::cout << "energy     balance error " << stats.energy.error << '\n';
+  std::cout << "energy     balance error " << shortest(stats.energy.error) << '\n';
+  std::cout << "warnings   " << stats.warnings.size()
+            << (stats.warnings.empty() ? "" : " (on standard error and in summary.json)") << '\n';
   std::cout << "wall time  " << stats.wall_time << " s ("
             << (stats.wall_time > 0.0 ? stats.end_time / stats.wall_time : 0.0)
             << " x real time)\n";
@@ -113,19 +137,47 @@ void run(const RunArgs& args) {
   if (!args.method.empty()) overrides.push_back("solver.method=" + args.method);
   models::Scene scene = models::load_scene(args.scene, overrides);
   if (!scene.system) throw InputError(args.scene + ": the scene built no system");
-  integrators::Recorder recorder(*scene.system, scene.output.sample_dt);
-  ProgressBar bar(scene.system->initial_time(), integrators::end_time(scene.run));
-  const integrators::RunResult stats = integrators::integrate(
-      *scene.system, scene.run, recorder, [&bar](double t) { bar.update(t); });
+
+  // Everything a user can get wrong is found before the integration starts.
+  if (args.out_given && args.out.empty())
+    throw InputError("--out: empty path; expected a directory (default out/<scene name>)");
   const std::filesystem::path out =
-      args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
+      args.out_given ? std::filesystem::path(args.out) : std::filesystem::path("out") / scene.name;
+  try {
+    integrators::prepare_output_dir(out);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--out " + out.string() + ": " + e.what());
+  }
+  try {
+    check_initial_state(*scene.system);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(args.scene + ": " + e.what());
+  }
+  std::vector<std::string> warnings =
+      step_warnings(*scene.system, scene.run, scene.record_step);
+
+  integrators::Recorder recorder(*scene.system, scene.output.sample_dt);
+  ProgressBar bar(scene.system->initial_time(), integrators::end_time(scene.run), !args.quiet);
+  integrators::RunResult stats = integrators::integrate(
+      *scene.system, scene.run, recorder, [&bar](double t) { bar.update(t); });
+  bar.finish();
+
+  for (auto& w : result_warnings(recorder, stats)) warnings.push_back(std::move(w));
+  stats.warnings.insert(stats.warnings.end(), warnings.begin(), warnings.end());
   try {
     integrators::write_outputs(out, scene.name, recorder, stats);
   } catch (const std::runtime_error& e) {
     throw InputError(std::string("--out: ") + e.what());  // an unwritable place is bad input
   }
   print_summary(scene, recorder, stats, out);
-  if (!integrators::succeeded(stats.status)) exit_code() = 1;
+  for (const auto& w : warnings) std::cerr << "nsbridge: warning: " << w << '\n';
+  if (!integrators::succeeded(stats.status)) {
+    exit_code() = 1;
+  } else if (args.strict && !stats.warnings.empty()) {
+    std::cerr << "nsbridge: --strict: " << stats.warnings.size()
+              << " warning(s): the run is not to be trusted (docs/cli.md)\n";
+    exit_code() = 1;
+  }
 }
 
 }  // namespace
@@ -135,13 +187,19 @@ void add_run_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Integrate a scene and write its history, events and "
                                         "summary");
   cmd->add_option("scene", args->scene, "Scene file (TOML)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--out", args->out, "Output directory (default out/<scene name>)");
+  auto* out = cmd->add_option("--out", args->out, "Output directory (default out/<scene name>)");
   cmd->add_option("--method", args->method, "Integration method (overrides solver.method)")
       ->check(CLI::IsMember({"moreau", "event_driven", "compliance"}));
   cmd->add_option("--set", args->overrides,
                   "Override a scene key, e.g. --set solver.step=1e-5 (repeatable)")
       ->allow_extra_args(false);
-  cmd->callback([args] { run(*args); });
+  cmd->add_flag("--quiet", args->quiet, "No progress bar on standard error");
+  cmd->add_flag("--strict", args->strict,
+                "Exit 1 when a warning says the run is not to be trusted (docs/cli.md)");
+  cmd->callback([args, out] {
+    args->out_given = out->count() > 0;
+    run(*args);
+  });
 }
 
 }  // namespace nsb::app

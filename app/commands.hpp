@@ -1,7 +1,8 @@
 // The subcommands of `nsbridge`. Each adds itself to the CLI11 app and sets its callback.
 //
-// Exit codes: 0 success; 1 the computation ran but did not succeed (e.g. an LCP solver
-// status other than solved, a run that stopped early); 2 bad input (file, key, option).
+// Exit codes (docs/cli.md): 0 success; 1 the computation ran but did not succeed (e.g. an
+// LCP solver status other than solved, a run that stopped early, or a warning with
+// `run --strict`); 2 bad input (file, key, option, number, path).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -24,5 +25,9 @@ void add_criterion_command(CLI::App& app);  // nsbridge criterion ...
 void add_run_command(CLI::App& app);        // nsbridge run SCENE.toml ...
 void add_figures_command(CLI::App& app);    // nsbridge figures --out DIR [--quick]
 void add_sweep_command(CLI::App& app);      // nsbridge sweep DESIGN.toml --out DIR ...
+
+// nsbridge --version: version, git revision (at build time), build type, compiler and the
+// versions of the libraries linked.
+std::string version_text();
 
 }  // namespace nsb::app

@@ -14,6 +14,7 @@ int& exit_code() {
 
 int main(int argc, char** argv) {
   CLI::App app{"nsbridge: nonsmooth seismic response of bridges with deck-abutment pounding"};
+  app.set_version_flag("--version", nsb::app::version_text());
   app.require_subcommand(1);
   nsb::app::add_lcp_command(app);
   nsb::app::add_criterion_command(app);

@@ -6,13 +6,27 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace nsb::integrators {
 
-// Writes history.csv, events.csv and summary.json into dir (created if needed), each via a
-// temporary name and rename. Throws std::runtime_error naming the path on I/O failure.
-// All three files are written under temporary names before any is renamed, so a failure
-// leaves no partial file (earlier complete outputs of the same names are left untouched).
+// Checks, before a run, that dir can receive its outputs: creates it (and its parents) and
+// probes that a directory can be made beside it and files written into it. Throws
+// std::invalid_argument for an empty path or a place that cannot be created or written.
+void prepare_output_dir(const std::filesystem::path& dir);
+
+// Writes a set of files (name, text) into dir so that dir never holds a mixed set of old and
+// new files. The files are written, complete, into a new hidden directory beside dir
+// (".<dir>.tmp-<pid>-<n>"), which then replaces dir by rename when dir is absent or holds
+// nothing but files of the set. When dir holds other files too, they are kept: the files of
+// the set are moved in one by one, the last of the list removed first and moved last, so that
+// the set is complete exactly when its last file is present. Throws std::runtime_error naming
+// the path on I/O failure, and leaves the previous set in place.
+void write_file_set(const std::filesystem::path& dir,
+                    const std::vector<std::pair<std::string, std::string>>& files);
+
+// history.csv, events.csv and summary.json (last) into dir through write_file_set.
 void write_outputs(const std::filesystem::path& dir, const std::string& scene_name,
                    const Recorder& recorder, const RunResult& stats);
 

@@ -2,8 +2,10 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <new>
 #include <sstream>
 #include <vector>
 
@@ -16,40 +18,46 @@ FormatError::FormatError(const std::string& f, int l, const std::string& what)
 
 namespace {
 
+// The largest n read: M alone then takes 8 n^2 bytes = 8 GB, and min_data_bytes(n) cannot
+// overflow.
+constexpr long kMaxSize = 32768;
+
 struct Line {
   int number = 0;
   std::vector<std::string> tokens;
 };
 
+// Reads the stream one non-blank line at a time, only as far as the parser asks: a file is
+// never read beyond q, whatever follows it.
 class Reader {
  public:
-  Reader(std::istream& in, std::string name) : name_(std::move(name)) {
-    std::string text;
-    int number = 0;
-    while (std::getline(in, text)) {
-      ++number;
-      Line l;
-      l.number = number;
-      std::istringstream s(text);
-      std::string tok;
-      while (s >> tok) l.tokens.push_back(tok);
-      if (!l.tokens.empty()) lines_.push_back(std::move(l));
-    }
-    last_line_ = number;
-  }
+  Reader(std::istream& in, std::string name) : in_(in), name_(std::move(name)) {}
 
   [[noreturn]] void fail(int line, const std::string& what) const {
     throw FormatError(name_, line, what);
   }
 
-  bool empty() const { return lines_.empty(); }
-  std::size_t line_count() const { return lines_.size(); }
-  const Line& line(std::size_t i) const { return lines_[i]; }
-  int last_line() const { return last_line_; }
+  // The next line holding at least one token, or nullptr at the end of the stream.
+  const Line* next() {
+    std::string text;
+    while (std::getline(in_, text)) {
+      ++last_line_;
+      current_.number = last_line_;
+      current_.tokens.clear();
+      std::istringstream s(text);
+      std::string tok;
+      while (s >> tok) current_.tokens.push_back(tok);
+      if (!current_.tokens.empty()) return &current_;
+    }
+    return nullptr;
+  }
+  // The number of the last line read (the line count once the stream has ended).
+  int last_line() const { return last_line_ > 0 ? last_line_ : 1; }
 
  private:
+  std::istream& in_;
   std::string name_;
-  std::vector<Line> lines_;
+  Line current_;
   int last_line_ = 0;
 };
 
@@ -62,8 +70,11 @@ long parse_integer(const Reader& r, int line, const std::string& tok, const std:
   return v;
 }
 
+// Every token strtod reads whole is either a finite double (subnormal numbers included, and
+// numbers that underflow to zero) or refused with a message: NaN, infinity and overflow.
 double parse_number(const Reader& r, int line, const std::string& tok, const std::string& what) {
   char* end = nullptr;
+  errno = 0;
   const double v = std::strtod(tok.c_str(), &end);
   if (end == tok.c_str() || *end != '\0')
     r.fail(line, "found '" + tok + "'; expected " + what + " (a number)");
@@ -71,82 +82,107 @@ double parse_number(const Reader& r, int line, const std::string& tok, const std
   return v;
 }
 
+// The fewest bytes a dense file of size n can have after its header: n (n + 1) numbers of at
+// least one character, each followed by a separator.
+std::uintmax_t min_data_bytes(std::uintmax_t n) { return 2 * n * (n + 1); }
+
 }  // namespace
 
-Problem parse_siconos_lcp(std::istream& in, const std::string& name) {
-  const Reader r(in, name);
-  if (r.empty()) r.fail(1, "the file is empty; expected the problem size n on the first line");
+Problem parse_siconos_lcp(std::istream& in, const std::string& name, std::uintmax_t size) {
+  Reader r(in, name);
+  const Line* l = r.next();
+  if (l == nullptr) r.fail(1, "the file is empty; expected the problem size n on the first line");
 
   // Header: six integers n, storage, n, n, n, n, possibly over several lines.
   static const char* const kHeader[] = {"the problem size n", "the storage type (0 = dense)",
                                         "the number of rows n", "the number of columns n",
                                         "the number of rows n", "the number of columns n"};
   long header[6] = {0, 0, 0, 0, 0, 0};
-  std::size_t li = 0;
   std::size_t ti = 0;
   for (int k = 0; k < 6; ++k) {
-    if (li >= r.line_count())
+    if (l == nullptr)
       r.fail(r.last_line(), std::string("unexpected end of file; expected ") + kHeader[k]);
-    const Line& l = r.line(li);
-    header[k] = parse_integer(r, l.number, l.tokens[ti], kHeader[k]);
+    header[k] = parse_integer(r, l->number, l->tokens[ti], kHeader[k]);
     if (k == 0 && header[0] < 0)
-      r.fail(l.number, "n = " + l.tokens[ti] + "; expected a size >= 0");
+      r.fail(l->number, "n = " + l->tokens[ti] + "; expected a size >= 0");
+    if (k == 0 && header[0] > kMaxSize)
+      r.fail(l->number, "n = " + l->tokens[ti] + "; expected a size <= " +
+                            std::to_string(kMaxSize));
     if (k == 1 && header[1] != 0) {
       if (header[1] == 1)
-        r.fail(l.number, "storage type 1 (sparse block) is not supported; expected 0 (dense): "
-                         "use the dense file of the same problem");
-      r.fail(l.number, "storage type " + l.tokens[ti] + "; expected 0 (dense)");
+        r.fail(l->number, "storage type 1 (sparse block) is not supported; expected 0 (dense): "
+                          "use the dense file of the same problem");
+      r.fail(l->number, "storage type " + l->tokens[ti] + "; expected 0 (dense)");
     }
     if (k >= 2 && header[k] != header[0])
-      r.fail(l.number, "matrix size " + l.tokens[ti] + " differs from n = " +
-                           std::to_string(header[0]) + "; expected " + kHeader[k] + " = " +
-                           std::to_string(header[0]));
-    if (++ti == l.tokens.size()) {
+      r.fail(l->number, "matrix size " + l->tokens[ti] + " differs from n = " +
+                            std::to_string(header[0]) + "; expected " + kHeader[k] + " = " +
+                            std::to_string(header[0]));
+    if (++ti == l->tokens.size()) {
       ti = 0;
-      ++li;
+      if (k < 5) l = r.next();
     }
   }
   if (ti != 0)
-    r.fail(r.line(li).number, "found '" + r.line(li).tokens[ti] +
-                                  "' after the six header integers; expected the end of the line");
+    r.fail(l->number, "found '" + l->tokens[ti] +
+                          "' after the six header integers; expected the end of the line");
 
+  // Nothing is allocated for a size the file cannot hold.
   const auto n = static_cast<Eigen::Index>(header[0]);
+  const std::uintmax_t need = min_data_bytes(static_cast<std::uintmax_t>(n));
+  if (n > 0 && size < need)
+    r.fail(r.last_line(), "n = " + std::to_string(n) + " needs at least " + std::to_string(need) +
+                              " bytes for M and q, but the file has " + std::to_string(size) +
+                              "; expected n to match the data that follows");
   Problem p;
-  p.M.resize(n, n);
-  p.q.resize(n);
-  const auto row_count = [&](const Line& l, const std::string& what) {
-    if (static_cast<Eigen::Index>(l.tokens.size()) != n)
-      r.fail(l.number, what + " has " + std::to_string(l.tokens.size()) + " entries; expected n = " +
-                           std::to_string(n));
+  try {
+    p.M.resize(n, n);
+    p.q.resize(n);
+  } catch (const std::bad_alloc&) {
+    r.fail(r.last_line(), "n = " + std::to_string(n) + " does not fit in memory; expected a "
+                          "smaller problem");
+  }
+  const auto row_count = [&](const Line& line, const std::string& what) {
+    if (static_cast<Eigen::Index>(line.tokens.size()) != n)
+      r.fail(line.number, what + " has " + std::to_string(line.tokens.size()) +
+                              " entries; expected n = " + std::to_string(n));
   };
-  for (Eigen::Index j = 0; j < n; ++j, ++li) {
+  for (Eigen::Index j = 0; j < n; ++j) {
     const std::string what = "column " + std::to_string(j + 1) + " of M";
-    if (li >= r.line_count())
+    l = r.next();
+    if (l == nullptr)
       r.fail(r.last_line(), "unexpected end of file; expected " + what + " (" +
                                 std::to_string(n) + " numbers on one line)");
-    const Line& l = r.line(li);
-    row_count(l, what);
+    row_count(*l, what);
     for (Eigen::Index i = 0; i < n; ++i)
-      p.M(i, j) = parse_number(r, l.number, l.tokens[static_cast<std::size_t>(i)],
+      p.M(i, j) = parse_number(r, l->number, l->tokens[static_cast<std::size_t>(i)],
                                "M(" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ")");
   }
   if (n > 0) {
-    if (li >= r.line_count())
+    l = r.next();
+    if (l == nullptr)
       r.fail(r.last_line(),
              "unexpected end of file; expected q (" + std::to_string(n) + " numbers on one line)");
-    const Line& l = r.line(li);
-    row_count(l, "q");
+    row_count(*l, "q");
     for (Eigen::Index i = 0; i < n; ++i)
-      p.q(i) = parse_number(r, l.number, l.tokens[static_cast<std::size_t>(i)],
+      p.q(i) = parse_number(r, l->number, l->tokens[static_cast<std::size_t>(i)],
                             "q(" + std::to_string(i + 1) + ")");
   }
   return p;
 }
 
 Problem read_siconos_lcp(const std::filesystem::path& file) {
+  // A FIFO, a device or a directory could block or never end: only regular files are read.
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw FormatError(file.string(), 0, "cannot open the file for reading (no such file)");
+  if (!std::filesystem::is_regular_file(status))
+    throw FormatError(file.string(), 0, "not a regular file; expected a .dat file");
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
   std::ifstream in(file);
-  if (!in) throw FormatError(file.string(), 0, "cannot open the file for reading");
-  return parse_siconos_lcp(in, file.string());
+  if (!in || ec) throw FormatError(file.string(), 0, "cannot open the file for reading");
+  return parse_siconos_lcp(in, file.string(), size);
 }
 
 }  // namespace nsb::lcp

@@ -12,6 +12,7 @@
 
 #include "lcp/lcp.hpp"
 
+#include <cstdint>
 #include <filesystem>
 #include <istream>
 #include <stdexcept>
@@ -27,10 +28,14 @@ struct FormatError : std::invalid_argument {
   int line = 0;
 };
 
-// Throws FormatError for a malformed file (also: size mismatch, NaN or Inf, an empty file),
-// and FormatError with line 0 if the file cannot be opened.
+// Throws FormatError for a malformed file (also: size mismatch, NaN or Inf, an empty file, an
+// n larger than the file can hold), and FormatError with line 0 if the file cannot be opened
+// or is not a regular file (a FIFO or a device is refused, never read). Reads no further than
+// q, and allocates nothing before the header's n is known to fit in the file.
 Problem read_siconos_lcp(const std::filesystem::path& file);
-// The same from a stream; `name` is used in messages.
-Problem parse_siconos_lcp(std::istream& in, const std::string& name);
+// The same from a stream; `name` is used in messages, `size` is the stream's length in bytes
+// when known (it bounds n before M is allocated).
+Problem parse_siconos_lcp(std::istream& in, const std::string& name,
+                          std::uintmax_t size = UINTMAX_MAX);
 
 }  // namespace nsb::lcp

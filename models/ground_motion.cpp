@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <istream>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
@@ -29,21 +30,28 @@ constexpr std::size_t kMinSamples = 3;
 // Knots within this fraction of a sampling step of the uniform grid count as uniformly
 // sampled: the direct interval guess is then off by at most one knot (GroundMotion::Data).
 constexpr double kUniformSlack = 0.1;
+// Longest AT2 line 4 read ('NPTS= n, DT= dt SEC' and the filter data some files append).
+constexpr std::size_t kMaxHeaderLine = 512;
 
 [[noreturn]] void fail(const std::string& where, const std::string& what) {
   throw std::invalid_argument(where + ": " + what);
 }
 
-std::string at(const std::filesystem::path& file, std::size_t line) {
-  return file.string() + ":" + std::to_string(line);
+std::string at(const std::string& file, std::size_t line) {
+  return file + ":" + std::to_string(line);
 }
 
 // Strict conversion of a whole token to double: no trailing characters, finite.
-double parse_number(std::string_view tok, const std::filesystem::path& file, std::size_t line) {
+// Subnormal values are read as they are; a value beyond the range of a double (1e400, or
+// 1e-400, which would silently become 0) is refused by name.
+double parse_number(std::string_view tok, const std::string& file, std::size_t line) {
   std::string_view s = tok;
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
   double v = 0.0;
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec == std::errc::result_out_of_range && ptr == s.data() + s.size()) {
+    fail(at(file, line), "value '" + std::string(tok) + "' is outside the range of a double");
+  }
   if (ec != std::errc() || ptr != s.data() + s.size() || s.empty()) {
     fail(at(file, line), "non-numeric token '" + std::string(tok) + "'");
   }
@@ -70,21 +78,27 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
+// Only regular files are read: a FIFO or a device could block or never end.
 std::ifstream open_or_throw(const std::filesystem::path& file) {
-  if (!std::filesystem::exists(file)) fail(file.string(), "record file does not exist");
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (ec || !std::filesystem::exists(status)) fail(file.string(), "record file does not exist");
+  if (!std::filesystem::is_regular_file(status)) {
+    fail(file.string(), "not a regular file; expected a record file");
+  }
   std::ifstream in(file);
   if (!in) fail(file.string(), "cannot open the record file for reading");
   return in;
 }
 
-void check_unit(double unit, const std::filesystem::path& file, const char* name) {
+void check_unit(double unit, const std::string& file, const char* name) {
   if (!(unit > 0.0) || !std::isfinite(unit)) {
-    fail(file.string(), std::string(name) + " must be finite and > 0");
+    fail(file, std::string(name) + " must be finite and > 0");
   }
 }
 
 // Appends one sample, checking that time increases strictly.
-void push_sample(Record& r, double t, double a, const std::filesystem::path& file,
+void push_sample(Record& r, double t, double a, const std::string& file,
                  std::size_t line) {
   if (!r.t.empty() && !(t > r.t.back())) {
     std::ostringstream os;
@@ -97,9 +111,9 @@ void push_sample(Record& r, double t, double a, const std::filesystem::path& fil
   r.a.push_back(a);
 }
 
-void check_size(const Record& r, const std::filesystem::path& file) {
+void check_size(const Record& r, const std::string& file) {
   if (r.t.size() < kMinSamples) {
-    fail(file.string(), "a record needs at least " + std::to_string(kMinSamples) +
+    fail(file, "a record needs at least " + std::to_string(kMinSamples) +
                             " samples, found " + std::to_string(r.t.size()));
   }
 }
@@ -111,8 +125,13 @@ struct SplineDeleter {
 }  // namespace
 
 Record read_at2(const std::filesystem::path& file, double g) {
-  check_unit(g, file, "g");
+  check_unit(g, file.string(), "g");
   std::ifstream in = open_or_throw(file);
+  return read_at2(in, file.string(), g);
+}
+
+Record read_at2(std::istream& in, const std::string& file, double g) {
+  check_unit(g, file, "g");
   std::string line;
   std::size_t line_no = 0;
   // Lines 1-3: free text (database, event and station, units).
@@ -124,6 +143,13 @@ Record read_at2(const std::filesystem::path& file, double g) {
   ++line_no;
   // Line 4 in both PEER forms: "NPTS=  1559, DT= .02000 SEC" and
   // "NPTS=   8773, DT=   .0050 SEC,   4 POLE @ ..." (filter data may follow).
+  // PEER header lines are about 80 characters; a longer line is not one, and std::regex's
+  // recursive matcher is kept away from unbounded input.
+  if (line.size() > kMaxHeaderLine) {
+    fail(at(file, 4), "line 4 has " + std::to_string(line.size()) + " characters; expected "
+                      "'NPTS= <count>, DT= <step> SEC' (at most " +
+                      std::to_string(kMaxHeaderLine) + ")");
+  }
   static const std::regex header(R"(NPTS\s*=\s*([0-9]+)\s*,\s*DT\s*=\s*([-+0-9.eE]+))",
                                  std::regex::icase);
   std::smatch m;
@@ -142,8 +168,7 @@ Record read_at2(const std::filesystem::path& file, double g) {
   }
   if (!(dt > 0.0)) fail(at(file, 4), "DT must be > 0");
   Record r;
-  r.source = file.string();
-  r.a.reserve(static_cast<std::size_t>(npts));
+  r.source = file;
   std::size_t last_data_line = 4;
   while (std::getline(in, line)) {
     ++line_no;
@@ -166,10 +191,15 @@ Record read_at2(const std::filesystem::path& file, double g) {
 }
 
 Record read_two_column(const std::filesystem::path& file, double unit) {
-  check_unit(unit, file, "unit");
+  check_unit(unit, file.string(), "unit");
   std::ifstream in = open_or_throw(file);
+  return read_two_column(in, file.string(), unit);
+}
+
+Record read_two_column(std::istream& in, const std::string& file, double unit) {
+  check_unit(unit, file, "unit");
   Record r;
-  r.source = file.string();
+  r.source = file;
   std::string line;
   std::size_t line_no = 0;
   while (std::getline(in, line)) {
@@ -190,10 +220,15 @@ Record read_two_column(const std::filesystem::path& file, double unit) {
 }
 
 Record read_csv(const std::filesystem::path& file, double unit) {
-  check_unit(unit, file, "unit");
+  check_unit(unit, file.string(), "unit");
   std::ifstream in = open_or_throw(file);
+  return read_csv(in, file.string(), unit);
+}
+
+Record read_csv(std::istream& in, const std::string& file, double unit) {
+  check_unit(unit, file, "unit");
   Record r;
-  r.source = file.string();
+  r.source = file;
   std::string line;
   std::size_t line_no = 0;
   auto split_csv = [](std::string_view s) {
@@ -242,7 +277,7 @@ Record read_csv(const std::filesystem::path& file, double unit) {
     const double a = parse_number(fields[col_a], file, line_no);
     push_sample(r, t, a * unit, file, line_no);
   }
-  if (!have_header) fail(file.string(), "empty CSV file: expected a header line 't,a'");
+  if (!have_header) fail(file, "empty CSV file: expected a header line 't,a'");
   check_size(r, file);
   return r;
 }
@@ -447,6 +482,19 @@ GroundMotion::GroundMotion(const Record& r, const GroundMotionOptions& o) {
   }
   for (double& b : d->baseline) b *= factor;
   d->pga = std::abs(factor) * pga_raw;
+  // Finite samples can still overflow the exact integrals (a time span of 1e124 s makes
+  // h^5 infinite): such a record is bad input, never a motion that is silently NaN.
+  const auto finite = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+  };
+  const bool baseline_finite = std::all_of(std::begin(d->baseline), std::end(d->baseline),
+                                           [](double x) { return std::isfinite(x); });
+  if (!(finite(d->c0) && finite(d->c1) && finite(d->c2) && finite(d->c3) &&
+        finite(d->v_knot) && finite(d->d_knot) && baseline_finite && std::isfinite(d->pga))) {
+    throw std::invalid_argument("record '" + r.source + "': its velocity or displacement "
+                                "overflows (time span " + std::to_string(d->t1 - d->t0) +
+                                " s); expected times and accelerations of a ground motion");
+  }
   data_ = std::move(d);
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <filesystem>
+#include <istream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +29,11 @@ struct Record {
 Record read_at2(const std::filesystem::path&, double g = 9.81);          // PEER NGA .AT2 (units of g)
 Record read_two_column(const std::filesystem::path&, double unit = 1.0); // "t a" per line; a*unit -> m/s^2
 Record read_csv(const std::filesystem::path&, double unit = 1.0);        // header line, columns t,a
+// The same from a stream; `name` stands for the file in messages. The path readers refuse
+// anything but a regular file (a FIFO or a device could block or never end).
+Record read_at2(std::istream& in, const std::string& name, double g = 9.81);
+Record read_two_column(std::istream& in, const std::string& name, double unit = 1.0);
+Record read_csv(std::istream& in, const std::string& name, double unit = 1.0);
 
 // Checks a record built in code: equal sizes, at least 3 samples, finite values, strictly
 // increasing time. Throws std::invalid_argument naming the record's source and the sample.

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -38,6 +39,8 @@ struct Context {
   std::string file;
   fs::path dir;
   std::set<std::string> overridden;  // key paths set by overrides, e.g. "model.bents[0].height"
+  mutable double record_step = 0.0;  // shortest sampling interval of the records read, before
+                                     //   time scaling [s]; 0 when no record was read
 
   [[noreturn]] void fail(const toml::node* n, const std::string& key,
                          const std::string& what) const {
@@ -286,10 +289,14 @@ void apply_override(toml::table& root, const std::string& text, Context& ctx) {
       }
       cur = next;
     } else if (auto* a = cur->as_array(); a != nullptr && is_index(p)) {
-      const std::size_t k = std::stoul(p);
-      if (k >= a->size()) {
-        throw std::invalid_argument(ctx.file + ": override \"" + text + "\": " + path +
-                                    " has " + std::to_string(a->size()) + " elements");
+      // Any run of digits is an index; one too large for size_t is out of range like any
+      // other index past the end.
+      std::size_t k = 0;
+      const auto [end, ec] = std::from_chars(p.data(), p.data() + p.size(), k);
+      if (ec != std::errc() || end != p.data() + p.size() || k >= a->size()) {
+        throw std::invalid_argument(ctx.file + ": override \"" + text + "\": " + path + "." +
+                                    p + ": index out of range; " + path + " has " +
+                                    std::to_string(a->size()) + " elements (0-based)");
       }
       path += "[" + p + "]";
       cur = a->get(k);
@@ -486,6 +493,10 @@ Record read_record(Section& s, const std::string& key, const std::string& name, 
       s.fail(key, "record \"" + path.string() + "\": non-finite value at sample " +
                       std::to_string(i + 1));
     }
+  }
+  for (std::size_t i = 1; i < r.t.size(); ++i) {
+    const double dt = r.t[i] - r.t[i - 1];
+    if (c.record_step == 0.0 || dt < c.record_step) c.record_step = dt;
   }
   return r;
 }
@@ -887,6 +898,9 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   scene.solver.validate();
   scene.output.validate();
   scene.run = make_run_config(scene.solver);
+  // Every record of a scene shares the excitation's time_scale (validated above).
+  scene.record_step = ctx.record_step *
+                      root.at_path("model.excitation.time_scale").value<double>().value_or(1.0);
   return scene;
 }
 

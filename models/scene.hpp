@@ -45,6 +45,8 @@ struct Scene {
   SolverSettings solver;               // the [solver] keys as read (after overrides)
   integrators::RunConfig run;          // the typed configuration built from them, once
   OutputSettings output;
+  double record_step = 0.0;            // shortest sampling interval of the scene's ground-motion
+                                       //   records after time scaling [s]; 0 without a record
 };
 
 // The typed run configuration of validated solver settings: the options struct of

@@ -12,6 +12,7 @@ packages=(
   libgnuplot-iostream-dev libboost-iostreams-dev libboost-system-dev libboost-filesystem-dev
   gnuplot-nox
   libopenmpi-dev openmpi-bin
+  clang libfuzzer-14-dev libclang-rt-14-dev
 )
 if [[ "${1:-}" == "--with-siconos" ]]; then
   packages+=(libsiconos-numerics-dev)
@@ -29,5 +30,12 @@ sudo=""
 if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
 echo "install-deps: installing ${missing[*]}" >&2
 export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -qq >/dev/null
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+# apt's own chatter (progress, debconf notes) goes to a log that is shown only on failure.
+log=$(mktemp)
+if ! { $sudo apt-get update -qq && \
+       $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >"$log" 2>&1; then
+  cat "$log" >&2
+  rm -f "$log"
+  exit 1
+fi
+rm -f "$log"

@@ -4,7 +4,7 @@
 # files that are complete or absent.
 #   bash app/test/cli_test.sh NSBRIDGE
 set -uo pipefail
-nsb=$1
+nsb=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 root=$(cd "$(dirname "$0")/../.." && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -12,14 +12,17 @@ passed=0
 failed=0
 
 # expect CODE PATTERN -- ARGS...: runs nsbridge ARGS, checks the exit code and that stdout or
-# stderr matches the extended regular expression PATTERN.
+# stderr matches the extended regular expression PATTERN. No command may hang (each is
+# stopped after $limit s, exit 124) or print "internal error", which is kept for real bugs.
+limit=20
 expect() {
   local code=$1 pattern=$2
   shift 3
   local out rc
-  out=$("$nsb" "$@" 2>&1)
+  out=$(timeout -s KILL "$limit" "$nsb" "$@" 2>&1)
   rc=$?
-  if [[ $rc -eq $code ]] && grep -Eq -- "$pattern" <<<"$out"; then
+  if [[ $rc -eq $code ]] && grep -Eq -- "$pattern" <<<"$out" &&
+     ! grep -q 'internal error' <<<"$out"; then
     passed=$((passed + 1))
   else
     failed=$((failed + 1))
@@ -77,6 +80,148 @@ check "a rejected scene writes no output" test ! -e "$tmp/neg"
 printf '[model]\nkind = "bouncing_ball"\nmass = 1.0\nmas = 2.0\n' > "$tmp/typo.toml"
 expect 2 'typo\.toml:4.*mas' -- run "$tmp/typo.toml" --out "$tmp/typo"
 expect 2 'missing\.toml' -- run "$tmp/missing.toml"
+
+# --- robustness: no input hangs, crashes or fools the command line -----------------------
+# The lcp reader refuses what is not a regular file (it used to read a FIFO or /dev/urandom
+# forever) ...
+mkfifo "$tmp/fifo"
+expect 2 'fifo: not a regular file' -- lcp "$tmp/fifo"
+expect 2 '/dev/urandom: not a regular file' -- lcp /dev/urandom
+# ... and allocates nothing before the header's n is known to fit in the file (it used to
+# end in "internal error: std::bad_alloc").
+printf '1000000000 0 1000000000 1000000000 1000000000 1000000000\n' > "$tmp/big.dat"
+expect 2 'big\.dat:1: n = 1000000000; expected a size <= 32768' -- lcp "$tmp/big.dat"
+printf '30000 0 30000 30000 30000 30000\n1 2 3\n' > "$tmp/short-n.dat"
+expect 2 'short-n\.dat:1: n = 30000 needs at least 1800060000 bytes for M and q, but the file has 38' \
+  -- lcp "$tmp/short-n.dat"
+# Subnormal numbers are numbers (they used to give "internal error: stod", with half a JSON
+# object already printed); numbers beyond the range of a double are refused by name.
+printf '2\n0\n2\n2\n2 2\n1 1e-310\n0 1\n-1 -4.9e-324\n' > "$tmp/subnormal.dat"
+expect 0 'status: +solved' -- lcp "$tmp/subnormal.dat"
+expect 0 '^\{"file": .*"w": \[0, 9\.9999999999995e-311\]\}$' -- lcp "$tmp/subnormal.dat" --json
+expect 0 'status: +solved' -- lcp "$lcp/lcp_trivial.dat" --tol 4.9e-324
+printf '2\n0\n2\n2\n2 2\n1 0\n0 1\n-1 1e400\n' > "$tmp/overflow.dat"
+expect 2 "overflow\.dat:8: q\(2\) is '1e400'; expected a finite number" -- lcp "$tmp/overflow.dat" --json
+check "a refused .dat file prints nothing on standard output" \
+  test -z "$("$nsb" lcp "$tmp/overflow.dat" --json 2>/dev/null)"
+expect 2 'tol' -- lcp "$lcp/lcp_trivial.dat" --tol abc
+expect 2 'max-iter' -- lcp "$lcp/lcp_trivial.dat" --max-iter 1e99
+# An override index too large for any integer is out of range like any other (it used to give
+# "internal error: stoul").
+expect 2 'bridge-exc7\.toml: override "model\.bents\.99999999999999999999\.height=1": model\.bents\.99999999999999999999: index out of range; model\.bents has 3 elements' \
+  -- run "$root/scenes/bridge-exc7.toml" --out "$tmp/x" --set 'model.bents.99999999999999999999.height=1'
+expect 2 'model\.bents\.3: index out of range; model\.bents has 3 elements' \
+  -- run "$root/scenes/bridge-exc7.toml" --out "$tmp/x" --set 'model.bents.3.height=1'
+# Criterion results that are not finite are refused (they used to print -nan and inf, exit 0).
+expect 2 'criterion: --width 1e-300 and --length 1e\+300 \(W/L = 0, mu = 0\.5\) make eta non-finite' \
+  -- criterion --skew 0 --width 1e-300 --length 1e300 --friction 0.5 --json
+expect 2 'criterion: --width 5e-324 and --length 1 .*make eta non-finite' \
+  -- criterion --skew 0 --width 4.9e-324 --length 1 --friction 0.5 --json
+check "a refused criterion prints nothing on standard output" \
+  test -z "$("$nsb" criterion --skew 0 --width 1e-300 --length 1e300 --friction 0.5 --json 2>/dev/null)"
+expect 0 '"friction": 5e-324' -- criterion --skew 0 --width 2.44 --length 33.35 --friction 4.9e-324 --json
+expect 2 'skew' -- criterion --skew nan --width 1 --length 1 --friction 0
+expect 2 'width' -- criterion --skew 0 --width 1e400 --length 1 --friction 0
+# --out "" is bad input, and an --out that cannot be created is found before the run: the
+# 22 s bridge at 1e-5 s steps takes longer than the limit, so only a check made before the
+# integration can answer in time (it used to integrate first).
+pushd "$tmp" >/dev/null
+expect 2 '^nsbridge: --out: empty path; expected a directory' -- \
+  run "$root/scenes/bouncing-ball.toml" --out ""
+popd >/dev/null
+check "--out \"\" writes nothing" test ! -e "$tmp/out"
+: > "$tmp/a-file"
+limit=5
+expect 2 "^nsbridge: --out $tmp/a-file/sub: cannot create the directory '$tmp/a-file/sub': Not a directory" \
+  -- run "$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/a-file/sub"
+limit=20
+# Outputs are replaced as a set: a directory that held an older set holds the new one, and
+# nothing else is left beside it; a directory with the user's own files keeps them.
+expect 0 'bouncing-ball' -- run "$root/scenes/bouncing-ball.toml" --out "$tmp/set/ball" --set solver.end_time=0.5
+expect 0 'bouncing-ball' -- run "$root/scenes/bouncing-ball.toml" --out "$tmp/set/ball" --set solver.end_time=1
+check "the second run's set replaced the first" grep -q '"end_time": 1,' "$tmp/set/ball/summary.json"
+check "no temporary directory is left beside the outputs" test "$(ls -A "$tmp/set")" = ball
+echo mine > "$tmp/set/ball/notes.txt"
+expect 0 'bouncing-ball' -- run "$root/scenes/bouncing-ball.toml" --out "$tmp/set/ball" --set solver.end_time=0.5
+check "the user's own file is kept" grep -q mine "$tmp/set/ball/notes.txt"
+check "and the set is the new one" grep -q '"end_time": 0.5,' "$tmp/set/ball/summary.json"
+# A run interrupted by SIGKILL leaves the previous set as it was.
+cp -r "$tmp/set/ball" "$tmp/before"
+(timeout -s KILL 0.3 "$nsb" run "$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 \
+  --out "$tmp/set/ball" >/dev/null 2>&1) 2>/dev/null
+check "a killed run leaves the previous set untouched" diff -r "$tmp/before" "$tmp/set/ball"
+# Runs that must not be trusted say so (it used to print "0 warnings" and exit 0 for an
+# energy error of 38 % and 4.7 cm of penetration), in summary.json too; --strict exits 1.
+exc7=("$root/scenes/bridge-exc7.toml" --set solver.step=0.1 --out "$tmp/exc7")
+expect 0 'warnings   7 ' -- run "${exc7[@]}"
+expect 0 'warning: energy_balance: error 38\.5 % of the largest energy term; the method is trusted up to 1 %' -- run "${exc7[@]}"
+expect 0 'warning: penetration: contact 2 penetrates 0\.0467 m at t = 2\.5 s' -- run "${exc7[@]}"
+expect 0 'warning: step_record: solver\.step = 0\.1 s is longer than the record.s sampling interval 0\.0025 s' -- run "${exc7[@]}"
+expect 0 'warning: step_period: solver\.step = 0\.1 s resolves the shortest natural period' -- run "${exc7[@]}"
+for w in energy_balance penetration step_period step_record; do
+  check "summary.json records the $w warning" grep -q "\"$w: " "$tmp/exc7/summary.json"
+done
+expect 1 'strict: 7 warning\(s\): the run is not to be trusted' -- run "${exc7[@]}" --strict
+# The record's sampling interval is its AT2 DT = 0.005 s times time_scale = 0.5.
+expect 0 'step_record: .* 0\.0025 s' -- run "$root/scenes/bridge-exc7.toml" --set solver.step=0.003 \
+  --set solver.end_time=0.3 --out "$tmp/x"
+expect 0 'warnings   0$' -- run "$root/scenes/bridge-exc7.toml" --set solver.step=0.002 \
+  --set solver.end_time=0.3 --out "$tmp/x"
+# Shortest period of the impact oscillator (m = 1 t, k = 1 kN/m): T = 2 pi sqrt(m/k) = 6.28 s,
+# so 20 steps per period need h <= 0.314 s.
+expect 0 'step_period: solver\.step = 0\.5 s resolves the shortest natural period 6\.28 s with 12\.6 steps; the method needs >= 20 \(solver\.step <= 0\.314 s\)' \
+  -- run "$root/scenes/impact-oscillator.toml" --set solver.step=0.5 --out "$tmp/x"
+check "h = 0.3 s resolves T = 6.28 s by 20.9 steps: no step_period warning" bash -c \
+  "! '$nsb' run '$root/scenes/impact-oscillator.toml' --set solver.step=0.3 --out '$tmp/x' 2>&1 | grep -q step_period"
+# Every shipped scene, with its own settings, is trusted.
+for s in bouncing-ball impact-oscillator sliding-block rigid-deck-skew rigid-deck-straight bridge-exc7; do
+  expect 0 'warnings   0$' -- run "$root/scenes/$s.toml" --out "$tmp/x" --strict
+done
+# Values that overflow the computation are bad input (it used to "complete" with null energies).
+expect 2 'bouncing-ball\.toml: the initial velocity \(1e\+160 in magnitude\) makes the kinetic energy' \
+  -- run "$root/scenes/bouncing-ball.toml" --set model.velocity=1e160 --out "$tmp/x"
+# Record files: only regular files, every bad number named with its file and line.
+mkdir -p "$tmp/rec/ground-motions"
+cp "$root/data/ground-motions/RSN1084_NORTHR_SCS052.AT2" "$tmp/rec/ground-motions/"
+sed 's#ground-motions/RSN1084_NORTHR_SCS142.AT2#ground-motions/fifo.AT2#' \
+  "$root/scenes/bridge-exc7.toml" > "$tmp/rec/fifo.toml"
+mkfifo "$tmp/rec/ground-motions/fifo.AT2"
+expect 2 'fifo\.toml:[0-9]+:[0-9]+: model\.excitation\.transverse_record: record file "ground-motions/fifo\.AT2" not found' \
+  -- run "$tmp/rec/fifo.toml" --out "$tmp/x"
+{ head -n 4 "$root/data/ground-motions/RSN1084_NORTHR_SCS142.AT2"; echo "0.1 1e-400 0.2"; } \
+  > "$tmp/rec/ground-motions/under.AT2"
+sed 's#ground-motions/RSN1084_NORTHR_SCS142.AT2#ground-motions/under.AT2#' \
+  "$root/scenes/bridge-exc7.toml" > "$tmp/rec/under.toml"
+expect 2 "under\.AT2:5: value '1e-400' is outside the range of a double" -- run "$tmp/rec/under.toml" --out "$tmp/x"
+{ head -n 3 "$root/data/ground-motions/RSN1084_NORTHR_SCS142.AT2";
+  echo "NPTS= 999999999, DT= 0.01 SEC"; echo "0.1 0.2"; } > "$tmp/rec/ground-motions/npts.AT2"
+sed 's#ground-motions/RSN1084_NORTHR_SCS142.AT2#ground-motions/npts.AT2#' \
+  "$root/scenes/bridge-exc7.toml" > "$tmp/rec/npts.toml"
+expect 2 'npts\.AT2:5: NPTS = 999999999 \(line 4\) but 2 values found' -- run "$tmp/rec/npts.toml" --out "$tmp/x"
+expect 2 'scene file' -- run /dev/null --out "$tmp/x"
+
+# --- nsbridge --version, --quiet and the progress bar --------------------------------------
+expect 0 '^nsbridge [0-9]+\.[0-9]+\.[0-9]+' -- --version
+for key in 'revision   [0-9a-f]{12}(-dirty)? \(git, at build time\)' 'build      ' \
+           'compiler   (gcc|clang) ' 'Eigen      3\.' 'Boost      1\.' 'GSL        2\.' \
+           'toml\+\+     3\.' 'CLI11      2\.'; do
+  expect 0 "$key" -- --version
+done
+if command -v git >/dev/null && git -C "$root" rev-parse HEAD >/dev/null 2>&1; then
+  check "--version names the checked-out revision" \
+    grep -q "revision   $(git -C "$root" rev-parse --short=12 HEAD)" <<<"$("$nsb" --version)"
+fi
+# Long enough (2.2e6 steps, about 3 s) for the bar, which appears after 1 s.
+slow=("$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/slow")
+"$nsb" run "${slow[@]}" 2>"$tmp/stderr.txt" >/dev/null
+check "no progress bar when standard error is not a terminal" test ! -s "$tmp/stderr.txt"
+if command -v script >/dev/null; then
+  script -qec "'$nsb' run ${slow[*]}" /dev/null > "$tmp/tty.txt" 2>&1
+  check "a progress bar on a terminal: time reached, speed and time left" \
+    grep -Eq 't = [0-9.]+ / 22 s .* x real time .* s left' "$tmp/tty.txt"
+  script -qec "'$nsb' run ${slow[*]} --quiet" /dev/null > "$tmp/tty-quiet.txt" 2>&1
+  check "--quiet silences it" bash -c "! grep -q 'real time .* left' '$tmp/tty-quiet.txt'"
+fi
 
 echo "cli: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -148,4 +148,62 @@ TEST_CASE("a failed write throws naming the path and leaves no half file") {
   std::filesystem::remove_all(base);
 }
 
+TEST_CASE("write_outputs replaces an older set as a whole and keeps the user's own files") {
+  TwoBodies s;
+  const Recorder rec = filled_recorder(s);
+  RunResult stats;
+  const auto base = fresh_dir("swap");
+  const auto dir = base / "out";
+  std::filesystem::create_directories(dir);
+  for (const char* f : {"history.csv", "events.csv", "summary.json"}) std::ofstream(dir / f) << "old";
+  write_outputs(dir, "scene", rec, stats);
+  CHECK(read(dir / "history.csv") == history_csv(rec));
+  CHECK(read(dir / "summary.json") == summary_json("scene", rec, stats));
+  // Nothing but the output directory is left in its parent (no staging or old directory).
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(base)) ++entries;
+  CHECK(entries == 1);
+  // A directory holding the user's own file keeps it, and receives the new set.
+  std::ofstream(dir / "notes.txt") << "mine";
+  std::ofstream(dir / "events.csv") << "old";
+  write_outputs(dir, "scene", rec, stats);
+  CHECK(read(dir / "notes.txt") == "mine");
+  CHECK(read(dir / "events.csv") == events_csv(rec));
+  std::filesystem::remove_all(base);
+}
+
+TEST_CASE("a failed write leaves the previous set as it was: never a mix of old and new") {
+  TwoBodies s;
+  const Recorder rec = filled_recorder(s);
+  const auto base = fresh_dir("mixed");
+  const auto dir = base / "out";
+  std::filesystem::create_directories(dir / "summary.json" / "x");  // cannot be replaced
+  std::ofstream(dir / "history.csv") << "old";
+  std::ofstream(dir / "events.csv") << "old";
+  CHECK_THROWS_AS(write_outputs(dir, "s", rec, {}), std::runtime_error);
+  CHECK(read(dir / "history.csv") == "old");
+  CHECK(read(dir / "events.csv") == "old");
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(base)) ++entries;
+  CHECK(entries == 1);
+  std::filesystem::remove_all(base);
+}
+
+TEST_CASE("prepare_output_dir finds before a run what write_outputs would fail on") {
+  const auto base = fresh_dir("prepare");
+  CHECK_THROWS_WITH_AS(prepare_output_dir(""), doctest::Contains("empty path"),
+                       std::invalid_argument);
+  prepare_output_dir(base / "a" / "b");
+  CHECK(std::filesystem::is_directory(base / "a" / "b"));
+  std::ofstream(base / "file") << "x";
+  CHECK_THROWS_WITH_AS(prepare_output_dir(base / "file" / "sub"),
+                       doctest::Contains("cannot create the directory"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(prepare_output_dir(base / "file"),
+                       doctest::Contains("cannot create the directory"), std::invalid_argument);
+  int entries = 0;  // the probe is gone
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(base)) ++entries;
+  CHECK(entries == 2);
+  std::filesystem::remove_all(base);
+}
+
 }  // namespace nsb::integrators

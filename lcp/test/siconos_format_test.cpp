@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <sstream>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 using namespace nsb::lcp;
 
 namespace {
@@ -88,4 +91,43 @@ TEST_CASE("malformed files name the line and what was expected") {
                        doctest::Contains("/nonexistent/x.dat: cannot open"), FormatError);
   // n = 0 is a valid, empty problem.
   CHECK(parse("0\n0\n0 0 0 0\n").size() == 0);
+}
+
+TEST_CASE("numbers: subnormal values are read, overflow is refused") {
+  // strtod reads 1e-310 and -4.9e-324 as subnormal doubles, and 1e-400 as 0 (underflow):
+  // all are finite numbers. 1e400 overflows to infinity and is refused by name.
+  const Problem p = parse("2\n0\n2\n2\n2 2\n1 1e-310\n0 1e-400\n-1 -4.9e-324\n");
+  CHECK(p.M(1, 0) == 1e-310);
+  CHECK(p.M(1, 1) == 0.0);
+  CHECK(p.q(1) == -4.9e-324);
+  CHECK_THROWS_WITH_AS(parse("1\n0\n1\n1\n1 1\n1\n1e400\n"),
+                       doctest::Contains("t.dat:7: q(1) is '1e400'; expected a finite number"),
+                       FormatError);
+}
+
+TEST_CASE("n is checked against the file's length before anything is allocated") {
+  // n = 1e9 would need 8e18 bytes for M: refused by the size bound on line 1.
+  std::istringstream huge("1000000000 0 1000000000 1000000000 1000000000 1000000000\n");
+  CHECK_THROWS_WITH_AS(parse_siconos_lcp(huge, "t.dat"),
+                       doctest::Contains("t.dat:1: n = 1000000000; expected a size <= 32768"),
+                       FormatError);
+  // n = 100 needs 2 n (n + 1) = 20200 bytes at least; a 40-byte file cannot hold it.
+  const std::string text = "100 0 100 100 100 100\n1 2 3\n";
+  std::istringstream in(text);
+  CHECK_THROWS_WITH_AS(parse_siconos_lcp(in, "t.dat", text.size()),
+                       doctest::Contains("t.dat:1: n = 100 needs at least 20200 bytes"),
+                       FormatError);
+}
+
+TEST_CASE("only regular files are read: a FIFO or a device is refused, never read") {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("nsb-siconos-" + std::to_string(static_cast<long>(::getpid())));
+  std::filesystem::create_directories(dir);
+  const auto fifo = dir / "fifo.dat";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  CHECK_THROWS_WITH_AS(read_siconos_lcp(fifo), doctest::Contains("fifo.dat: not a regular file"),
+                       FormatError);
+  CHECK_THROWS_WITH_AS(read_siconos_lcp("/dev/urandom"),
+                       doctest::Contains("/dev/urandom: not a regular file"), FormatError);
+  std::filesystem::remove_all(dir);
 }

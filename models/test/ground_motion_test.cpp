@@ -4,6 +4,7 @@
 
 #include <doctest/doctest.h>
 #include <gsl/gsl_spline.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <memory>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -175,6 +177,34 @@ TEST_CASE("ground motion: reader errors name the file and the line") {
   {
     const auto p = dir.write("two.txt", "0 0.1\n0.01 0.2\n");
     expect_error([&] { nsb::models::read_two_column(p); }, {"two.txt", "at least 3"});
+  }
+}
+
+TEST_CASE("ground motion: readers refuse what is not a regular file, and name out-of-range numbers") {
+  TempDir dir;
+  // A FIFO would block the reader for ever (no writer), a directory is no record.
+  const auto fifo = dir.path / "fifo.AT2";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  expect_error([&] { nsb::models::read_at2(fifo); }, {"fifo.AT2", "not a regular file"});
+  expect_error([&] { nsb::models::read_csv(dir.path); }, {"not a regular file"});
+  // Subnormal values are values; 1e-400 and 1e400 are beyond a double and refused by name.
+  const std::string head = "PEER\nevent\nUNITS OF G\n";
+  {
+    std::istringstream in(head + "NPTS=  3, DT= .01 SEC\n 1e-310 -4.9e-324 0.3\n");
+    const Record r = nsb::models::read_at2(in, "sub.AT2", 1.0);
+    CHECK(r.a[0] == 1e-310);
+    CHECK(r.a[1] == -4.9e-324);
+  }
+  for (const char* v : {"1e-400", "1e400"}) {
+    std::istringstream in(head + "NPTS=  3, DT= .01 SEC\n 0.1 " + v + " 0.3\n");
+    expect_error([&] { nsb::models::read_at2(in, "range.AT2", 1.0); },
+                 {"range.AT2:5:", "outside the range of a double", v});
+  }
+  // A header line far longer than any PEER line is refused before the regular expression.
+  {
+    std::istringstream in(head + "NPTS= " + std::string(100000, ' ') + "3, DT= .01\n0 0 0\n");
+    expect_error([&] { nsb::models::read_at2(in, "long.AT2", 1.0); },
+                 {"long.AT2:4:", "100016 characters"});
   }
 }
 

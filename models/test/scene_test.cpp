@@ -193,6 +193,20 @@ TEST_CASE("overrides apply before validation") {
   CHECK(contains(error_of("ov5.toml", kBall, {"bogus.key=1"}), "bogus"));
 }
 
+TEST_CASE("an override index out of range is bad input, however many digits it has") {
+  const fs::path p = fs::path(NSB_SCENES_DIR) / "bridge-exc1.toml";
+  // 2^64 - 1, 2^64 and far beyond: the index is past the end of the three bents.
+  for (const std::string index : {"3", "18446744073709551615", "18446744073709551616",
+                                  "99999999999999999999"}) {
+    INFO(index);
+    const std::string o = "model.bents." + index + ".height=1";
+    const std::string expected =
+        "model.bents." + index + ": index out of range; model.bents has 3 elements";
+    CHECK_THROWS_WITH_AS(load_scene(p, {o}), doctest::Contains(expected.c_str()),
+                         std::invalid_argument);
+  }
+}
+
 TEST_CASE("bad input: each case names the file, the key and the line") {
   SUBCASE("negative mass") {
     const auto e = error_of("neg-mass.toml", R"([model]
