@@ -802,7 +802,7 @@ FigureResult make_figures(const FigureOptions& options) {
   const double length = dynamic_cast<const models::RigidDeck&>(
                             *models::load_scene(scenes / "rigid-deck-straight.toml").system)
                             .parameters()
-                            .length;
+                            .deck.length;
   const auto pts = eta_points(s);
   std::vector<RunSpec> specs = bridge_runs(s);
   for (auto& e : eta_runs(pts, length)) specs.push_back(std::move(e));

@@ -150,24 +150,24 @@ TEST_CASE("Moreau–Jean with two simultaneous contacts: free deck on a seat, or
   nm::RigidDeck::Parameters p;
   p.mass = 140.5;
   p.inertia = 13090.0;
-  p.length = 33.35;
-  p.width = 2.44;
-  p.skew_deg = 20.0;
-  p.gap_right = 0.01;
-  p.gap_left = 1.0;
+  p.deck.length = 33.35;
+  p.deck.width = 2.44;
+  p.deck.skew_deg = 20.0;
+  p.deck.gap_right = 0.01;
+  p.deck.gap_left = 1.0;
   p.restitution = 0.5;  // the corners leave the seat: one impact in the window
   p.friction = 0.3;
   p.initial_velocity = Eigen::Vector3d(0.5, 0.1, 0.0);
-  const double a = p.skew_deg * std::numbers::pi / 180.0;
+  const double a = p.deck.skew_deg * std::numbers::pi / 180.0;
   const Eigen::Vector3d u0 = p.initial_velocity;
   const double closing = u0.x() * std::cos(a) - u0.y() * std::sin(a);
-  const double t_hit = p.gap_right * std::cos(a) / closing;
-  const auto impact = na::deck_impact({p.mass, p.inertia, p.length, p.width, p.skew_deg}, {3, 4},
+  const double t_hit = p.deck.gap_right * std::cos(a) / closing;
+  const auto impact = na::deck_impact({p.mass, p.inertia, p.deck}, {3, 4},
                                       u0, p.restitution, p.friction);
   REQUIRE(impact.solutions == 1);
   const double end = 0.1;
   const Eigen::Vector3d q_exact = u0 * t_hit + impact.velocity_after * (end - t_hit);
-  const Eigen::Vector3d weight(1.0, 1.0, p.length / 2.0);
+  const Eigen::Vector3d weight(1.0, 1.0, p.deck.length / 2.0);
   const double du = (u0 - impact.velocity_after).cwiseProduct(weight).norm();
   for (double theta : {0.5, 1.0}) {
     std::vector<double> hs, errors;

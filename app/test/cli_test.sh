@@ -152,10 +152,17 @@ cp -r "$tmp/set/ball" "$tmp/before"
 check "a killed run leaves the previous set untouched" diff -r "$tmp/before" "$tmp/set/ball"
 # Runs that must not be trusted say so (it used to print "0 warnings" and exit 0 for an
 # energy error of 38 % and 4.7 cm of penetration), in summary.json too; --strict exits 1.
-exc7=("$root/scenes/bridge-exc7.toml" --set solver.step=0.1 --out "$tmp/exc7")
+# These cases were found on excitation 7 with the Sylmar record and the 33.35 m deck; they run
+# on that input set (the Sylmar scene with the earlier deck length and bent positions) so that
+# the figures below stay those of the report.
+sylmar7=("$root/scenes/bridge-exc7-sylmar.toml" --set model.deck.length=33.35
+         --set model.bents.0.position=-8.34 --set model.bents.2.position=8.34)
+exc7=("${sylmar7[@]}" --set solver.step=0.1 --out "$tmp/exc7")
 expect 0 'warnings   7 ' -- run "${exc7[@]}"
-expect 0 'warning: energy_balance: error 38\.5 % of the largest energy term; the method is trusted up to 1 %' -- run "${exc7[@]}"
-expect 0 'warning: penetration: contact 2 penetrates 0\.0467 m at t = 2\.5 s' -- run "${exc7[@]}"
+# (The run that was reported had an energy error of 38 % and 4.7 cm of penetration; with the
+# seat velocity taken at t_k+1 the same run has 11 % and 1.9 cm, still far outside the bounds.)
+expect 0 'warning: energy_balance: error [1-9][0-9.]* % of the largest energy term; the method is trusted up to 1 %' -- run "${exc7[@]}"
+expect 0 'warning: penetration: contact [1-4] penetrates 0\.0[1-9][0-9]* m at t = ' -- run "${exc7[@]}"
 expect 0 'warning: step_record: solver\.step = 0\.1 s is longer than the record.s sampling interval 0\.0025 s' -- run "${exc7[@]}"
 expect 0 'warning: step_period: solver\.step = 0\.1 s resolves the shortest natural period' -- run "${exc7[@]}"
 for w in energy_balance penetration step_period step_record; do
@@ -163,9 +170,9 @@ for w in energy_balance penetration step_period step_record; do
 done
 expect 1 'strict: 7 warning\(s\): the run is not to be trusted' -- run "${exc7[@]}" --strict
 # The record's sampling interval is its AT2 DT = 0.005 s times time_scale = 0.5.
-expect 0 'step_record: .* 0\.0025 s' -- run "$root/scenes/bridge-exc7.toml" --set solver.step=0.003 \
+expect 0 'step_record: .* 0\.0025 s' -- run "${sylmar7[@]}" --set solver.step=0.003 \
   --set solver.end_time=0.3 --out "$tmp/x"
-expect 0 'warnings   0$' -- run "$root/scenes/bridge-exc7.toml" --set solver.step=0.002 \
+expect 0 'warnings   0$' -- run "${sylmar7[@]}" --set solver.step=0.002 \
   --set solver.end_time=0.3 --out "$tmp/x"
 # Shortest period of the impact oscillator (m = 1 t, k = 1 kN/m): T = 2 pi sqrt(m/k) = 6.28 s,
 # so 20 steps per period need h <= 0.314 s.
@@ -184,19 +191,19 @@ expect 2 'bouncing-ball\.toml: the initial velocity \(1e\+160 in magnitude\) mak
 mkdir -p "$tmp/rec/ground-motions"
 cp "$root/data/ground-motions/RSN1084_NORTHR_SCS052.AT2" "$tmp/rec/ground-motions/"
 sed 's#ground-motions/RSN1084_NORTHR_SCS142.AT2#ground-motions/fifo.AT2#' \
-  "$root/scenes/bridge-exc7.toml" > "$tmp/rec/fifo.toml"
+  "$root/scenes/bridge-exc7-sylmar.toml" > "$tmp/rec/fifo.toml"
 mkfifo "$tmp/rec/ground-motions/fifo.AT2"
 expect 2 'fifo\.toml:[0-9]+:[0-9]+: model\.excitation\.transverse_record: record file "ground-motions/fifo\.AT2" not found' \
   -- run "$tmp/rec/fifo.toml" --out "$tmp/x"
 { head -n 4 "$root/data/ground-motions/RSN1084_NORTHR_SCS142.AT2"; echo "0.1 1e-400 0.2"; } \
   > "$tmp/rec/ground-motions/under.AT2"
 sed 's#ground-motions/RSN1084_NORTHR_SCS142.AT2#ground-motions/under.AT2#' \
-  "$root/scenes/bridge-exc7.toml" > "$tmp/rec/under.toml"
+  "$root/scenes/bridge-exc7-sylmar.toml" > "$tmp/rec/under.toml"
 expect 2 "under\.AT2:5: value '1e-400' is outside the range of a double" -- run "$tmp/rec/under.toml" --out "$tmp/x"
 { head -n 3 "$root/data/ground-motions/RSN1084_NORTHR_SCS142.AT2";
   echo "NPTS= 999999999, DT= 0.01 SEC"; echo "0.1 0.2"; } > "$tmp/rec/ground-motions/npts.AT2"
 sed 's#ground-motions/RSN1084_NORTHR_SCS142.AT2#ground-motions/npts.AT2#' \
-  "$root/scenes/bridge-exc7.toml" > "$tmp/rec/npts.toml"
+  "$root/scenes/bridge-exc7-sylmar.toml" > "$tmp/rec/npts.toml"
 expect 2 'npts\.AT2:5: NPTS = 999999999 \(line 4\) but 2 values found' -- run "$tmp/rec/npts.toml" --out "$tmp/x"
 expect 2 'scene file' -- run /dev/null --out "$tmp/x"
 
@@ -212,7 +219,7 @@ if command -v git >/dev/null && git -C "$root" rev-parse HEAD >/dev/null 2>&1; t
     grep -q "revision   $(git -C "$root" rev-parse --short=12 HEAD)" <<<"$("$nsb" --version)"
 fi
 # Long enough (2.2e6 steps, about 3 s) for the bar, which appears after 1 s.
-slow=("$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/slow")
+slow=("${sylmar7[@]}" --set solver.step=1e-5 --out "$tmp/slow")
 "$nsb" run "${slow[@]}" 2>"$tmp/stderr.txt" >/dev/null
 check "no progress bar when standard error is not a terminal" test ! -s "$tmp/stderr.txt"
 if command -v script >/dev/null; then

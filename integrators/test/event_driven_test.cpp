@@ -250,8 +250,9 @@ TEST_CASE("a sliding block stops without chattering at tolerances 1e-11 and 1e-1
   // again at once, until the event bound stopped the run after 4000 slips.
   for (const double tol : {1e-11, 1e-12}) {
     CAPTURE(tol);
-    Block k;
-    k.vx0 = 2.0;
+    ts::Block::Parameters kp;
+    kp.initial_velocity = 2.0;
+    ts::Block k(kp);
     ni::EventDrivenOptions o;
     o.end_time = 1.0;
     o.tolerance = tol;
@@ -261,10 +262,10 @@ TEST_CASE("a sliding block stops without chattering at tolerances 1e-11 and 1e-1
     REQUIRE(s.completed);
     const auto sticks = times_of(r, ni::EventKind::kStick);
     REQUIRE(sticks.size() == 1);
-    CHECK(std::abs(sticks[0] - k.vx0 / (k.mu * k.g)) < kTimeTol);
+    const double v0 = kp.initial_velocity, mu_g = kp.friction * kp.gravity;
+    CHECK(std::abs(sticks[0] - v0 / mu_g) < kTimeTol);
     CHECK(r.count(ni::EventKind::kSlip) <= 1);
-    CHECK(r.series("x").back() ==
-          doctest::Approx(k.vx0 * k.vx0 / (2 * k.mu * k.g)).epsilon(1e-9));
+    CHECK(r.series("x").back() == doctest::Approx(v0 * v0 / (2 * mu_g)).epsilon(1e-9));
   }
 }
 
@@ -272,8 +273,9 @@ TEST_CASE("a ball at rest on the ground makes no event after it closes") {
   // e = 0.5 from 1 m: the impacts accumulate at t_inf = sqrt(2 h / g) (1 + e) / (1 - e)
   // = 1.355 s; afterwards the ball rests: no open, impact or close for 10 s, and the gap
   // stays at 0 (the drift projection holds it to round-off of 1 m, far below 1e-12 m).
-  Ball b;
-  b.e = 0.5;
+  ts::Ball::Parameters bp;
+  bp.restitution = 0.5;
+  ts::Ball b(bp);
   ni::EventDrivenOptions o;
   o.end_time = 12.0;
   o.tolerance = 1e-10;
@@ -282,7 +284,7 @@ TEST_CASE("a ball at rest on the ground makes no event after it closes") {
   REQUIRE(s.status == ni::RunStatus::kCompleted);
   const auto closes = times_of(r, ni::EventKind::kClose);
   REQUIRE_FALSE(closes.empty());
-  CHECK(closes.front() == doctest::Approx(std::sqrt(2.0 / b.g) * 3.0).epsilon(1e-6));
+  CHECK(closes.front() == doctest::Approx(std::sqrt(2.0 / bp.gravity) * 3.0).epsilon(1e-6));
   for (const auto& e : r.events()) {
     if (e.t > closes.front()) CHECK(e.kind == ni::EventKind::kWarning);
   }
@@ -295,8 +297,9 @@ TEST_CASE("a ball at rest on the ground makes no event after it closes") {
 
 TEST_CASE("a non-finite force ends the run as diverged, never as an exception") {
   // A NaN load from the start (ramp = NaN): the first right-hand side is NaN.
-  Ball b;
-  b.ramp = std::numeric_limits<double>::quiet_NaN();
+  ts::Ball::Parameters bp;
+  bp.ramp = std::numeric_limits<double>::quiet_NaN();
+  ts::Ball b(bp);
   ni::EventDrivenOptions o;
   o.end_time = 1.0;
   ni::Recorder r(b, 0.0);
@@ -308,7 +311,7 @@ TEST_CASE("a non-finite force ends the run as diverged, never as an exception") 
 }
 
 TEST_CASE("the progress callback reaches end_time") {
-  Ball b;
+  ts::Ball b(ts::Ball::Parameters{});
   ni::EventDrivenOptions o;
   o.end_time = 2.0;
   ni::Recorder r(b, 0.0);

@@ -455,7 +455,10 @@ TEST_CASE("a non-finite force ends the run as diverged, never as an exception") 
 }
 
 TEST_CASE("the progress callback is called with increasing times up to end_time") {
-  Ball ball(0.1, 0.0, 0.0);
+  ts::Ball::Parameters bp;
+  bp.initial_height = 0.1;
+  bp.restitution = 0.0;
+  ts::Ball ball(bp);
   Recorder rec(ball, 1e9);
   MoreauJeanOptions o;
   o.step = 1e-4;

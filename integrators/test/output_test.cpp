@@ -149,7 +149,7 @@ TEST_CASE("a failed write throws naming the path and leaves no half file") {
 }
 
 TEST_CASE("write_outputs replaces an older set as a whole and keeps the user's own files") {
-  TwoBodies s;
+  TwoCorners s({});
   const Recorder rec = filled_recorder(s);
   RunResult stats;
   const auto base = fresh_dir("swap");
@@ -173,7 +173,7 @@ TEST_CASE("write_outputs replaces an older set as a whole and keeps the user's o
 }
 
 TEST_CASE("a failed write leaves the previous set as it was: never a mix of old and new") {
-  TwoBodies s;
+  TwoCorners s({});
   const Recorder rec = filled_recorder(s);
   const auto base = fresh_dir("mixed");
   const auto dir = base / "out";
