@@ -120,10 +120,15 @@ void print_summary(const models::Scene& scene, const integrators::Recorder& reco
     for (std::size_t r = 0; r < recorder.rows(); ++r) {
       peak = std::max(peak, std::abs(recorder.at(r, c)));
     }
-    std::cout << " |" << recorder.columns()[c] << "| " << peak;
+    std::cout << " |" << recorder.columns()[c] << "| "
+              << (std::isfinite(peak) ? shortest(peak) : std::string("not finite"));
   }
   std::cout << '\n';
-  std::cout << "energy     balance error " << shortest(stats.energy.error) << '\n';
+  // A diverged run's balance is not a number: say so rather than print "nan".
+  std::cout << "energy     balance error "
+            << (std::isfinite(stats.energy.error) ? shortest(stats.energy.error)
+                                                  : std::string("not finite (the run diverged)"))
+            << '\n';
   std::cout << "warnings   " << stats.warnings.size()
             << (stats.warnings.empty() ? "" : " (on standard error and in summary.json)") << '\n';
   std::cout << "wall time  " << stats.wall_time << " s ("

@@ -174,6 +174,18 @@ expect 0 'step_record: .* 0\.0025 s' -- run "${sylmar7[@]}" --set solver.step=0.
   --set solver.end_time=0.3 --out "$tmp/x"
 expect 0 'warnings   0$' -- run "${sylmar7[@]}" --set solver.step=0.002 \
   --set solver.end_time=0.3 --out "$tmp/x"
+# Outcomes of the integration (docs/run-api.md): a run whose contact problems were all solved,
+# some by the fallback chain, succeeds (exit 0); a run that cannot go on is exit 1 with its
+# status and time, and nothing prints "nan". The wedged deck (both gaps closed) left 651 of
+# 80000 problems unsolved by Lemke alone; in 2 s the chain is needed 3 times.
+expect 0 'status     completed_with_fallbacks' -- run "$root/scenes/bridge-exc7.toml" \
+  --set model.gaps.left=0 --set model.gaps.right=0 --set solver.end_time=2 --out "$tmp/x"
+expect 1 'status     stalled at t = 0 s' -- run "$root/scenes/bouncing-ball.toml" \
+  --set model.gravity=1e308 --method event_driven --out "$tmp/x"
+expect 1 'status     diverged at t = ' -- run "$root/scenes/bouncing-ball.toml" \
+  --set model.gravity=1e308 --method moreau --out "$tmp/x"
+check "a diverged run prints no nan" bash -c \
+  "! '$nsb' run '$root/scenes/bouncing-ball.toml' --set model.gravity=1e308 --method moreau --out '$tmp/x' 2>&1 | grep -qi nan"
 # Shortest period of the impact oscillator (m = 1 t, k = 1 kN/m): T = 2 pi sqrt(m/k) = 6.28 s,
 # so 20 steps per period need h <= 0.314 s.
 expect 0 'step_period: solver\.step = 0\.5 s resolves the shortest natural period 6\.28 s with 12\.6 steps; the method needs >= 20 \(solver\.step <= 0\.314 s\)' \
