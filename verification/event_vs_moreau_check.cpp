@@ -8,6 +8,7 @@
 #include "models/analytic.hpp"
 #include "models/scene.hpp"
 #include "models/simple_systems.hpp"
+#include "verification/convergence.hpp"
 
 #include <doctest/doctest.h>
 
@@ -29,26 +30,6 @@ constexpr double kSampleDt = 0.005;
 // Required agreement of the peak rotation at h = 1e-4.
 constexpr double kPeakAgreement = 0.05;
 
-// Max |a(t) - b(t)| over the sample times of a, with b interpolated linearly.
-double history_error(const ni::Recorder& a, const ni::Recorder& b, const char* column) {
-  const auto ta = a.series("t"), xa = a.series(column);
-  const auto tb = b.series("t"), xb = b.series(column);
-  double err = 0.0;
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < ta.size(); ++i) {
-    while (j + 2 < tb.size() && tb[j + 1] < ta[i]) ++j;
-    if (j + 1 >= tb.size() || ta[i] > tb.back()) break;
-    const double w = (tb[j + 1] > tb[j]) ? (ta[i] - tb[j]) / (tb[j + 1] - tb[j]) : 0.0;
-    err = std::max(err, std::abs(xa[i] - ((1.0 - w) * xb[j] + w * xb[j + 1])));
-  }
-  return err;
-}
-
-double peak_abs(const ni::Recorder& r, const char* column) {
-  double p = 0.0;
-  for (double v : r.series(column)) p = std::max(p, std::abs(v));
-  return p;
-}
 
 ni::RunResult run_event(ni::System& s, double end, double tol, ni::Recorder& r) {
   ni::EventDrivenOptions o;
@@ -87,7 +68,7 @@ TEST_CASE("bouncing ball: Moreau–Jean converges to the event-driven history") 
     nm::BouncingBall ball(p);
     ni::Recorder mj(ball, kSampleDt);
     REQUIRE(run_moreau(ball, end, h, mj).completed);
-    errors.push_back(history_error(ed, mj, "y"));
+    errors.push_back(nsb::verification::history_error(ed, mj, "y"));
     MESSAGE("ball: h = ", h, "  max |y_MJ - y_ED| = ", errors.back(), " m");
   }
   // First order in h: each decade of h gains close to a decade (at least a factor 3).
@@ -100,7 +81,7 @@ TEST_CASE("bridge, excitation 5: convergence of Moreau–Jean and agreement on p
   ni::Recorder ed(*scene.system, kSampleDt);
   const auto sed = run_event(*scene.system, kBridgeEnd, 1e-8, ed);
   REQUIRE(sed.completed);
-  const double peak_ed = peak_abs(ed, "theta");
+  const double peak_ed = nsb::verification::peak_abs(ed, "theta");
   REQUIRE(peak_ed > 0.0);
 
   std::vector<double> errors;
@@ -109,8 +90,8 @@ TEST_CASE("bridge, excitation 5: convergence of Moreau–Jean and agreement on p
     auto s = nm::load_scene(bridge_scene());
     ni::Recorder mj(*s.system, kSampleDt);
     REQUIRE(run_moreau(*s.system, kBridgeEnd, h, mj).completed);
-    errors.push_back(history_error(ed, mj, "theta"));
-    const double peak = peak_abs(mj, "theta");
+    errors.push_back(nsb::verification::history_error(ed, mj, "theta"));
+    const double peak = nsb::verification::peak_abs(mj, "theta");
     if (h == 1e-4) peak_mj_1e4 = peak;
     MESSAGE("bridge: h = ", h, "  max |theta_MJ - theta_ED| = ", errors.back(),
             " rad, peak |theta| MJ = ", peak, ", ED = ", peak_ed);
@@ -130,7 +111,7 @@ TEST_CASE("bridge, excitation 5: convergence of Moreau–Jean and agreement on p
     auto s = nm::load_scene(bridge_scene(), v.overrides);
     ni::Recorder r(*s.system, kSampleDt);
     REQUIRE(run_event(*s.system, kBridgeEnd, v.tolerance, r).completed);
-    peaks.push_back(peak_abs(r, "theta"));
+    peaks.push_back(nsb::verification::peak_abs(r, "theta"));
   }
   const auto [lo, hi] = std::minmax_element(peaks.begin(), peaks.end());
   MESSAGE("bridge: event-driven peak |theta| spread over perturbations = ", *hi - *lo,

@@ -14,6 +14,7 @@
 #include "models/analytic.hpp"
 #include "models/rigid_deck.hpp"
 #include "models/simple_systems.hpp"
+#include "verification/convergence.hpp"
 
 #include <doctest/doctest.h>
 
@@ -29,27 +30,8 @@ namespace na = nsb::models::analytic;
 
 namespace {
 
-struct Fit {
-  double slope = 0.0;     // p
-  double constant = 0.0;  // C
-};
-
-// Least-squares line through (log x, log e).
-Fit fit(const std::vector<double>& x, const std::vector<double>& e) {
-  const double n = static_cast<double>(x.size());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double lx = std::log(x[i]), ly = std::log(e[i]);
-    sx += lx;
-    sy += ly;
-    sxx += lx * lx;
-    sxy += lx * ly;
-  }
-  Fit f;
-  f.slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  f.constant = std::exp((sy - f.slope * sx) / n);
-  return f;
-}
+using Fit = nsb::verification::PowerFit;
+constexpr auto fit = nsb::verification::fit_power_law;
 
 void report(const char* name, const char* parameter, const std::vector<double>& x,
             const std::vector<double>& e, const Fit& f) {

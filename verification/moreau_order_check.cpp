@@ -5,6 +5,7 @@
 // order. The measured errors are in docs/moreau-jean.md ("Convergence on the bridge").
 #include "integrators/run.hpp"
 #include "models/scene.hpp"
+#include "verification/convergence.hpp"
 
 #include <doctest/doctest.h>
 
@@ -26,41 +27,6 @@ constexpr double kWindow5 = 6.0;
 // Least order accepted.
 constexpr double kOrderMin = 0.85;  // measured 1.01 .. 1.32 (docs/moreau-jean.md)
 const std::array<const char*, 3> kColumns = {"x", "y", "theta"};
-
-// Max |a(t) - b(t)| over the sample times of a, with b interpolated linearly.
-double history_error(const ni::Recorder& a, const ni::Recorder& b, const char* column) {
-  const auto ta = a.series("t"), xa = a.series(column);
-  const auto tb = b.series("t"), xb = b.series(column);
-  double err = 0.0;
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < ta.size(); ++i) {
-    while (j + 2 < tb.size() && tb[j + 1] < ta[i]) ++j;
-    if (j + 1 >= tb.size() || ta[i] > tb.back()) break;
-    const double w = (tb[j + 1] > tb[j]) ? (ta[i] - tb[j]) / (tb[j + 1] - tb[j]) : 0.0;
-    err = std::max(err, std::abs(xa[i] - ((1.0 - w) * xb[j] + w * xb[j + 1])));
-  }
-  return err;
-}
-
-double peak_abs(const ni::Recorder& r, const char* column) {
-  double p = 0.0;
-  for (double v : r.series(column)) p = std::max(p, std::abs(v));
-  return p;
-}
-
-// Least-squares slope of log(e) against log(h).
-double order(const std::vector<double>& h, const std::vector<double>& e) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(h.size());
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    const double x = std::log(h[i]), y = std::log(e[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
 
 struct Study {
   std::vector<double> steps;
@@ -86,7 +52,7 @@ Study study(const std::string& scene_file, double end_time) {
     mo.step = h;
     REQUIRE(ni::succeeded(ni::integrate(*scene.system, mo, mj).status));
     for (std::size_t c = 0; c < kColumns.size(); ++c) {
-      s.relative[c].push_back(history_error(mj, ref, kColumns[c]) / peak_abs(ref, kColumns[c]));
+      s.relative[c].push_back(nsb::verification::history_error(mj, ref, kColumns[c]) / nsb::verification::peak_abs(ref, kColumns[c]));
       MESSAGE(scene_file, " h = ", h, " ", std::string(kColumns[c]), ": relative error ",
               s.relative[c].back());
     }
@@ -99,7 +65,7 @@ Study study(const std::string& scene_file, double end_time) {
 TEST_CASE("bridge, excitation 7: first order, and within 1 % of the peak at h = 1e-4") {
   const Study s = study("bridge-exc7.toml", kWindow7);
   for (std::size_t c = 0; c < kColumns.size(); ++c) {
-    const double p = order(s.steps, s.relative[c]);
+    const double p = nsb::verification::fit_power_law(s.steps, s.relative[c]).slope;
     MESSAGE("excitation 7, ", std::string(kColumns[c]), ": order ", p);
     CHECK(p >= kOrderMin);
     CHECK(s.relative[c][2] <= 0.01);
@@ -109,7 +75,7 @@ TEST_CASE("bridge, excitation 7: first order, and within 1 % of the peak at h = 
 TEST_CASE("bridge, excitation 5: first order") {
   const Study s = study("bridge-exc5.toml", kWindow5);
   for (std::size_t c = 0; c < kColumns.size(); ++c) {
-    const double p = order(s.steps, s.relative[c]);
+    const double p = nsb::verification::fit_power_law(s.steps, s.relative[c]).slope;
     MESSAGE("excitation 5, ", std::string(kColumns[c]), ": order ", p);
     CHECK(p >= kOrderMin);
   }
