@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Setup and the whole test suite: installs dependencies, builds with warnings as errors, runs
-# every CTest test (unit, verification, and the benchmark smoke tests they gate), then builds
-# with AddressSanitizer and UndefinedBehaviorSanitizer and runs the unit tests again, then
-# builds the libFuzzer targets with clang and runs each for 60 s (docs/fuzzing.md), failing on
-# any crash, leak, hang or sanitizer report.
+# every CTest test (unit, verification, CLI, MPI, and the benchmark and figure tests they
+# gate), then builds with clang, AddressSanitizer and UndefinedBehaviorSanitizer, runs the unit
+# tests again and runs each libFuzzer target for 60 s (docs/fuzzing.md), failing on any crash,
+# leak, hang or sanitizer report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -14,12 +14,13 @@ cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
 if [[ "${NSB_SKIP_SANITIZERS:-0}" != "1" ]]; then
-  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DNSB_SANITIZE=ON -DNSB_WARNINGS_AS_ERRORS=ON \
-    -DNSB_BUILD_BENCHMARKS=OFF >/dev/null
-  cmake --build build-asan -j "$jobs" --target nsb_unit_tests
-  ctest --test-dir build-asan --output-on-failure -j "$jobs" -L unit
-fi
-
-if [[ "${NSB_SKIP_FUZZ:-0}" != "1" ]]; then
-  bash fuzz/run.sh "${NSB_FUZZ_SECONDS:-60}"
+  # One clang build instruments every library with ASan, UBSan and libFuzzer's coverage
+  # (build-fuzz/, docs/fuzzing.md): it runs the unit tests under the sanitizers, then each
+  # fuzz target for 60 s.
+  bash fuzz/run.sh --configure
+  cmake --build build-fuzz -j "$jobs" --target nsb_unit_tests
+  ctest --test-dir build-fuzz --output-on-failure -j "$jobs" -L unit
+  if [[ "${NSB_SKIP_FUZZ:-0}" != "1" ]]; then
+    bash fuzz/run.sh "${NSB_FUZZ_SECONDS:-60}"
+  fi
 fi
