@@ -30,6 +30,10 @@ void run_figures(const paper_figures::FigureOptions& o) {
               << " samples (share " << sh.share << " +- " << sh.standard_error << "), " << flips
               << " one-at-a-time flips\n";
   }
+  for (const auto& f : u.failed) {
+    std::cout << "uncertainty: run did not complete (its claims are not evaluated there): " << f
+              << '\n';
+  }
   for (const auto& f : res.failed) std::cout << "failed run " << f << '\n';
   for (const auto& f : res.plot_errors) std::cout << "failed plot " << f << '\n';
   if (!res.succeeded()) {

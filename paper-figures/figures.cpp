@@ -238,19 +238,10 @@ Setup setup(bool quick) {
   return s;
 }
 
-const std::vector<std::string> kNoPounding{"model.gaps.left=1.0", "model.gaps.right=1.0"};
-const std::vector<std::string> kNoFriction{"model.seats.friction=0.0"};
-
 std::vector<RunSpec> bridge_runs(const Setup& s) {
   std::vector<RunSpec> v;
   v.push_back({"exc5-moreau", exc(kExample), {"solver.method=moreau"}});
   v.push_back({"exc5-event", exc(kExample), {"solver.method=event_driven"}});
-  for (int n : s.pga_runs) {
-    if (n != kExample) v.push_back({"exc" + std::to_string(n) + "-moreau", exc(n), {}});
-    std::vector<std::string> o = kNoPounding;
-    v.push_back({"exc" + std::to_string(n) + "-no-pounding", exc(n), o});
-  }
-  for (int n : s.mu0_runs) v.push_back({"exc" + std::to_string(n) + "-mu0", exc(n), kNoFriction});
   for (double f : s.factors) {
     std::vector<std::string> o{"solver.method=compliance",
                                "solver.stiffness_factor=" + factor_name(f)};
@@ -373,10 +364,6 @@ std::string fig7(const fs::path& dir, const Recorder& mj,
 
 // ---------------------------------------------------------------------------------------------
 // Fig. 6 and claims C1, C2, C3.
-
-double scene_pga(const RunOutput& r, bool transverse) {
-  return input_pga(*r.scene->system, transverse);
-}
 
 std::string fig6(const fs::path& dir, const std::vector<Peaks>& peaks, const std::string& gp) {
   Table t{{"run", "pga_transverse_g", "pga_longitudinal_g", "peak_theta_pounding", "peak_theta_mu0",
@@ -716,38 +703,39 @@ FigureResult make_figures(const FigureOptions& options) {
   draw("fig3-response", fig3(dir, *mj.recorder, *ed.recorder, gp));
   draw("fig4-omega", fig4(dir, *mj.recorder, *ed.recorder, longest, gp));
 
-  // Fig. 6, C1-C3.
-  std::vector<Peaks> peaks;
-  std::vector<const RunOutput*> pga_runs, mu_runs;
-  for (int n : s.pga_runs) {
-    const std::string p = "exc" + std::to_string(n);
-    const auto& pr = find(runs, n == kExample ? "exc5-moreau" : p + "-moreau");
-    const auto& fr = find(runs, p + "-no-pounding");
-    Peaks pk{n, scene_pga(pr, true), scene_pga(pr, false), peak(*pr.recorder, "theta")};
-    pk.free = peak(*fr.recorder, "theta");
-    pk.impacts = impacts(*pr.recorder);
-    pk.impacts_free = impacts(*fr.recorder);
-    if (std::find(s.mu0_runs.begin(), s.mu0_runs.end(), n) != s.mu0_runs.end()) {
-      pk.mu0 = peak(*find(runs, p + "-mu0").recorder, "theta");
+  // Fig. 6, C1-C3: one sweep over the runs with and without pounding and with mu = 0.
+  const Fig6Sweep f6 =
+      fig6_sweep(scenes, dir / "fig6-sweep", s.pga_runs, s.mu0_runs, options.workers);
+  res.runs += f6.runs;
+  res.failed.insert(res.failed.end(), f6.failed.begin(), f6.failed.end());
+  draw("fig6-peak-rotation", fig6(dir, f6.peaks, gp));
+  // A claim's runs from the sweep: their names, and "not evaluated" when one did not complete.
+  auto use_sweep_runs = [&](Claim& c, const std::vector<std::string>& names) {
+    for (const auto& n : names) {
+      c.runs.push_back("fig6-sweep/" + n);
+      const auto it = f6.status.find(n);
+      const std::string st = it == f6.status.end() ? "not run" : it->second;
+      if (st != "completed" && st != "completed_with_fallbacks") {
+        c.failure += (c.failure.empty() ? "" : "; ") + n + ": " + st;
+      }
     }
-    peaks.push_back(pk);
-    pga_runs.push_back(&pr);
-    pga_runs.push_back(&fr);
+  };
+  std::vector<std::string> mu_runs, with_pounding, pga_runs;
+  for (const auto& r : fig6_runs(s.pga_runs, s.mu0_runs)) {
+    if (r.mu0) {
+      mu_runs.push_back("exc" + std::to_string(r.excitation));
+      mu_runs.push_back(r.name);
+      continue;
+    }
+    pga_runs.push_back(r.name);
+    if (r.pounding) with_pounding.push_back(r.name);
   }
-  for (int n : s.mu0_runs) {
-    const std::string p = "exc" + std::to_string(n);
-    mu_runs.push_back(&find(runs, n == kExample ? "exc5-moreau" : p + "-moreau"));
-    mu_runs.push_back(&find(runs, p + "-mu0"));
-  }
-  draw("fig6-peak-rotation", fig6(dir, peaks, gp));
-  std::vector<const RunOutput*> with_pounding;
-  for (std::size_t i = 0; i < pga_runs.size(); i += 2) with_pounding.push_back(pga_runs[i]);
-  res.claims.push_back(claim_c1(peaks));
-  use_runs(res.claims.back(), mu_runs);
-  res.claims.push_back(claim_c2(peaks));
-  use_runs(res.claims.back(), with_pounding);
-  res.claims.push_back(claim_c3(peaks));
-  use_runs(res.claims.back(), pga_runs);
+  res.claims.push_back(claim_c1(f6.peaks));
+  use_sweep_runs(res.claims.back(), mu_runs);
+  res.claims.push_back(claim_c2(f6.peaks));
+  use_sweep_runs(res.claims.back(), with_pounding);
+  res.claims.push_back(claim_c3(f6.peaks));
+  use_sweep_runs(res.claims.back(), pga_runs);
 
   // Fig. 7, C4.
   std::vector<std::pair<double, const Recorder*>> k;
@@ -811,8 +799,6 @@ FigureResult make_figures(const FigureOptions& options) {
   uo.workers = options.workers;
   res.uncertainty = run_uncertainty(uo);
   res.runs += res.uncertainty.runs;
-  res.failed.insert(res.failed.end(), res.uncertainty.failed.begin(),
-                    res.uncertainty.failed.end());
   res.plot_errors.insert(res.plot_errors.end(), res.uncertainty.plot_errors.begin(),
                          res.uncertainty.plot_errors.end());
   res.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -31,7 +31,9 @@ struct FigureResult {
   int runs = 0;                       // integrations performed
   std::vector<std::string> failed;    // "<run>: <status> at t = <s>" for each failed run
   std::vector<std::string> plot_errors;  // figures gnuplot did not draw
-  UncertaintyResult uncertainty;      // the verdicts over the assumed values' ranges
+  // The verdicts over the assumed values' ranges. Its failed runs are outcomes at points of
+  // the plausible space (the claims there are not evaluated); they are not in `failed`.
+  UncertaintyResult uncertainty;
   double wall_time = 0.0;             // [s]
   bool succeeded() const { return failed.empty() && plot_errors.empty(); }
 };

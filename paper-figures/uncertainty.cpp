@@ -26,6 +26,13 @@ namespace nsb::paper_figures {
 namespace fs = std::filesystem;
 using sweep::format_number;
 
+namespace {
+// The excitations of the study's claims: those of --quick's Fig. 6 (runs 6 and 7 have the same
+// input, so C2's fit has four distinct PGAs in either set).
+const std::vector<int> kStudyPgaRuns{1, 3, 5, 7};
+const std::vector<int> kStudyMu0Runs{kExampleRun, kStrongestRun};
+}  // namespace
+
 // ---------------------------------------------------------------------------------------------
 // The assumptions and their plausible ranges (docs/bridge.md, "Assumed"; the reasons are
 // repeated in docs/paper-figures.md, "Uncertainty of the verdicts"). None is tuned to a result.
@@ -68,14 +75,19 @@ std::vector<double> nominal_point() {
   return v;
 }
 
+std::vector<ClaimRun> fig6_runs(const std::vector<int>& pga_runs,
+                                const std::vector<int>& mu0_runs) {
+  std::vector<ClaimRun> r;
+  for (int n : pga_runs) {
+    r.push_back({"exc" + std::to_string(n), n, true, false});
+    r.push_back({"exc" + std::to_string(n) + "-no-pounding", n, false, false});
+  }
+  for (int n : mu0_runs) r.push_back({"exc" + std::to_string(n) + "-mu0", n, true, true});
+  return r;
+}
+
 const std::vector<ClaimRun>& claim_runs() {
-  static const std::vector<ClaimRun> r{
-      {"exc1", 1, true, false},  {"exc1-no-pounding", 1, false, false},
-      {"exc3", 3, true, false},  {"exc3-no-pounding", 3, false, false},
-      {"exc5", 5, true, false},  {"exc5-no-pounding", 5, false, false},
-      {"exc7", 7, true, false},  {"exc7-no-pounding", 7, false, false},
-      {"exc5-mu0", 5, true, true}, {"exc7-mu0", 7, true, true},
-  };
+  static const std::vector<ClaimRun> r = fig6_runs(kStudyPgaRuns, kStudyMu0Runs);
   return r;
 }
 
@@ -234,17 +246,19 @@ const std::map<std::string, std::vector<std::string>> kClaimRuns{
 // The run the tornado chart shows: run 7 with pounding; its response column.
 const std::string kTornadoRun = "exc7";
 const std::string kTornadoResponse = "peak_theta";
-// The hypercube's size: 30 samples give each share a standard error of at most 0.09
-// (sqrt(0.25 / 30)) and keep the full set under 10 minutes on 2 shared cores; --quick draws 2,
+// The hypercube's size: 24 samples give each share a standard error of at most 0.10
+// (sqrt(0.25 / 24)) and keep the full set under 10 minutes on 2 shared cores; --quick draws 2,
 // enough to exercise the path and the checker, not to estimate a share.
-constexpr std::size_t kSamplesFull = 30, kSamplesQuick = 2;
+constexpr std::size_t kSamplesFull = 24, kSamplesQuick = 2;
 // --quick integrates the study's runs over the first 20 s of the 40 s record, which hold its
 // strong phase (4.1-12.4 s), at half the cost.
 constexpr double kQuickEndTime = 20.0;  // [s]
 
-SceneTargets scene_targets(const fs::path& scenes) {
+SceneTargets scene_targets(const fs::path& scenes, const std::vector<ClaimRun>& runs) {
   SceneTargets t;
-  for (const auto& r : claim_runs()) {
+  std::vector<ClaimRun> all = runs;
+  all.push_back({"base", kBaseExcitation, true, false});
+  for (const auto& r : all) {
     const fs::path file = scenes / ("bridge-exc" + std::to_string(r.excitation) + ".toml");
     toml::table root;
     try {
@@ -290,7 +304,7 @@ struct Point {
 // columns: point, run, then one per assumption.
 sweep::Design make_design(const std::string& name, const fs::path& base_scene,
                           const std::vector<Point>& points, const SceneTargets& targets,
-                          double end_time,
+                          double end_time, const std::vector<ClaimRun>& claim_set,
                           const std::function<bool(const Point&, const ClaimRun&)>& wanted) {
   sweep::Design d;
   d.file = base_scene;
@@ -301,7 +315,7 @@ sweep::Design make_design(const std::string& name, const fs::path& base_scene,
   for (const auto& a : assumptions()) d.factors.push_back({a.key, {}, std::nullopt, 0});
   std::size_t id = 0;
   for (const auto& p : points) {
-    for (const auto& r : claim_runs()) {
+    for (const auto& r : claim_set) {
       if (!wanted(p, r)) continue;
       sweep::Run run;
       std::ostringstream s;
@@ -338,7 +352,8 @@ double number_or_nan(const std::string& s) {
   }
 }
 
-Rows run_design(const sweep::Design& d, const fs::path& dir, int workers, UncertaintyResult& res) {
+Rows run_design(const sweep::Design& d, const fs::path& dir, int workers, int& runs,
+                std::vector<std::string>& failed) {
   sweep::SweepOptions o;
   o.out = dir;
   o.jobs = workers;
@@ -347,7 +362,7 @@ Rows run_design(const sweep::Design& d, const fs::path& dir, int workers, Uncert
   sweep::Plan plan = sweep::prepare(d, o);
   sweep::run_threaded(d, o, plan, workers, {});
   sweep::write_results(d, o, plan.rows);
-  res.runs += static_cast<int>(plan.pending.size());
+  runs += static_cast<int>(plan.pending.size());
   const sweep::Table t = sweep::read_csv(dir / "results.csv");
   const std::size_t point = t.column("point"), run = t.column("claim_run"),
                     status = t.column("status"), peak = t.column(kTornadoResponse),
@@ -360,7 +375,7 @@ Rows run_design(const sweep::Design& d, const fs::path& dir, int workers, Uncert
     r.impacts = static_cast<std::size_t>(std::max(0.0, number_or_nan(f[impacts])));
     r.end_time = number_or_nan(f[end]);
     r.dir = dir / "runs" / f[0];
-    if (!r.ok()) res.failed.push_back(dir.filename().string() + " " + f[0] + " (" + f[point] +
+    if (!r.ok()) failed.push_back(dir.filename().string() + " " + f[0] + " (" + f[point] +
                                       ", " + f[run] + "): " + r.status);
     rows[f[point]][f[run]] = r;
   }
@@ -415,24 +430,52 @@ SlidingState sliding_state(const RunRow& r, double mu, std::string& failure) {
 
 // The claims at one point, from its runs. A claim whose runs did not all complete is not
 // evaluated.
-std::vector<Claim> judge(const std::map<std::string, RunRow>& runs, double mu,
-                         const std::map<int, double>& pga) {
+// The input PGAs [g] of an excitation, transverse and longitudinal, as the nominal scene's
+// motions have them (Fig. 6's abscissa and C2's).
+using InputPga = std::map<int, std::array<double, 2>>;
+InputPga input_pgas(const fs::path& scenes, const std::vector<int>& excitations) {
+  InputPga pga;
+  for (int n : excitations) {
+    const auto scene =
+        models::load_scene(scenes / ("bridge-exc" + std::to_string(n) + ".toml"));
+    pga[n] = {input_pga(*scene.system, true), input_pga(*scene.system, false)};
+  }
+  return pga;
+}
+
+// The peaks of Fig. 6 at one point, from the rows of its runs (runs that were not made leave
+// their numbers at the defaults; the claims then say which run is missing).
+std::vector<Peaks> peaks_of(const std::map<std::string, RunRow>& runs,
+                            const std::vector<int>& excitations, const InputPga& pga) {
   auto get = [&](const std::string& name) -> const RunRow* {
     const auto it = runs.find(name);
     return it == runs.end() ? nullptr : &it->second;
   };
   std::vector<Peaks> peaks;
-  for (int n : {1, 3, 5, 7}) {
+  for (int n : excitations) {
     const std::string e = "exc" + std::to_string(n);
     const RunRow *p = get(e), *f = get(e + "-no-pounding"), *m = get(e + "-mu0");
     Peaks pk;
     pk.run = n;
-    pk.pga_y = pga.at(n);
+    pk.pga_y = pga.at(n)[0];
+    pk.pga_x = pga.at(n)[1];
     if (p != nullptr) pk.pounding = p->peak_theta, pk.impacts = p->impacts;
     if (f != nullptr) pk.free = f->peak_theta, pk.impacts_free = f->impacts;
     if (m != nullptr) pk.mu0 = m->peak_theta;
     peaks.push_back(pk);
   }
+  return peaks;
+}
+
+// The claims at one point, from its runs. A claim whose runs did not all complete is not
+// evaluated.
+std::vector<Claim> judge(const std::map<std::string, RunRow>& runs, double mu,
+                         const InputPga& pga) {
+  auto get = [&](const std::string& name) -> const RunRow* {
+    const auto it = runs.find(name);
+    return it == runs.end() ? nullptr : &it->second;
+  };
+  const std::vector<Peaks> peaks = peaks_of(runs, kStudyPgaRuns, pga);
   std::vector<Claim> claims;
   for (const auto& id : kStudyClaims) {
     Claim c;
@@ -511,17 +554,10 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   UncertaintyResult res;
   res.claims = kStudyClaims;
-  const SceneTargets targets = scene_targets(options.scenes);
+  const SceneTargets targets = scene_targets(options.scenes, claim_runs());
   const fs::path base_scene =
       options.scenes / ("bridge-exc" + std::to_string(kBaseExcitation) + ".toml");
-  // The transverse PGA of each excitation as the nominal figures read it (C2's abscissa).
-  std::map<int, double> pga;
-  for (int n : {1, 3, 5, 7}) {
-    pga[n] = input_pga(
-        *models::load_scene(options.scenes / ("bridge-exc" + std::to_string(n) + ".toml"))
-             .system,
-        true);
-  }
+  const InputPga pga = input_pgas(options.scenes, kStudyPgaRuns);
   const fs::path work = options.out / "uncertainty";
   fs::create_directories(work);
   const auto& as = assumptions();
@@ -543,13 +579,14 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
   const bool quick = options.quick;
   const double end_time = quick ? kQuickEndTime : 0.0;
   const sweep::Design oat_design = make_design(
-      "oat", base_scene, oat, targets, end_time, [&](const Point& p, const ClaimRun& r) {
+      "oat", base_scene, oat, targets, end_time, claim_runs(),
+      [&](const Point& p, const ClaimRun& r) {
         if (r.name == kTornadoRun) return true;
         if (quick) return false;
         return p.assumption.empty() || p.values[index_of(p.assumption)] !=
                                            as[index_of(p.assumption)].nominal;
       });
-  const Rows oat_rows = run_design(oat_design, work / "oat", options.workers, res);
+  const Rows oat_rows = run_design(oat_design, work / "oat", options.workers, res.runs, res.failed);
 
   // The tornado chart: run 7's rows, drawn by the sweep's tornado plot.
   {
@@ -638,9 +675,10 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
     lhs.push_back(std::move(p));
   }
   const sweep::Design lhs_design =
-      make_design("latin", base_scene, lhs, targets, end_time,
+      make_design("latin", base_scene, lhs, targets, end_time, claim_runs(),
                   [](const Point&, const ClaimRun&) { return true; });
-  const Rows lhs_rows = run_design(lhs_design, work / "latin", options.workers, res);
+  const Rows lhs_rows =
+      run_design(lhs_design, work / "latin", options.workers, res.runs, res.failed);
   std::map<std::string, std::vector<Verdict>> verdicts;
   std::string lhs_csv;
   for (const auto& p : lhs) {
@@ -663,6 +701,26 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
   sweep::write_file_atomically(options.out / "uncertainty.json", uncertainty_json(res));
   sweep::write_file_atomically(options.out / "uncertainty.md", uncertainty_markdown(res, quick));
   return res;
+}
+
+Fig6Sweep fig6_sweep(const fs::path& scenes, const fs::path& dir,
+                     const std::vector<int>& pga_runs, const std::vector<int>& mu0_runs,
+                     int workers) {
+  if (workers < 1) throw std::invalid_argument("workers: must be >= 1");
+  const std::vector<ClaimRun> runs = fig6_runs(pga_runs, mu0_runs);
+  const SceneTargets targets = scene_targets(scenes, runs);
+  const std::vector<Point> nominal{
+      {"nominal", nominal_point(), std::vector<std::string>(assumptions().size()), "", ""}};
+  const sweep::Design d = make_design(
+      "fig6", scenes / ("bridge-exc" + std::to_string(kBaseExcitation) + ".toml"), nominal,
+      targets, 0.0, runs, [](const Point&, const ClaimRun&) { return true; });
+  Fig6Sweep out;
+  const Rows rows = run_design(d, dir, workers, out.runs, out.failed);
+  fs::remove_all(dir / "runs");
+  const auto& point = rows.at("nominal");
+  out.peaks = peaks_of(point, pga_runs, input_pgas(scenes, pga_runs));
+  for (const auto& [name, r] : point) out.status[name] = r.status;
+  return out;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -801,7 +859,8 @@ std::string uncertainty_markdown(const UncertaintyResult& r, bool quick) {
       << a.reason << " |\n";
   }
   if (!r.failed.empty()) {
-    s << "\nRuns that did not complete (their claims are not evaluated):\n\n";
+    s << "\nRuns that did not complete (the claims that use them are not evaluated at their "
+         "point):\n\n";
     for (const auto& f : r.failed) s << "- " << f << "\n";
   }
   return s.str();
