@@ -375,8 +375,9 @@ Rows run_design(const sweep::Design& d, const fs::path& dir, int workers, int& r
     r.impacts = static_cast<std::size_t>(std::max(0.0, number_or_nan(f[impacts])));
     r.end_time = number_or_nan(f[end]);
     r.dir = dir / "runs" / f[0];
-    if (!r.ok()) failed.push_back(dir.filename().string() + " " + f[0] + " (" + f[point] +
-                                      ", " + f[run] + "): " + r.status);
+    if (!r.ok())
+      failed.push_back(dir.filename().string() + " " + f[0] + " (" + f[point] + ", " + f[run] +
+                       "): " + r.status);
     rows[f[point]][f[run]] = r;
   }
   return rows;
@@ -436,8 +437,7 @@ using InputPga = std::map<int, std::array<double, 2>>;
 InputPga input_pgas(const fs::path& scenes, const std::vector<int>& excitations) {
   InputPga pga;
   for (int n : excitations) {
-    const auto scene =
-        models::load_scene(scenes / ("bridge-exc" + std::to_string(n) + ".toml"));
+    const auto scene = models::load_scene(scenes / ("bridge-exc" + std::to_string(n) + ".toml"));
     pga[n] = {input_pga(*scene.system, true), input_pga(*scene.system, false)};
   }
   return pga;
@@ -578,14 +578,14 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
   // they would repeat the base point's.
   const bool quick = options.quick;
   const double end_time = quick ? kQuickEndTime : 0.0;
-  const sweep::Design oat_design = make_design(
-      "oat", base_scene, oat, targets, end_time, claim_runs(),
-      [&](const Point& p, const ClaimRun& r) {
-        if (r.name == kTornadoRun) return true;
-        if (quick) return false;
-        return p.assumption.empty() || p.values[index_of(p.assumption)] !=
-                                           as[index_of(p.assumption)].nominal;
-      });
+  const sweep::Design oat_design =
+      make_design("oat", base_scene, oat, targets, end_time, claim_runs(),
+                  [&](const Point& p, const ClaimRun& r) {
+                    if (r.name == kTornadoRun) return true;
+                    if (quick) return false;
+                    return p.assumption.empty() ||
+                           p.values[index_of(p.assumption)] != as[index_of(p.assumption)].nominal;
+                  });
   const Rows oat_rows = run_design(oat_design, work / "oat", options.workers, res.runs, res.failed);
 
   // The tornado chart: run 7's rows, drawn by the sweep's tornado plot.
@@ -618,8 +618,16 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
     sweep::write_file_atomically(work / "tornado-runs.csv", csv);
     sweep::PlotOptions po;
     po.response = kTornadoResponse;
-    res.tornado = sweep::tornado_bars(t, po);
-    if (!res.tornado.empty()) res.tornado_base = res.tornado.front().base;
+    auto peak7 = [&](const std::string& point) {
+      const auto p = oat_rows.find(point);
+      if (p == oat_rows.end()) return std::nan("");
+      const auto r = p->second.find(kTornadoRun);
+      return r == p->second.end() || !r->second.ok() ? std::nan("") : r->second.peak_theta;
+    };
+    res.tornado_base = peak7("nominal");
+    for (const auto& b : sweep::tornado_bars(t, po)) {
+      res.tornado.push_back({b.factor, peak7(b.factor + "-low"), peak7(b.factor + "-high")});
+    }
     try {
       sweep::draw_plots(work / "tornado-runs.csv", work / "plots", po);
       for (const char* ext : {".png", ".svg", ".csv"}) {
@@ -643,8 +651,8 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
     const double mu = p.values[index_of("friction")];
     const auto claims = judge(it->second, mu, pga);
     if (cols.empty()) cols = check_columns(claims);
-    OatPoint op{p.assumption, p.end, p.assumption.empty() ? 0.0 : p.values[index_of(p.assumption)],
-                {}};
+    OatPoint op{
+        p.assumption, p.end, p.assumption.empty() ? 0.0 : p.values[index_of(p.assumption)], {}};
     for (const auto& c : claims) op.verdicts[c.id] = verdict_of(c);
     if (p.assumption.empty()) res.nominal = op.verdicts;
     res.oat.push_back(op);
@@ -703,17 +711,16 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
   return res;
 }
 
-Fig6Sweep fig6_sweep(const fs::path& scenes, const fs::path& dir,
-                     const std::vector<int>& pga_runs, const std::vector<int>& mu0_runs,
-                     int workers) {
+Fig6Sweep fig6_sweep(const fs::path& scenes, const fs::path& dir, const std::vector<int>& pga_runs,
+                     const std::vector<int>& mu0_runs, int workers) {
   if (workers < 1) throw std::invalid_argument("workers: must be >= 1");
   const std::vector<ClaimRun> runs = fig6_runs(pga_runs, mu0_runs);
   const SceneTargets targets = scene_targets(scenes, runs);
   const std::vector<Point> nominal{
       {"nominal", nominal_point(), std::vector<std::string>(assumptions().size()), "", ""}};
-  const sweep::Design d = make_design(
-      "fig6", scenes / ("bridge-exc" + std::to_string(kBaseExcitation) + ".toml"), nominal,
-      targets, 0.0, runs, [](const Point&, const ClaimRun&) { return true; });
+  const sweep::Design d =
+      make_design("fig6", scenes / ("bridge-exc" + std::to_string(kBaseExcitation) + ".toml"),
+                  nominal, targets, 0.0, runs, [](const Point&, const ClaimRun&) { return true; });
   Fig6Sweep out;
   const Rows rows = run_design(d, dir, workers, out.runs, out.failed);
   fs::remove_all(dir / "runs");
@@ -751,6 +758,15 @@ std::string short_number(double v) {
 }
 
 const Assumption& assumption(const std::string& key) { return assumptions()[index_of(key)]; }
+
+// " (+12 %)": v relative to base, rounded to a percent; empty when either is missing.
+std::string percent(double v, double base) {
+  const double p = 100.0 * (v / base - 1.0);
+  if (!std::isfinite(p)) return "";
+  std::ostringstream s;
+  s << " (" << (p >= 0 ? "+" : "") << std::lround(p) << " %)";
+  return s.str();
+}
 
 }  // namespace
 
@@ -792,10 +808,9 @@ std::string uncertainty_json(const UncertaintyResult& r) {
     << ", \"base\": " << json_number(r.tornado_base) << ", \"bars\": [";
   for (std::size_t i = 0; i < r.tornado.size(); ++i) {
     const auto& b = r.tornado[i];
-    s << (i ? ",\n   " : "\n   ") << "{\"assumption\": " << json_string(b.factor)
-      << ", \"least\": " << json_number(b.low) << ", \"least_at\": " << json_string(b.low_level)
-      << ", \"largest\": " << json_number(b.high)
-      << ", \"largest_at\": " << json_string(b.high_level) << "}";
+    s << (i ? ",\n   " : "\n   ") << "{\"assumption\": " << json_string(b.assumption)
+      << ", \"low_end\": " << json_number(b.low_end)
+      << ", \"high_end\": " << json_number(b.high_end) << "}";
   }
   s << "]}}\n";
   return s.str();
@@ -806,8 +821,8 @@ std::string uncertainty_markdown(const UncertaintyResult& r, bool quick) {
   s << "# Uncertainty of the verdicts\n\n"
     << "The assumed values over their plausible ranges (docs/paper-figures.md, \"Uncertainty of "
        "the verdicts\"): "
-    << r.runs << " runs, " << std::fixed << std::setprecision(0) << r.wall_time
-    << " s wall time.\n" << std::defaultfloat;
+    << r.runs << " runs, " << std::fixed << std::setprecision(0) << r.wall_time << " s wall time.\n"
+    << std::defaultfloat;
   s << "\n## Share of the plausible space in which each claim holds\n\n"
     << "Latin hypercube of " << r.samples
     << " samples over every assumption at once (uncertainty.csv). C4 and C5 (compliance "
@@ -843,14 +858,14 @@ std::string uncertainty_markdown(const UncertaintyResult& r, bool quick) {
     }
   }
   s << "\n## Tornado: peak rotation of run 7, one assumption at a time\n\n"
-    << "Nominal: " << short_number(r.tornado_base)
-    << " rad (uncertainty-tornado.png).\n\n"
-    << "| assumption | least peak [rad] (at) | largest peak [rad] (at) | swing [rad] |\n"
+    << "Nominal: " << short_number(r.tornado_base) << " rad (uncertainty-tornado.png).\n\n"
+    << "| assumption | range | peak at the low end [rad] | at the high end [rad] |\n"
     << "|---|---|---|---|\n";
   for (const auto& b : r.tornado) {
-    s << "| " << assumption(b.factor).name << " | " << short_number(b.low) << " (" << b.low_level
-      << ") | " << short_number(b.high) << " (" << b.high_level << ") | "
-      << short_number(b.high - b.low) << " |\n";
+    const auto& a = assumption(b.assumption);
+    s << "| " << a.name << " | " << short_number(a.low) << " ... " << short_number(a.high) << " "
+      << a.unit << " | " << short_number(b.low_end) << percent(b.low_end, r.tornado_base) << " | "
+      << short_number(b.high_end) << percent(b.high_end, r.tornado_base) << " |\n";
   }
   s << "\n## The ranges\n\n| assumption | nominal | range | reason |\n|---|---|---|---|\n";
   for (const auto& a : assumptions()) {

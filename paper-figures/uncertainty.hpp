@@ -11,7 +11,6 @@
 #pragma once
 
 #include "paper-figures/claims.hpp"
-#include "sweep/plots.hpp"
 
 #include <array>
 #include <cstddef>
@@ -27,13 +26,13 @@ namespace nsb::paper_figures {
 // One assumed value with its plausible range. A point of the study gives every assumption a
 // value; point_overrides() turns it into scene overrides.
 struct Assumption {
-  std::string key;      // column name in the CSV files, e.g. "deck_width"
-  std::string name;     // in words, e.g. "deck width W"
-  std::string unit;     // "m", "-", "s"
-  double nominal = 0.0;       // the benchmark's value (scenes/bridge-exc*.toml)
+  std::string key;               // column name in the CSV files, e.g. "deck_width"
+  std::string name;              // in words, e.g. "deck width W"
+  std::string unit;              // "m", "-", "s"
+  double nominal = 0.0;          // the benchmark's value (scenes/bridge-exc*.toml)
   double low = 0.0, high = 0.0;  // the plausible range, low < high
-  bool two_values = false;    // only the two ends are plausible (the Latin hypercube picks one)
-  std::string reason;         // why this range: source or derivation
+  bool two_values = false;       // only the two ends are plausible (the Latin hypercube picks one)
+  std::string reason;            // why this range: source or derivation
 };
 // The assumptions, in the order of the CSV columns.
 const std::vector<Assumption>& assumptions();
@@ -44,16 +43,15 @@ std::vector<double> nominal_point();
 // mu = 0. The set is that of --quick's Fig. 6: runs 1, 3, 5, 7 with and without pounding, and
 // runs 5 and 7 with mu = 0 (C1, C2, C3), and C6 on run 5 with pounding.
 struct ClaimRun {
-  std::string name;     // "exc7", "exc7-no-pounding", "exc7-mu0"
-  int excitation = 7;   // the scene bridge-exc<n>.toml
+  std::string name;      // "exc7", "exc7-no-pounding", "exc7-mu0"
+  int excitation = 7;    // the scene bridge-exc<n>.toml
   bool pounding = true;  // false: gaps of 1 m that never close
   bool mu0 = false;      // true: mu = 0
 };
 const std::vector<ClaimRun>& claim_runs();
 // The runs of Fig. 6: each excitation of pga_runs with and without pounding ("exc<n>",
 // "exc<n>-no-pounding"), then each of mu0_runs with mu = 0 ("exc<n>-mu0").
-std::vector<ClaimRun> fig6_runs(const std::vector<int>& pga_runs,
-                                const std::vector<int>& mu0_runs);
+std::vector<ClaimRun> fig6_runs(const std::vector<int>& pga_runs, const std::vector<int>& mu0_runs);
 
 // What point_overrides needs from the scenes: each excitation's target PGAs as the scene
 // states them, and the longitudinal record's own PGA.
@@ -73,8 +71,8 @@ std::vector<std::string> point_overrides(const std::vector<double>& values, cons
 // Pure logic: shares and flips.
 
 enum class Verdict { kHolds, kFails, kNotEvaluated };
-Verdict verdict_of(const Claim& c);     // kNotEvaluated when a run failed
-std::string to_string(Verdict v);       // "holds", "fails", "not evaluated"
+Verdict verdict_of(const Claim& c);  // kNotEvaluated when a run failed
+std::string to_string(Verdict v);    // "holds", "fails", "not evaluated"
 
 // The share of evaluated samples in which a claim holds, with the binomial standard error
 // sqrt(p (1 - p) / n) of that share. NaN share and error when no sample was evaluated.
@@ -90,9 +88,9 @@ Share share_of(const std::vector<Verdict>& verdicts);
 // A point of the one-at-a-time design: the base point (assumption empty) or one assumption at
 // one end of its range, with the verdict of every claim there.
 struct OatPoint {
-  std::string assumption;                  // Assumption::key; empty for the base point
-  std::string end;                         // "low" or "high"; empty for the base point
-  double value = 0.0;                      // the assumption's value there
+  std::string assumption;                   // Assumption::key; empty for the base point
+  std::string end;                          // "low" or "high"; empty for the base point
+  double value = 0.0;                       // the assumption's value there
   std::map<std::string, Verdict> verdicts;  // by claim id
 };
 // A verdict that differs from the base point's.
@@ -111,31 +109,37 @@ std::vector<Flip> find_flips(const std::vector<OatPoint>& points);
 // The study.
 
 struct UncertaintyOptions {
-  std::filesystem::path out;      // the figures' folder; the sweeps go to out/uncertainty/
-  std::filesystem::path scenes;   // folder of the scenes (bridge-exc*.toml)
-  bool quick = false;             // the tornado on run 7 and 2 samples over 20 s, no flip table
-  int workers = 2;                // runs in parallel, >= 1
-  std::size_t samples = 0;        // hypercube samples; 0: 24 (full) or 2 (quick)
-  std::uint64_t seed = 2017;      // the hypercube's seed
-  void validate() const;          // throws std::invalid_argument naming the field
+  std::filesystem::path out;     // the figures' folder; the sweeps go to out/uncertainty/
+  std::filesystem::path scenes;  // folder of the scenes (bridge-exc*.toml)
+  bool quick = false;            // the tornado on run 7 and 2 samples over 20 s, no flip table
+  int workers = 2;               // runs in parallel, >= 1
+  std::size_t samples = 0;       // hypercube samples; 0: 24 (full) or 2 (quick)
+  std::uint64_t seed = 2017;     // the hypercube's seed
+  void validate() const;         // throws std::invalid_argument naming the field
 };
 
 struct UncertaintyResult {
-  std::vector<std::string> claims;           // the claims judged: C1, C2, C3, C6
-  std::map<std::string, Verdict> nominal;    // their verdicts at the nominal point
-  std::map<std::string, Share> shares;       // over the hypercube
-  std::size_t samples = 0;                   // hypercube samples
-  std::vector<OatPoint> oat;                 // the one-at-a-time points judged (full set)
+  std::vector<std::string> claims;         // the claims judged: C1, C2, C3, C6
+  std::map<std::string, Verdict> nominal;  // their verdicts at the nominal point
+  std::map<std::string, Share> shares;     // over the hypercube
+  std::size_t samples = 0;                 // hypercube samples
+  std::vector<OatPoint> oat;               // the one-at-a-time points judged (full set)
   std::vector<Flip> flips;
-  std::vector<sweep::TornadoBar> tornado;    // run 7's peak rotation, largest swing first
-  double tornado_base = 0.0;                 // run 7's peak rotation at the nominal point [rad]
-  int runs = 0;                              // integrations
+  // Run 7's peak rotation at the two ends of each range [rad], in the tornado chart's order
+  // (largest swing first; the chart's bars also span the nominal value).
+  struct TornadoEnds {
+    std::string assumption;  // Assumption::key
+    double low_end = 0.0, high_end = 0.0;
+  };
+  std::vector<TornadoEnds> tornado;
+  double tornado_base = 0.0;  // run 7's peak rotation at the nominal point [rad]
+  int runs = 0;               // integrations
   // Runs that did not complete, "<design> <run> (<point>, <run name>): <status>". A run that
   // fails at some point of the plausible space is an outcome of the study, not an error of the
   // figures: its claims are "not evaluated" there.
   std::vector<std::string> failed;
   std::vector<std::string> plot_errors;
-  double wall_time = 0.0;                    // [s]
+  double wall_time = 0.0;  // [s]
 };
 
 // Runs the designs and writes into options.out: uncertainty-tornado.{png,svg,csv},

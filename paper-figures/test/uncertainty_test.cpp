@@ -74,7 +74,7 @@ TEST_CASE("share and binomial standard error, by hand") {
 TEST_CASE("flips: the verdicts that differ from the base point's") {
   std::vector<OatPoint> pts{
       {"gap", "low", 0.006, {{"C1", H}, {"C3", F}}},   // C1 as nominal, C3 as nominal
-      {"", "", 0.0, {{"C1", H}, {"C3", F}}},            // the base point
+      {"", "", 0.0, {{"C1", H}, {"C3", F}}},           // the base point
       {"gap", "high", 0.019, {{"C1", F}, {"C3", F}}},  // C1 flips
       {"mu", "low", 0.3, {{"C1", N}, {"C3", H}}},      // C1 not evaluated: no flip; C3 flips
   };
@@ -153,8 +153,7 @@ TEST_CASE("a point's overrides: no pounding, mu = 0, the ratio and the seat rota
   }
   CHECK_THROWS_AS(point_overrides({1.0}, claim_runs()[0], targets()), std::invalid_argument);
   SceneTargets none;
-  CHECK_THROWS_AS(point_overrides(nominal_point(), claim_runs()[0], none),
-                  std::invalid_argument);
+  CHECK_THROWS_AS(point_overrides(nominal_point(), claim_runs()[0], none), std::invalid_argument);
 }
 
 TEST_CASE("claims C1-C3 from hand-made peaks") {
@@ -208,8 +207,7 @@ TEST_CASE("C6: sliding contacts from events and Coulomb's law over them") {
   CHECK(l.start == 2.0);
   CHECK(l.end == 3.0);
   // mu = 0.5: lambda_T = -50 for lambda_N = 100 is exact; -50.1 deviates by 0.1 / 50 = 2e-3.
-  const std::vector<double> t{1.9, 2.0, 2.5, 3.0}, ln{100, 100, 100, 100},
-      lt{-10, -50, -50.1, -50};
+  const std::vector<double> t{1.9, 2.0, 2.5, 3.0}, ln{100, 100, 100, 100}, lt{-10, -50, -50.1, -50};
   const auto st = nsb::paper_figures::measure_sliding(l, 0.5, t, ln, lt);
   CHECK(st.samples == 2);  // 2.0 and 2.5; 3.0 is the end, outside [start, end)
   CHECK(st.max_deviation == doctest::Approx(2e-3).epsilon(1e-12));
