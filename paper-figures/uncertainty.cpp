@@ -301,7 +301,8 @@ struct Point {
 };
 
 // The sweep design of a set of points: every point with the claim runs it needs. Factor
-// columns: point, run, then one per assumption.
+// columns: point, claim_run, then one per assumption. The hash only names the design: the
+// figures rewrite their folder every time (restart).
 sweep::Design make_design(const std::string& name, const fs::path& base_scene,
                           const std::vector<Point>& points, const SceneTargets& targets,
                           double end_time, const std::vector<ClaimRun>& claim_set,
