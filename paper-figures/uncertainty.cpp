@@ -619,8 +619,8 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
     sweep::write_file_atomically(work / "tornado-runs.csv", csv);
     sweep::PlotOptions po;
     po.response = kTornadoResponse;
-    auto peak7 = [&](const std::string& point) {
-      const auto p = oat_rows.find(point);
+    auto peak7 = [&](const std::string& name) {
+      const auto p = oat_rows.find(name);
       if (p == oat_rows.end()) return std::nan("");
       const auto r = p->second.find(kTornadoRun);
       return r == p->second.end() || !r->second.ok() ? std::nan("") : r->second.peak_theta;
