@@ -50,9 +50,9 @@ const std::vector<Assumption>& assumptions() {
       {"gap", "expansion gap at each end", "m", 0.0127, 0.00635, 0.01905, false,
        "a 2 in joint at 1/4 scale; prototype joints of 1-3 in"},
       {"friction", "friction coefficient mu", "-", 0.5, 0.3, 0.7, false,
-       "the paper's 0.5 is not measured; 0.3-0.7 spans concrete on concrete or steel"},
+       "the paper's 0.5 is not measured; +-0.2, as in scenes/sweeps/fig6.toml"},
       {"damping", "Rayleigh damping ratio, modes 1 and 3", "-", 0.08, 0.05, 0.11, false,
-       "the paper's 8 % is its choice; 5 % is the usual elastic RC value, +-3 points"},
+       "the paper's 8 % is its modelling choice, not measured; +-3 points"},
       {"time_scale", "time scale of the record", "-", 1.0, 0.5, 1.0, true,
        "either the record's own axis (1.0, the paper's event times) or the 1/4-scale "
        "similitude (0.5)"},
