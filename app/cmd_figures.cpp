@@ -21,6 +21,19 @@ void run_figures(const paper_figures::FigureOptions& o) {
     std::cout << "claim " << c.id << "   " << (c.holds() ? "holds" : "does not hold") << ": "
               << c.reason() << '\n';
   }
+  const auto& u = res.uncertainty;
+  for (const auto& id : u.claims) {
+    const auto& sh = u.shares.at(id);
+    std::size_t flips = 0;
+    for (const auto& f : u.flips) flips += f.claim == id;
+    std::cout << "uncertainty " << id << ": holds in " << sh.holds << " of " << sh.evaluated
+              << " samples (share " << sh.share << " +- " << sh.standard_error << "), " << flips
+              << " one-at-a-time flips\n";
+  }
+  for (const auto& f : u.failed) {
+    std::cout << "uncertainty: run did not complete (its claims are not evaluated there): " << f
+              << '\n';
+  }
   for (const auto& f : res.failed) std::cout << "failed run " << f << '\n';
   for (const auto& f : res.plot_errors) std::cout << "failed plot " << f << '\n';
   if (!res.succeeded()) {

@@ -5,9 +5,13 @@
 // hold, and its reason says why. The thresholds and their reasons: docs/paper-figures.md.
 #pragma once
 
+#include <cstddef>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "integrators/recorder.hpp"
 
 namespace nsb::paper_figures {
 
@@ -45,5 +49,62 @@ bool compare(double value, const std::string& op, double threshold);
 std::string claims_json(const std::vector<Claim>& claims);
 // claims.md: a table (claim, verdict, key numbers) and each claim's checks.
 std::string claims_markdown(const std::vector<Claim>& claims);
+
+// ---------------------------------------------------------------------------------------------
+// The claims from their numbers. The nominal figures and the uncertainty study call the same
+// functions; the caller adds the runs it used (Claim::runs, Claim::failure).
+
+// The runs the verdict of C1 rests on, in --quick, in the full set and in the uncertainty
+// study alike: the paper's example (excitation 5) and the strongest run (7).
+inline constexpr int kExampleRun = 5;
+inline constexpr int kStrongestRun = 7;
+
+// One run of Fig. 6: the peak rotations with pounding (mu as in the scene), with mu = 0 (NaN
+// when not run) and without pounding (gaps that never close), and the impacts of the runs with
+// and without pounding.
+struct Peaks {
+  int run = 0;                      // excitation number, 1..7
+  double pga_y = 0.0, pga_x = 0.0;  // transverse and longitudinal PGA of the input [g]
+  double pounding = 0.0;            // peak |theta| with pounding [rad]
+  double mu0 = std::numeric_limits<double>::quiet_NaN();  // peak |theta| with mu = 0 [rad]
+  double free = 0.0;                // peak |theta| without pounding [rad]
+  std::size_t impacts = 0, impacts_free = 0;
+};
+
+// C1: peak |theta|(mu = 0) / peak |theta|(mu) < 0.5 under excitations 5 and 7; every run with a
+// finite mu0 is reported.
+Claim claim_c1(const std::vector<Peaks>& peaks);
+// C2: exponent b of the least-squares fit theta = a PGA^b over the distinct PGAs, b > 1.
+Claim claim_c2(const std::vector<Peaks>& peaks);
+// C3: largest peak ratio without / with pounding over the runs that pound < 0.5, and no impact
+// in the runs without pounding.
+Claim claim_c3(const std::vector<Peaks>& peaks);
+
+// A sliding contact of a Moreau-Jean run: from a slip event to the next change of state of the
+// same contact (open, stick, or slip in the other direction).
+struct Sliding {
+  int contact = 0;                // 1-based; 0: none
+  double start = 0.0, end = 0.0;  // [s]
+};
+// Every sliding contact of a run, from its events; a slide still open at t_final ends there.
+std::vector<Sliding> sliding_contacts(const std::vector<integrators::Event>& events,
+                                      double t_final);
+// The longest of them (contact 0 when there is none; the first of equal lengths).
+Sliding longest_sliding(const std::vector<Sliding>& slides);
+
+// Coulomb's law over a sliding contact: the largest ||lambda_T| - mu lambda_N| / (mu lambda_N)
+// over the recorded samples in [start, end) with lambda_N > 0.
+struct SlidingState {
+  Sliding slide;
+  double lambda_n = 0.0, lambda_t = 0.0;  // [kN] at the first sample of the slide
+  double max_deviation = std::numeric_limits<double>::quiet_NaN();
+  std::size_t samples = 0;                // samples examined
+};
+// t, lambda_n, lambda_t: the history of the sliding contact (equal lengths, t ascending).
+SlidingState measure_sliding(const Sliding& slide, double mu, const std::vector<double>& t,
+                             const std::vector<double>& lambda_n,
+                             const std::vector<double>& lambda_t);
+// C6: at least one slipping sample, and the largest deviation below 1e-6.
+Claim claim_c6(const SlidingState& state, double mu);
 
 }  // namespace nsb::paper_figures

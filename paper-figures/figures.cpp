@@ -53,8 +53,7 @@ namespace {
 // The seven runs: target transverse and longitudinal PGA [g] of the scenes bridge-exc<n>.toml.
 // Read back from the scenes' excitation, these only label the figure axes.
 constexpr int kRuns = 7;
-constexpr int kExample = 5;    // the paper's example, excitation No. 5
-constexpr int kStrongest = 7;  // the strongest run
+constexpr int kExample = kExampleRun;  // the paper's example, excitation No. 5
 // The paper's contact stiffness range: 1e-4 k ... 1e2 k (sec. 4).
 const std::vector<double> kFactorsFull{1e-4, 1e-3, 1e-2, 1e-1, 1e0, 1e1, 1e2};
 const std::vector<double> kFactorsQuick{1e-4, 1e-2, 1e0, 1e2};
@@ -184,32 +183,6 @@ double normalized_rms_difference(const Recorder& a, const Recorder& b, const std
 
 std::size_t impacts(const Recorder& r) { return r.count(EventKind::kImpact); }
 
-// A sliding contact of a Moreau-Jean run: from a slip event to the next change of state of
-// the same contact (open, stick, or slip in the other direction).
-struct Sliding {
-  int contact = 0;
-  double start = 0.0, end = 0.0;  // [s]
-};
-
-std::vector<Sliding> sliding_contacts(const Recorder& r, double t_final) {
-  std::vector<Sliding> out;
-  std::map<int, double> open;  // contact -> start of its current slip
-  for (const auto& e : r.events()) {
-    if (e.contact == 0) continue;
-    const bool ends =
-        e.kind == EventKind::kOpen || e.kind == EventKind::kStick || e.kind == EventKind::kSlip;
-    if (ends) {
-      if (auto it = open.find(e.contact); it != open.end()) {
-        out.push_back({e.contact, it->second, e.t});
-        open.erase(it);
-      }
-    }
-    if (e.kind == EventKind::kSlip) open[e.contact] = e.t;
-  }
-  for (const auto& [c, t0] : open) out.push_back({c, t0, t_final});
-  return out;
-}
-
 // The first impact of a run: its time and contact (contact 0 when there is none).
 std::pair<double, int> first_impact(const Recorder& r) {
   for (const auto& e : r.events()) {
@@ -265,19 +238,10 @@ Setup setup(bool quick) {
   return s;
 }
 
-const std::vector<std::string> kNoPounding{"model.gaps.left=1.0", "model.gaps.right=1.0"};
-const std::vector<std::string> kNoFriction{"model.seats.friction=0.0"};
-
 std::vector<RunSpec> bridge_runs(const Setup& s) {
   std::vector<RunSpec> v;
   v.push_back({"exc5-moreau", exc(kExample), {"solver.method=moreau"}});
   v.push_back({"exc5-event", exc(kExample), {"solver.method=event_driven"}});
-  for (int n : s.pga_runs) {
-    if (n != kExample) v.push_back({"exc" + std::to_string(n) + "-moreau", exc(n), {}});
-    std::vector<std::string> o = kNoPounding;
-    v.push_back({"exc" + std::to_string(n) + "-no-pounding", exc(n), o});
-  }
-  for (int n : s.mu0_runs) v.push_back({"exc" + std::to_string(n) + "-mu0", exc(n), kNoFriction});
   for (double f : s.factors) {
     std::vector<std::string> o{"solver.method=compliance",
                                "solver.stiffness_factor=" + factor_name(f)};
@@ -401,21 +365,6 @@ std::string fig7(const fs::path& dir, const Recorder& mj,
 // ---------------------------------------------------------------------------------------------
 // Fig. 6 and claims C1, C2, C3.
 
-struct Peaks {
-  int run = 0;
-  double pga_y = 0.0, pga_x = 0.0;  // target PGAs [g], from the scene's motions
-  double pounding = 0.0, mu0 = std::numeric_limits<double>::quiet_NaN(), free = 0.0;  // [rad]
-  std::size_t impacts = 0, impacts_free = 0;
-};
-
-double scene_pga(const RunOutput& r, bool transverse) {
-  const auto* b = dynamic_cast<const models::Bridge*>(r.scene->system.get());
-  if (b == nullptr || b->excitation().bents.empty()) return 0.0;
-  const auto& m =
-      transverse ? b->excitation().bents[0].transverse : b->excitation().bents[0].longitudinal;
-  return m ? m->pga() / 9.81 : 0.0;
-}
-
 std::string fig6(const fs::path& dir, const std::vector<Peaks>& peaks, const std::string& gp) {
   Table t{{"run", "pga_transverse_g", "pga_longitudinal_g", "peak_theta_pounding", "peak_theta_mu0",
            "peak_theta_no_pounding", "impacts"}};
@@ -432,76 +381,6 @@ plot data using 'pga_transverse_g':'peak_theta_pounding' with linespoints pt 7 t
      data using 'pga_transverse_g':'peak_theta_mu0' with linespoints pt 6 dt 3 title 'with pounding, mu = 0', \
      data using 'pga_transverse_g':'peak_theta_no_pounding' with linespoints pt 5 dt 2 title 'without pounding (gaps never close)')",
               {1000, 700});
-}
-
-Claim claim_c1(const std::vector<const RunOutput*>& mu, const std::vector<const RunOutput*>& mu0,
-               const std::vector<int>& runs) {
-  Claim c{"C1", "friction makes the straight deck rotate; with mu = 0 it rotates much less"};
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    use_runs(c, {mu[i], mu0[i]});
-    if (!mu[i]->ok() || !mu0[i]->ok()) continue;
-    const std::string n = "exc" + std::to_string(runs[i]);
-    const double a = peak(*mu[i]->recorder, "theta"), b = peak(*mu0[i]->recorder, "theta");
-    c.measured.push_back({"peak_theta_" + n + "_mu0.5", a});
-    c.measured.push_back({"peak_theta_" + n + "_mu0", b});
-    c.measured.push_back({"ratio_mu0_to_mu0.5_" + n, b / a});
-    // The verdict rests on the paper's example and on the strongest run, in --quick and in the
-    // full set alike; the other runs' ratios are reported beside it.
-    if (runs[i] != kExample && runs[i] != kStrongest) continue;
-    c.checks.push_back({"ratio_mu0_to_mu0.5_" + n, b / a, "<", 0.5,
-                        "\"much less\" is at most half: a factor of 2, far outside the 0.3 % "
-                        "by which the two nonsmooth methods differ"});
-  }
-  return c;
-}
-
-Claim claim_c2(const std::vector<Peaks>& peaks, const std::vector<const RunOutput*>& runs) {
-  Claim c{"C2", "peak rotation grows faster than linearly with the transverse PGA"};
-  use_runs(c, runs);
-  // Least-squares exponent b of theta = a PGA^b over the distinct PGAs (run 7 repeats run 6).
-  std::vector<std::pair<double, double>> pts;
-  for (const auto& p : peaks) {
-    if (p.pounding > 0 && p.pga_y > 0 && std::none_of(pts.begin(), pts.end(), [&](auto& q) {
-          return std::abs(q.first - std::log(p.pga_y)) < 1e-9;
-        })) {
-      pts.push_back({std::log(p.pga_y), std::log(p.pounding)});
-    }
-    c.measured.push_back({"peak_theta_exc" + std::to_string(p.run), p.pounding});
-    c.measured.push_back({"pga_transverse_exc" + std::to_string(p.run), p.pga_y});
-  }
-  double b = std::numeric_limits<double>::quiet_NaN();
-  if (pts.size() >= 2) {
-    double mx = 0, my = 0;
-    for (auto& [x, y] : pts) mx += x, my += y;
-    mx /= double(pts.size());
-    my /= double(pts.size());
-    double sxy = 0, sxx = 0;
-    for (auto& [x, y] : pts) sxy += (x - mx) * (y - my), sxx += (x - mx) * (x - mx);
-    b = sxy / sxx;
-  }
-  c.checks.push_back({"power_law_exponent", b, ">", 1.0,
-                      "theta ~ PGA^b grows faster than linearly exactly when b > 1"});
-  return c;
-}
-
-Claim claim_c3(const std::vector<Peaks>& peaks, const std::vector<const RunOutput*>& runs) {
-  Claim c{"C3", "ignoring pounding (gaps that never close) gives a much smaller peak rotation"};
-  use_runs(c, runs);
-  double worst = std::numeric_limits<double>::quiet_NaN();
-  std::size_t free_impacts = 0;
-  for (const auto& p : peaks) {
-    free_impacts += p.impacts_free;
-    if (p.impacts == 0) continue;  // no pounding in this run: nothing to compare
-    const double r = p.free / p.pounding;
-    c.measured.push_back({"ratio_no_pounding_to_pounding_exc" + std::to_string(p.run), r});
-    worst = std::isnan(worst) ? r : std::max(worst, r);
-  }
-  c.checks.push_back({"largest_ratio_no_pounding_to_pounding", worst, "<", 0.5,
-                      "\"much smaller\" is at most half in every run that pounds (the same "
-                      "factor 2 as C1)"});
-  c.checks.push_back({"impacts_without_pounding", double(free_impacts), "<", 0.5,
-                      "the runs without pounding must have no impact at all (gaps of 1 m)"});
-  return c;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -624,29 +503,11 @@ Claim claim_c4(const Recorder& mj, const std::vector<std::pair<double, const Rec
 // ---------------------------------------------------------------------------------------------
 // Fig. 5 and claim C6: the longest sliding contact of excitation 5.
 
-struct SlidingState {
-  Sliding slide;
-  double lambda_n = 0.0, lambda_t = 0.0;                            // [kN] at the start
-  double max_deviation = std::numeric_limits<double>::quiet_NaN();  // max ||lT| - mu lN| / (mu lN)
-  std::size_t samples = 0;                                          // slipping steps examined
-};
-
 SlidingState measure_sliding(const RunOutput& run, const Sliding& s, double mu) {
-  SlidingState st{s};
   const Recorder& r = *run.recorder;
-  const auto ts = r.series("t"), ln = r.series("lambdaN" + std::to_string(s.contact)),
-             lt = r.series("lambdaT" + std::to_string(s.contact));
-  double dev = 0.0;
-  bool started = false;
-  for (std::size_t i = 0; i < ts.size(); ++i) {
-    if (ts[i] < s.start || ts[i] >= s.end) continue;
-    if (!started) st.lambda_n = ln[i], st.lambda_t = lt[i], started = true;
-    if (!(ln[i] > 0)) continue;
-    dev = std::max(dev, std::abs(std::abs(lt[i]) - mu * ln[i]) / (mu * ln[i]));
-    ++st.samples;
-  }
-  if (st.samples > 0) st.max_deviation = dev;
-  return st;
+  return paper_figures::measure_sliding(s, mu, r.series("t"),
+                                        r.series("lambdaN" + std::to_string(s.contact)),
+                                        r.series("lambdaT" + std::to_string(s.contact)));
 }
 
 std::string fig5(const fs::path& dir, const RunOutput& run, const SlidingState& st,
@@ -715,23 +576,6 @@ std::string fig5(const fs::path& dir, const RunOutput& run, const SlidingState& 
   return plot(gp, dir, "fig5-sliding-contact", body.str(), {1200, 900});
 }
 
-Claim claim_c6(const SlidingState& st, double mu, const std::vector<const RunOutput*>& runs) {
-  Claim c{"C6", "a sliding contact carries lambda_T = mu lambda_N"};
-  use_runs(c, runs);
-  c.measured.push_back({"contact", double(st.slide.contact)});
-  c.measured.push_back({"start_s", st.slide.start});
-  c.measured.push_back({"end_s", st.slide.end});
-  c.measured.push_back({"lambda_n_start_kN", st.lambda_n});
-  c.measured.push_back({"lambda_t_start_kN", st.lambda_t});
-  c.measured.push_back({"mu", mu});
-  c.checks.push_back({"slipping_steps", double(st.samples), ">=", 1.0,
-                      "the contact must slide over at least one recorded step"});
-  c.checks.push_back({"max_relative_deviation_from_mu_lambda_n", st.max_deviation, "<", 1e-6,
-                      "Coulomb's law at slip holds to the LCP solution's round-off (1e-12 "
-                      "relative), far below 1e-6"});
-  return c;
-}
-
 // ---------------------------------------------------------------------------------------------
 // The eta map (skew angle against W/L).
 
@@ -790,6 +634,14 @@ std::string fig9(const fs::path& dir, const std::vector<EtaPoint>& pts,
 
 }  // namespace
 
+double input_pga(const integrators::System& system, bool transverse) {
+  const auto* b = dynamic_cast<const models::Bridge*>(&system);
+  if (b == nullptr || b->excitation().bents.empty()) return 0.0;
+  const auto& m =
+      transverse ? b->excitation().bents[0].transverse : b->excitation().bents[0].longitudinal;
+  return m ? m->pga() / 9.81 : 0.0;
+}
+
 FigureResult make_figures(const FigureOptions& options) {
   options.validate();
   const auto t0 = std::chrono::steady_clock::now();
@@ -813,11 +665,8 @@ FigureResult make_figures(const FigureOptions& options) {
   const RunOutput& mj = find(runs, "exc5-moreau");
   const RunOutput& ed = find(runs, "exc5-event");
   const auto [t_first, contact_first] = first_impact(*mj.recorder);
-  const auto slides = sliding_contacts(*mj.recorder, mj.result.end_time);
-  Sliding longest;
-  for (const auto& sl : slides) {
-    if (sl.end - sl.start > longest.end - longest.start) longest = sl;
-  }
+  const Sliding longest =
+      longest_sliding(sliding_contacts(mj.recorder->events(), mj.result.end_time));
   std::vector<RunSpec> late;
   const std::vector<double> windows = options.quick ? kFactorsQuick : kFactorsFull;
   if (contact_first > 0) {
@@ -854,35 +703,39 @@ FigureResult make_figures(const FigureOptions& options) {
   draw("fig3-response", fig3(dir, *mj.recorder, *ed.recorder, gp));
   draw("fig4-omega", fig4(dir, *mj.recorder, *ed.recorder, longest, gp));
 
-  // Fig. 6, C1-C3.
-  std::vector<Peaks> peaks;
-  std::vector<const RunOutput*> pga_runs, mu_runs, mu0_runs;
-  for (int n : s.pga_runs) {
-    const std::string p = "exc" + std::to_string(n);
-    const auto& pr = find(runs, n == kExample ? "exc5-moreau" : p + "-moreau");
-    const auto& fr = find(runs, p + "-no-pounding");
-    Peaks pk{n, scene_pga(pr, true), scene_pga(pr, false), peak(*pr.recorder, "theta")};
-    pk.free = peak(*fr.recorder, "theta");
-    pk.impacts = impacts(*pr.recorder);
-    pk.impacts_free = impacts(*fr.recorder);
-    if (std::find(s.mu0_runs.begin(), s.mu0_runs.end(), n) != s.mu0_runs.end()) {
-      pk.mu0 = peak(*find(runs, p + "-mu0").recorder, "theta");
+  // Fig. 6, C1-C3: one sweep over the runs with and without pounding and with mu = 0.
+  const Fig6Sweep f6 =
+      fig6_sweep(scenes, dir / "fig6-sweep", s.pga_runs, s.mu0_runs, options.workers);
+  res.runs += f6.runs;
+  res.failed.insert(res.failed.end(), f6.failed.begin(), f6.failed.end());
+  draw("fig6-peak-rotation", fig6(dir, f6.peaks, gp));
+  // A claim's runs from the sweep: their names, and "not evaluated" when one did not complete.
+  auto use_sweep_runs = [&](Claim& c, const std::vector<std::string>& names) {
+    for (const auto& n : names) {
+      c.runs.push_back("fig6-sweep/" + n);
+      const auto it = f6.status.find(n);
+      const std::string st = it == f6.status.end() ? "not run" : it->second;
+      if (st != "completed" && st != "completed_with_fallbacks") {
+        c.failure += (c.failure.empty() ? "" : "; ") + n + ": " + st;
+      }
     }
-    peaks.push_back(pk);
-    pga_runs.push_back(&pr);
-    pga_runs.push_back(&fr);
+  };
+  std::vector<std::string> mu_runs, with_pounding, pga_runs;
+  for (const auto& r : fig6_runs(s.pga_runs, s.mu0_runs)) {
+    if (r.mu0) {
+      mu_runs.push_back("exc" + std::to_string(r.excitation));
+      mu_runs.push_back(r.name);
+      continue;
+    }
+    pga_runs.push_back(r.name);
+    if (r.pounding) with_pounding.push_back(r.name);
   }
-  for (int n : s.mu0_runs) {
-    const std::string p = "exc" + std::to_string(n);
-    mu_runs.push_back(&find(runs, n == kExample ? "exc5-moreau" : p + "-moreau"));
-    mu0_runs.push_back(&find(runs, p + "-mu0"));
-  }
-  draw("fig6-peak-rotation", fig6(dir, peaks, gp));
-  std::vector<const RunOutput*> with_pounding;
-  for (std::size_t i = 0; i < pga_runs.size(); i += 2) with_pounding.push_back(pga_runs[i]);
-  res.claims.push_back(claim_c1(mu_runs, mu0_runs, s.mu0_runs));
-  res.claims.push_back(claim_c2(peaks, with_pounding));
-  res.claims.push_back(claim_c3(peaks, pga_runs));
+  res.claims.push_back(claim_c1(f6.peaks));
+  use_sweep_runs(res.claims.back(), mu_runs);
+  res.claims.push_back(claim_c2(f6.peaks));
+  use_sweep_runs(res.claims.back(), with_pounding);
+  res.claims.push_back(claim_c3(f6.peaks));
+  use_sweep_runs(res.claims.back(), pga_runs);
 
   // Fig. 7, C4.
   std::vector<std::pair<double, const Recorder*>> k;
@@ -918,7 +771,8 @@ FigureResult make_figures(const FigureOptions& options) {
     const auto& sr = find(late_runs, "exc5-moreau-sliding");
     const SlidingState st = measure_sliding(sr, longest, mu);
     draw("fig5-sliding-contact", fig5(dir, sr, st, gp));
-    res.claims.push_back(claim_c6(st, mu, {&sr}));
+    res.claims.push_back(claim_c6(st, mu));
+    use_runs(res.claims.back(), {&sr});
   } else {
     Claim c{"C6", "a sliding contact carries lambda_T = mu lambda_N"};
     c.failure = "excitation 5 has no sliding contact";
@@ -932,7 +786,21 @@ FigureResult make_figures(const FigureOptions& options) {
   draw("fig9-eta-map", fig9(dir, pts, runs, length, width, gp, agree, total));
 
   std::ofstream(dir / "claims.json") << claims_json(res.claims);
-  std::ofstream(dir / "claims.md") << claims_markdown(res.claims);
+  std::ofstream(dir / "claims.md")
+      << claims_markdown(res.claims)
+      << "\nHow far the verdicts depend on the assumed values: uncertainty.md (shares over a "
+         "Latin hypercube, verdicts that one assumption flips, tornado chart of run 7).\n";
+
+  // The uncertainty of the verdicts over the assumed values' ranges.
+  UncertaintyOptions uo;
+  uo.out = options.out;
+  uo.scenes = scenes;
+  uo.quick = options.quick;
+  uo.workers = options.workers;
+  res.uncertainty = run_uncertainty(uo);
+  res.runs += res.uncertainty.runs;
+  res.plot_errors.insert(res.plot_errors.end(), res.uncertainty.plot_errors.begin(),
+                         res.uncertainty.plot_errors.end());
   res.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }

@@ -6,7 +6,9 @@
 // is run, the thresholds and the run times: docs/paper-figures.md.
 #pragma once
 
+#include "integrators/system.hpp"
 #include "paper-figures/claims.hpp"
+#include "paper-figures/uncertainty.hpp"
 
 #include <filesystem>
 #include <string>
@@ -29,11 +31,19 @@ struct FigureResult {
   int runs = 0;                       // integrations performed
   std::vector<std::string> failed;    // "<run>: <status> at t = <s>" for each failed run
   std::vector<std::string> plot_errors;  // figures gnuplot did not draw
+  // The verdicts over the assumed values' ranges. Its failed runs are outcomes at points of
+  // the plausible space (the claims there are not evaluated); they are not in `failed`.
+  UncertaintyResult uncertainty;
   double wall_time = 0.0;             // [s]
   bool succeeded() const { return failed.empty() && plot_errors.empty(); }
 };
 
-// Runs everything and writes the figures, claims.json and claims.md into options.out.
+// The PGA of a bridge's input as its first bent receives it [g]: transverse or longitudinal
+// (0 for a system without that motion). The figures' PGA axis and claim C2 use it.
+double input_pga(const integrators::System& system, bool transverse);
+
+// Runs everything and writes the figures, claims.json and claims.md into options.out, then
+// the uncertainty study (paper-figures/uncertainty.hpp) beside them.
 // Throws std::invalid_argument for bad options or a scene that does not load (before any
 // file is written); failed runs and plots are reported in the result, never thrown.
 FigureResult make_figures(const FigureOptions& options);

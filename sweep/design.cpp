@@ -353,24 +353,34 @@ void expand_oat(Design& d) {
 // std::uniform_real_distribution, whose algorithm the standard leaves open.
 double unit(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
 
-// Latin hypercube (McKay, Beckman & Conover 1979): each factor's range is cut into n equal
-// strata, a random permutation assigns one stratum to each run, and the value is drawn
-// uniformly inside it. Discrete factors take the level whose share of [0, 1) holds the draw.
-void expand_latin(Design& d) {
-  const auto n = static_cast<std::size_t>(d.samples);
-  std::mt19937_64 g(d.seed);
-  std::vector<std::vector<double>> draw(d.factors.size(), std::vector<double>(n));
-  for (std::size_t k = 0; k < d.factors.size(); ++k) {
-    std::vector<std::size_t> perm(n);
-    for (std::size_t i = 0; i < n; ++i) perm[i] = i;
-    for (std::size_t i = n; i > 1; --i) {  // Fisher–Yates
+}  // namespace
+
+std::vector<std::vector<double>> latin_hypercube(std::size_t samples, std::size_t factors,
+                                                 std::uint64_t seed) {
+  std::mt19937_64 g(seed);
+  std::vector<std::vector<double>> draw(factors, std::vector<double>(samples));
+  for (std::size_t k = 0; k < factors; ++k) {
+    std::vector<std::size_t> perm(samples);
+    for (std::size_t i = 0; i < samples; ++i) perm[i] = i;
+    for (std::size_t i = samples; i > 1; --i) {  // Fisher–Yates
       const auto j = static_cast<std::size_t>(unit(g) * static_cast<double>(i));
       std::swap(perm[i - 1], perm[std::min(j, i - 1)]);
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      draw[k][i] = (static_cast<double>(perm[i]) + unit(g)) / static_cast<double>(n);
+    for (std::size_t i = 0; i < samples; ++i) {
+      draw[k][i] = (static_cast<double>(perm[i]) + unit(g)) / static_cast<double>(samples);
     }
   }
+  return draw;
+}
+
+namespace {
+
+// Latin hypercube (McKay, Beckman & Conover 1979), drawn by latin_hypercube; continuous factors
+// map the draw linearly onto their range, discrete factors take the level whose share of
+// [0, 1) holds the draw.
+void expand_latin(Design& d) {
+  const auto n = static_cast<std::size_t>(d.samples);
+  const auto draw = latin_hypercube(n, d.factors.size(), d.seed);
   for (std::size_t i = 0; i < n; ++i) {
     Run run;
     run.overrides = d.set;

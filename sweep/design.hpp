@@ -72,6 +72,14 @@ Design load_design(const std::filesystem::path& file,
 // the factor's line and key, and the scene's own message.
 void validate_design(const Design& design);
 
+// The unit draws of a Latin hypercube (McKay, Beckman & Conover 1979), as `mode = "latin"`
+// uses them: draw[k][i] in [0, 1) for factor k and sample i. Each factor's [0, 1) is cut into
+// `samples` equal strata; a Fisher–Yates permutation (std::mt19937_64 seeded with `seed`, whose
+// sequence the standard fixes) gives each sample one stratum, and the draw is uniform inside
+// it. The same arguments give the same draws on every platform.
+std::vector<std::vector<double>> latin_hypercube(std::size_t samples, std::size_t factors,
+                                                 std::uint64_t seed);
+
 // The shortest text that reads back to the same double ("0.1", "1e-05"): labels and
 // results.csv use it so that they do not depend on the platform's printf.
 std::string format_number(double v);

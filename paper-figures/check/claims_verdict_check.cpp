@@ -2,7 +2,10 @@
 // has its PNG, SVG and CSV and axis labels with units, and every verdict in claims.json follows
 // from the numbers printed beside it. It does not check that a claim is true: it re-derives
 // "holds" from the checks (value op threshold, all of them) with its own reading of the file
-// and its own comparison, so that a verdict that contradicts its numbers fails here.
+// and its own comparison, so that a verdict that contradicts its numbers fails here. For the
+// uncertainty study it re-derives every sample's verdicts in uncertainty.csv from the check
+// quantities beside them (with the thresholds of claims.json), the shares and their standard
+// errors in uncertainty.json from those verdicts, and the flips from uncertainty-oat.csv.
 #include <doctest/doctest.h>
 
 #include <cctype>
@@ -11,6 +14,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <set>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -187,4 +191,143 @@ TEST_CASE("every figure has its PNG, SVG and CSV, and axis labels with units") {
     }
   }
   CHECK(figures == 7);  // Figs. 3, 4, 5, 6, 7, 8 and the eta map
+}
+
+namespace {
+
+// A CSV file without quoted fields (the study writes none): header and rows of fields.
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::size_t col(const std::string& name) const {
+    for (std::size_t k = 0; k < header.size(); ++k) {
+      if (header[k] == name) return k;
+    }
+    FAIL("no column " << name);
+    return 0;
+  }
+};
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> f;
+  std::string cur;
+  for (char ch : line) {
+    if (ch == ',') {
+      f.push_back(cur);
+      cur.clear();
+    } else if (ch != '\r') {
+      cur += ch;
+    }
+  }
+  f.push_back(cur);
+  return f;
+}
+
+Csv read_csv(const fs::path& p) {
+  std::ifstream in(p);
+  REQUIRE(in);
+  Csv c;
+  std::string line;
+  REQUIRE(std::getline(in, line));
+  c.header = split(line);
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    c.rows.push_back(split(line));
+    REQUIRE(c.rows.back().size() == c.header.size());
+  }
+  return c;
+}
+
+double number(const std::string& s) {
+  return s.empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(s);
+}
+
+// The checks of each claim in claims.json: quantity -> (op, threshold).
+std::map<std::string, std::map<std::string, std::pair<std::string, double>>> thresholds() {
+  const Json root = Parser(read(kDir / "claims.json")).parse();
+  std::map<std::string, std::map<std::string, std::pair<std::string, double>>> out;
+  for (const Json& c : root.at("claims").a) {
+    for (const Json& k : c.at("checks").a) {
+      out[c.at("id").s][k.at("quantity").s] = {k.at("op").s, k.at("threshold").n};
+    }
+  }
+  return out;
+}
+
+// A row's verdict of claim id from its check columns "<id>.<quantity>".
+bool derived(const Csv& csv, const std::vector<std::string>& row, const std::string& id,
+             const std::map<std::string, std::pair<std::string, double>>& checks) {
+  bool all = true;
+  int seen = 0;
+  for (std::size_t k = 0; k < csv.header.size(); ++k) {
+    const std::string& h = csv.header[k];
+    if (h.rfind(id + ".", 0) != 0) continue;
+    const std::string q = h.substr(id.size() + 1);
+    const auto it = checks.find(q);
+    REQUIRE_MESSAGE(it != checks.end(), "no threshold in claims.json for " << h);
+    all = all && satisfied(number(row[k]), it->second.first, it->second.second);
+    ++seen;
+  }
+  CHECK(seen > 0);
+  return all && seen > 0;
+}
+
+}  // namespace
+
+TEST_CASE("the uncertainty shares and flips follow from the per-sample verdicts") {
+  const auto th = thresholds();
+  const Json u = Parser(read(kDir / "uncertainty.json")).parse();
+  const Csv samples = read_csv(kDir / "uncertainty.csv");
+  const Csv oat = read_csv(kDir / "uncertainty-oat.csv");
+  REQUIRE(u.at("claims").kind == Json::kArray);
+  CHECK(u.at("samples").n == double(samples.rows.size()));
+  CHECK(!samples.rows.empty());
+  for (const Json& c : u.at("claims").a) {
+    const std::string id = c.at("id").s;
+    CAPTURE(id);
+    const std::size_t v = samples.col(id);
+    std::size_t holds = 0, evaluated = 0;
+    for (const auto& row : samples.rows) {
+      CAPTURE(row[0]);
+      if (row[v] == "not evaluated") continue;
+      REQUIRE((row[v] == "holds" || row[v] == "fails"));
+      ++evaluated;
+      holds += row[v] == "holds";
+      CHECK(derived(samples, row, id, th.at(id)) == (row[v] == "holds"));
+    }
+    // Share p = holds / evaluated, binomial standard error sqrt(p (1 - p) / evaluated).
+    CHECK(c.at("samples").n == double(evaluated));
+    CHECK(c.at("holds").n == double(holds));
+    if (evaluated > 0) {
+      const double p = double(holds) / double(evaluated);
+      CHECK(c.at("share").n == doctest::Approx(p).epsilon(1e-12));
+      CHECK(c.at("standard_error").n ==
+            doctest::Approx(std::sqrt(p * (1 - p) / double(evaluated))).epsilon(1e-12));
+    }
+    // Flips: the one-at-a-time points whose verdict differs from the base point's.
+    const std::size_t ov = oat.col(id), oa = oat.col("assumption"), oe = oat.col("end");
+    std::string base;
+    for (const auto& row : oat.rows) {
+      if (row[oa].empty()) base = row[ov];
+      if (row[ov] != "not evaluated") {
+        CHECK(derived(oat, row, id, th.at(id)) == (row[ov] == "holds"));
+      }
+    }
+    // --quick judges no one-at-a-time point: then there is nothing to flip.
+    REQUIRE((!base.empty() || oat.rows.empty()));
+    std::set<std::string> expected, written;
+    for (const auto& row : oat.rows) {
+      if (row[oa].empty() || base == "not evaluated" || row[ov] == "not evaluated") continue;
+      if (row[ov] != base) expected.insert(row[oa] + " " + row[oe]);
+    }
+    for (const Json& f : c.at("flips").a) {
+      written.insert(f.at("assumption").s + " " + f.at("end").s);
+    }
+    CHECK(expected == written);
+  }
+  for (const char* ext : {".png", ".svg", ".csv"}) {
+    const auto p = kDir / (std::string("uncertainty-tornado") + ext);
+    CHECK(fs::exists(p));
+    CHECK(fs::file_size(p) > 100);
+  }
 }

@@ -134,6 +134,37 @@ values = [0.1, 0.2, 0.3, 0.4]
   CHECK(a.hash != c.hash);
 }
 
+TEST_CASE("latin_hypercube: the draws of latin mode, one per stratum of each factor") {
+  const auto d = nsb::sweep::latin_hypercube(8, 3, 7);
+  REQUIRE(d.size() == 3);
+  for (const auto& f : d) {
+    REQUIRE(f.size() == 8);
+    std::set<int> strata;
+    for (double u : f) {
+      REQUIRE(u >= 0.0);
+      REQUIRE(u < 1.0);
+      strata.insert(static_cast<int>(u * 8.0));
+    }
+    CHECK(strata.size() == 8);
+  }
+  // The first factor of the latin design above (seed 7, range [1, 3]) is this draw mapped
+  // linearly: 1 + 2 u.
+  const Design a = load_design(write_design("latin_draws", scene_line() + R"(
+mode = "latin"
+samples = 8
+seed = 7
+[[factor]]
+key = "model.height"
+range = [1.0, 3.0]
+)"));
+  const auto one = nsb::sweep::latin_hypercube(8, 1, 7);
+  for (std::size_t i = 0; i < 8; ++i) {
+    const double h = std::stod(a.runs[i].labels[0]);
+    CHECK(h == doctest::Approx(1.0 + 2.0 * one[0][i]).epsilon(1e-15));
+  }
+  CHECK(nsb::sweep::latin_hypercube(0, 2, 1)[0].empty());
+}
+
 TEST_CASE("oat: the base run, then each level of each factor alone") {
   const Design d = load_design(write_design("oat", scene_line() + R"(
 mode = "oat"

@@ -1,0 +1,167 @@
+// The uncertainty of the claims' verdicts: the assumed values of the benchmark
+// (docs/bridge.md, "Assumed") over their plausible ranges, run through the sweep module
+// (sweep/), and the claims C1, C2, C3 and C6 judged at every point with the functions of
+// paper-figures/claims.hpp. Two designs:
+//   - one factor at a time (each assumption at the low and the high end of its range, the
+//     others nominal): the tornado chart of run 7's peak rotation and the verdicts that flip;
+//   - a Latin hypercube over all assumptions at once: the share of the plausible space in
+//     which each claim holds.
+// The ranges and their reasons, the outputs and the run times: docs/paper-figures.md,
+// "Uncertainty of the verdicts".
+#pragma once
+
+#include "paper-figures/claims.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace nsb::paper_figures {
+
+// One assumed value with its plausible range. A point of the study gives every assumption a
+// value; point_overrides() turns it into scene overrides.
+struct Assumption {
+  std::string key;               // column name in the CSV files, e.g. "deck_width"
+  std::string name;              // in words, e.g. "deck width W"
+  std::string unit;              // "m", "-", "s"
+  double nominal = 0.0;          // the benchmark's value (scenes/bridge-exc*.toml)
+  double low = 0.0, high = 0.0;  // the plausible range, low < high
+  bool two_values = false;       // only the two ends are plausible (the Latin hypercube picks one)
+  std::string reason;            // why this range: source or derivation
+};
+// The assumptions, in the order of the CSV columns.
+const std::vector<Assumption>& assumptions();
+// Every assumption at its nominal value.
+std::vector<double> nominal_point();
+
+// One run of the claims' set at a point: an excitation with or without pounding, or with
+// mu = 0. The set is that of --quick's Fig. 6: runs 1, 3, 5, 7 with and without pounding, and
+// runs 5 and 7 with mu = 0 (C1, C2, C3), and C6 on run 5 with pounding.
+struct ClaimRun {
+  std::string name;      // "exc7", "exc7-no-pounding", "exc7-mu0"
+  int excitation = 7;    // the scene bridge-exc<n>.toml
+  bool pounding = true;  // false: gaps of 1 m that never close
+  bool mu0 = false;      // true: mu = 0
+};
+const std::vector<ClaimRun>& claim_runs();
+// The runs of Fig. 6: each excitation of pga_runs with and without pounding ("exc<n>",
+// "exc<n>-no-pounding"), then each of mu0_runs with mu = 0 ("exc<n>-mu0").
+std::vector<ClaimRun> fig6_runs(const std::vector<int>& pga_runs, const std::vector<int>& mu0_runs);
+
+// What point_overrides needs from the scenes: each excitation's target PGAs as the scene
+// states them, and the longitudinal record's own PGA.
+struct SceneTargets {
+  std::map<int, double> transverse_pga, longitudinal_pga;  // [g] by excitation
+  std::string longitudinal_record;       // the base scene's longitudinal record file
+  double longitudinal_record_pga = 0.0;  // [g], the record as recorded (seat rotation's scale)
+};
+
+// The overrides of the base scene (bridge-exc7.toml) that give claim run `run` at the point
+// `values` (one per assumption, in assumptions() order). Throws std::invalid_argument for a
+// wrong number of values or an excitation missing from targets.
+std::vector<std::string> point_overrides(const std::vector<double>& values, const ClaimRun& run,
+                                         const SceneTargets& targets);
+
+// ---------------------------------------------------------------------------------------------
+// Pure logic: shares and flips.
+
+enum class Verdict { kHolds, kFails, kNotEvaluated };
+Verdict verdict_of(const Claim& c);  // kNotEvaluated when a run failed
+std::string to_string(Verdict v);    // "holds", "fails", "not evaluated"
+
+// The share of evaluated samples in which a claim holds, with the binomial standard error
+// sqrt(p (1 - p) / n) of that share. NaN share and error when no sample was evaluated.
+struct Share {
+  std::size_t evaluated = 0;      // samples with a verdict
+  std::size_t holds = 0;          // of which the claim holds
+  std::size_t not_evaluated = 0;  // samples whose runs failed
+  double share = 0.0;
+  double standard_error = 0.0;
+};
+Share share_of(const std::vector<Verdict>& verdicts);
+
+// A point of the one-at-a-time design: the base point (assumption empty) or one assumption at
+// one end of its range, with the verdict of every claim there.
+struct OatPoint {
+  std::string assumption;                   // Assumption::key; empty for the base point
+  std::string end;                          // "low" or "high"; empty for the base point
+  double value = 0.0;                       // the assumption's value there
+  std::map<std::string, Verdict> verdicts;  // by claim id
+};
+// A verdict that differs from the base point's.
+struct Flip {
+  std::string assumption, end;
+  double value = 0.0;
+  std::string claim;
+  Verdict nominal = Verdict::kNotEvaluated, flipped = Verdict::kNotEvaluated;
+};
+// Every (point, claim) whose verdict is evaluated at the base point and at that point and
+// differs, in the order of the points. Throws std::invalid_argument without exactly one base
+// point.
+std::vector<Flip> find_flips(const std::vector<OatPoint>& points);
+
+// ---------------------------------------------------------------------------------------------
+// The study.
+
+struct UncertaintyOptions {
+  std::filesystem::path out;     // the figures' folder; the sweeps go to out/uncertainty/
+  std::filesystem::path scenes;  // folder of the scenes (bridge-exc*.toml)
+  bool quick = false;            // the tornado on run 7 and 2 samples over 20 s, no flip table
+  int workers = 2;               // runs in parallel, >= 1
+  std::size_t samples = 0;       // hypercube samples; 0: 24 (full) or 2 (quick)
+  std::uint64_t seed = 2017;     // the hypercube's seed
+  void validate() const;         // throws std::invalid_argument naming the field
+};
+
+struct UncertaintyResult {
+  std::vector<std::string> claims;         // the claims judged: C1, C2, C3, C6
+  std::map<std::string, Verdict> nominal;  // their verdicts at the nominal point
+  std::map<std::string, Share> shares;     // over the hypercube
+  std::size_t samples = 0;                 // hypercube samples
+  std::vector<OatPoint> oat;               // the one-at-a-time points judged (full set)
+  std::vector<Flip> flips;
+  // Run 7's peak rotation at the two ends of each range [rad], in the tornado chart's order
+  // (largest swing first; the chart's bars also span the nominal value).
+  struct TornadoEnds {
+    std::string assumption;  // Assumption::key
+    double low_end = 0.0, high_end = 0.0;
+  };
+  std::vector<TornadoEnds> tornado;
+  double tornado_base = 0.0;  // run 7's peak rotation at the nominal point [rad]
+  int runs = 0;               // integrations
+  // Runs that did not complete, "<design> <run> (<point>, <run name>): <status>". A run that
+  // fails at some point of the plausible space is an outcome of the study, not an error of the
+  // figures: its claims are "not evaluated" there.
+  std::vector<std::string> failed;
+  std::vector<std::string> plot_errors;
+  double wall_time = 0.0;  // [s]
+};
+
+// Runs the designs and writes into options.out: uncertainty-tornado.{png,svg,csv},
+// uncertainty.csv (one row per hypercube sample: the values, each claim's verdict and the
+// quantities of its checks), uncertainty-oat.csv (the same per one-at-a-time point),
+// uncertainty.json and uncertainty.md. Throws std::invalid_argument for bad options.
+UncertaintyResult run_uncertainty(const UncertaintyOptions& options);
+
+// Fig. 6's data as one sweep at the nominal point: the runs of fig6_runs(pga_runs, mu0_runs),
+// run through the sweep runner into dir (dir/results.csv; the runs' own outputs are removed).
+struct Fig6Sweep {
+  std::vector<Peaks> peaks;                   // one per excitation of pga_runs, in order
+  std::map<std::string, std::string> status;  // by run name: "completed", "diverged", ...
+  int runs = 0;                               // integrations
+  std::vector<std::string> failed;            // runs that did not complete
+};
+Fig6Sweep fig6_sweep(const std::filesystem::path& scenes, const std::filesystem::path& dir,
+                     const std::vector<int>& pga_runs, const std::vector<int>& mu0_runs,
+                     int workers);
+
+// uncertainty.json and uncertainty.md from a result.
+std::string uncertainty_json(const UncertaintyResult& r);
+std::string uncertainty_markdown(const UncertaintyResult& r, bool quick);
+
+}  // namespace nsb::paper_figures
