@@ -1,4 +1,4 @@
-// Parallel efficiency of `nsbridge sweep` on one machine: the Fig. 6 design (42 runs of the
+// Parallel efficiency of `nsbridge sweep` on one machine: the Fig. 6 design (36 runs of the
 // benchmark bridge, scenes/sweeps/fig6.toml) on one worker thread and on every core. Each
 // configuration runs `repeats` times into a fresh folder; the medians give
 //   efficiency = T(1 worker) / (N * T(N workers))   (1 = linear speed-up; goal >= 0.85).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Parallel efficiency of `nsbridge sweep` over MPI: the Fig. 6 design (42 runs) in one process
+# Parallel efficiency of `nsbridge sweep` over MPI: the Fig. 6 design (36 runs) in one process
 # with one worker, and under `mpirun -np RANKS` with one worker per rank. Medians of REPEATS
 # give efficiency = T(1 process) / (RANKS * T(RANKS ranks)) (goal >= 0.8 at 2 ranks).
 #   bash benchmarks/sweep_mpi_bench.sh [NSBRIDGE] [REPEATS = 3] [RANKS = 2] [CSV]

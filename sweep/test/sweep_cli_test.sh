@@ -70,9 +70,9 @@ check "restarted: old runs removed" test ! -e "$tmp/ball/runs/0002"
 
 # --- Fig. 6 (short records) with 1 and 2 workers: the same rows --------------------------------
 fig6=$root/scenes/sweeps/fig6.toml
-run 0 '42 in the design' sweep "$fig6" --out "$tmp/f1" --jobs 1 --set solver.end_time=2
+run 0 '36 in the design' sweep "$fig6" --out "$tmp/f1" --jobs 1 --set solver.end_time=2
 run 0 '2 threads' sweep "$fig6" --out "$tmp/f2" --jobs 2 --set solver.end_time=2 --plot
-check "fig6: 42 rows" test "$(wc -l < "$tmp/f1/results.csv")" -eq 43
+check "fig6: 36 rows" test "$(wc -l < "$tmp/f1/results.csv")" -eq 37
 check "fig6: --jobs 1 and 2 give the same rows" cmp -s <(rows "$tmp/f1/results.csv") <(rows "$tmp/f2/results.csv")
 for f in ida.csv ida.png ida.svg exceedance.csv exceedance.png exceedance.svg; do
   check "plot $f" test -s "$tmp/f2/plots/$f"
