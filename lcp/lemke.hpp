@@ -69,13 +69,23 @@ class Lemke {
   Result solve(const Problem& p, const LemkeOptions& options = {});
 
  private:
+  // The members below taking N run with n = N known at compile time (N > 0, see
+  // lcp/fixed_size.hpp) or n = n_ (N = Eigen::Dynamic); the arithmetic is the same.
+  template <int N>
+  Status run_n(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+               const LemkeOptions& options, Eigen::Ref<Vector> z);
+  template <int N>
+  void solve_n(const Problem& p, const LemkeOptions& options, Result& r);
+  template <int N>
   void pivot(Eigen::Index row, Eigen::Index entering);
   // Leaving row for the entering variable; -1: no entry above the pivot tolerance.
+  template <int N>
   Eigen::Index ratio_test(Eigen::Index entering, bool initial);
   void check(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
              Eigen::Index z_size) const;
   bool ray_verified(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
                     const LemkeOptions& options, Eigen::Index entering);
+  template <int N>
   double natural_residual(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
                           const Eigen::Ref<const Vector>& z);
   bool refine(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
