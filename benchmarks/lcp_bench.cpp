@@ -37,6 +37,7 @@
 #include <vector>
 
 #include <ctime>
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -169,6 +170,18 @@ struct SiconosRun {
   int iterations() const { return options->iparam[SICONOS_IPARAM_ITER_DONE]; }
 };
 
+// Siconos's dense LU (its Newton-FB step) calls LAPACK; an OpenBLAS build spreads a
+// factorization of n >= 100 over helper threads, whose CPU time the thread clock does not
+// count. The comparison runs it on one thread, as ours runs. Returns false if the linked BLAS
+// has no thread control (then it is single-threaded or not OpenBLAS).
+bool single_threaded_blas() {
+  using SetThreads = void (*)(int);
+  const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  if (set == nullptr) return false;
+  set(1);
+  return true;
+}
+
 const std::pair<int, const char*> kSiconosSolvers[] = {
     {SICONOS_LCP_LEMKE, "siconos_lexicolemke"},
     {SICONOS_LCP_PGS, "siconos_pgs"},
@@ -270,6 +283,97 @@ void print_ratios(const std::string& set) {
 }
 #endif
 
+
+const Row* find_row(const std::string& set, const std::string& problem, const std::string& solver) {
+  for (const Row& r : rows)
+    if (r.set == set && r.problem == problem && r.solver == solver) return &r;
+  return nullptr;
+}
+
+// One line per goal of docs/benchmarks/lcp.md, from the rows of this run: the ratio ours /
+// Siconos (or, without Siconos, our absolute figure) and whether it is met.
+void print_goals(int nfb_worst_steps) {
+  std::printf("\n== goals (this run) ==\n");
+  const auto verdict = [](bool met) { return met ? "met" : "NOT met"; };
+  std::map<std::string, std::string> ours_of = {{"lemke", "siconos_lexicolemke"},
+                                                {"pgs", "siconos_pgs"},
+                                                {"nfb", "siconos_newton_fb"}};
+  // Collection: largest ratio over the problems our solver solves (refuses, for PGS).
+  for (const auto& [ours, theirs] : ours_of) {
+    for (const char* outcome : {"solved", "zero_diagonal"}) {
+      if (std::string(outcome) == "zero_diagonal" && ours != "pgs") continue;
+      double worst = 0.0;
+      double worst_abs = 0.0;
+      std::string where = "-";
+      int count = 0;
+      for (const Row& a : rows) {
+        if (a.set != "siconos" || a.solver != ours || a.status != outcome) continue;
+        ++count;
+        const Row* b = find_row(a.set, a.problem, theirs);
+        const double ratio = b != nullptr ? a.median_us / b->median_us : 0.0;
+        if (b != nullptr ? ratio > worst : a.median_us > worst_abs) {
+          worst = ratio;
+          worst_abs = a.median_us;
+          where = a.problem;
+        }
+      }
+      const double target = std::string(outcome) == "solved" ? 0.5 : 1.0;
+      const std::string what = std::string(outcome) == "solved"
+                                   ? ours + " <= 0.5x on the collection problems it solves"
+                                   : ours + " refusal <= 1x Siconos's on the collection";
+      if (find_row("siconos", where, theirs) != nullptr)
+        std::printf("  %-58s largest %6.3f (%s, %d problems)  %s\n", what.c_str(), worst,
+                    where.c_str(), count, verdict(worst <= target));
+      else
+        std::printf("  %-58s slowest %9.3f us (%s, %d problems)\n", what.c_str(), worst_abs,
+                    where.c_str(), count);
+    }
+  }
+  // Eq. (6), 1 to 4 contacts: medians over the bodies.
+  const std::pair<const char*, const char*> eq6[] = {{"lemke_eq6", "siconos_lexicolemke"},
+                                                     {"pgs_eq6 (refuses)", "siconos_pgs"},
+                                                     {"nfb_eq6", "siconos_newton_fb"}};
+  for (const auto& [ours, theirs] : eq6) {
+    const bool refusal = std::string(ours).find("refuses") != std::string::npos;
+    const double target = refusal ? 1.0 : 0.5;
+    std::printf("  %-26s on eq. (6), 1-4 contacts (target %.1fx):", ours, target);
+    bool met = true;
+    bool compared = true;
+    for (int m = 1; m <= 4; ++m) {
+      const std::string key = "contacts=" + std::to_string(m);
+      const Row* a = find_row("eq6", key, ours);
+      const Row* b = find_row("eq6", key, theirs);
+      if (a == nullptr) continue;
+      if (b == nullptr) {
+        compared = false;
+        std::printf(" %.3f us", a->median_us);
+        continue;
+      }
+      const double ratio = a->median_us / b->median_us;
+      met = met && ratio <= target;
+      std::printf(" %.3f", ratio);
+    }
+    std::printf("  %s\n", compared ? verdict(met) : "");
+  }
+  std::printf("  %-58s %d  %s\n", "nfb steps to 1e-12, SPD n <= 200, cond <= 1e6 (<= 15)",
+              nfb_worst_steps, verdict(nfb_worst_steps <= 15));
+  // Newton-FB cost per step at n = 200: median time of the solve / its steps.
+  const Row* a = find_row("spd", "spd_n200", "nfb");
+  const Row* b = find_row("spd", "spd_n200", "siconos_newton_fb");
+  if (a != nullptr && a->iterations > 0) {
+    const double ours = a->median_us / a->iterations;
+    if (b != nullptr && b->iterations > 0) {
+      const double theirs = b->median_us / b->iterations;
+      std::printf("  %-58s %.1f us (%d steps) / %.1f us (%d steps) = %.3f  %s\n",
+                  "nfb cost per step at n = 200 <= Siconos's", ours, a->iterations, theirs,
+                  b->iterations, ours / theirs, verdict(ours <= theirs));
+    } else {
+      std::printf("  %-58s %.1f us (%d steps)\n", "nfb cost per step at n = 200", ours,
+                  a->iterations);
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -294,6 +398,12 @@ int main(int argc, char** argv) {
               "not available"
 #endif
   );
+
+#ifdef NSB_HAVE_SICONOS
+  std::printf("BLAS under Siconos: %s\n", single_threaded_blas()
+                                              ? "OpenBLAS, set to one thread"
+                                              : "no OpenBLAS thread control found");
+#endif
 
   // 1. Eq. (6): the per-step problem of the integrators, through the reusable solver.
   std::printf("\n== eq. (6) problems, eps = 0, mu = 0.5: median over %d random bodies ==\n",
@@ -447,6 +557,8 @@ int main(int argc, char** argv) {
 #ifdef NSB_HAVE_SICONOS
   print_ratios("siconos");
 #endif
+
+  print_goals(worst);
 
   std::ofstream out(csv);
   out << "set,problem,n,solver,median_us,status,iterations,residual,siconos_error\n";
