@@ -54,6 +54,7 @@ void Lemke::reserve(Eigen::Index n) {
   const auto un = static_cast<std::size_t>(n);
   tableau_.assign(un * (2 * un + 2), 0.0);
   column_.assign(un, 0.0);
+  ratio_.assign(un, 0.0);
   lu_.assign(un * un, 0.0);
   rhs_.assign(un, 0.0);
   basis_.assign(un, 0);
@@ -78,18 +79,20 @@ Eigen::Index Lemke::ratio_test(Eigen::Index entering, bool initial) {
   for (Eigen::Index i = 0; i < n; ++i) unorm = std::max(unorm, std::abs(u[i]));
   const double threshold = pivot_tolerance_ * unorm;
 
-  double best = std::numeric_limits<double>::infinity();
+  // Each ratio is divided once and kept for the tie test (infinite: the row cannot block).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double* ratio = ratio_.data();
+  double best = kInf;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double s = sign * u[i];
-    if (s > threshold) best = std::min(best, qcol[i] / s);
+    ratio[i] = s > threshold ? qcol[i] / s : kInf;
+    best = std::min(best, ratio[i]);
   }
   if (!std::isfinite(best)) return -1;
   Eigen::Index count = 0;
   const double tie = kTieTolerance * (1.0 + std::abs(best));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double s = sign * u[i];
-    if (s > threshold && qcol[i] / s <= best + tie) candidates_[count++] = i;
-  }
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (ratio[i] <= best + tie) candidates_[count++] = i;
   if (count == 1) return candidates_[0];
   // Prefer z0 leaving among tied rows: it ends the method at a solution.
   const Eigen::Index z0 = 2 * n;
@@ -122,14 +125,32 @@ template <int N>
 void Lemke::pivot(Eigen::Index row, Eigen::Index entering) {
   const Eigen::Index n = fixed::size<N>(n_);
   double* T = tableau_.data();
-  double* u = column_.data();
-  std::copy(T + entering * n, T + entering * n + n, u);
-  const double inv = 1.0 / u[row];
   const Eigen::Index leaving = basis_[row];
   position_[leaving] = -1;
   position_[entering] = row;
   basis_[row] = entering;
   const Eigen::Index columns = 2 * n + 2;
+  if constexpr (N > 0 && N <= 6) {
+    // All 2N + 2 columns without tests: a basic column other than the entering one is a unit
+    // vector e_r with r != row, so its multiplier a is 0 and x - 0 u leaves it as it is. At
+    // these sizes the branch-free loop costs less than the tests that skip those columns.
+    double u[N] = {};
+    std::copy(T + entering * n, T + entering * n + n, u);
+    const double inv = 1.0 / u[row];
+    for (Eigen::Index v = 0; v < columns; ++v) {
+      double* c = T + v * n;
+      const double a = c[row] * inv;
+      for (Eigen::Index i = 0; i < n; ++i) c[i] -= a * u[i];
+      c[row] = a;
+    }
+    double* e = T + entering * n;
+    std::fill(e, e + n, 0.0);
+    e[row] = 1.0;
+    return;
+  }
+  double* u = column_.data();
+  std::copy(T + entering * n, T + entering * n + n, u);
+  const double inv = 1.0 / u[row];
   for (Eigen::Index v = 0; v < columns; ++v) {
     if (v == entering || (v <= 2 * n && position_[v] >= 0)) continue;
     double* c = T + v * n;

@@ -95,6 +95,7 @@ class Lemke {
   Eigen::Index n_ = 0;
   std::vector<double> tableau_;   // n x (2n + 2), column-major: w | z | z0 | q
   std::vector<double> column_;    // copy of the entering column
+  std::vector<double> ratio_;     // the ratio test's ratios
   std::vector<double> lu_;        // k x k for the refinement
   std::vector<double> rhs_;
   std::vector<double> w_;         // M z + q of the last run

@@ -78,11 +78,14 @@ Eigen::Index first_nonpositive_diagonal(const Problem& p) {
   return n;
 }
 
-// The refusal: z = 0, w = q and both measures of that point, from q alone (M z = 0). The data
-// read (the diagonal up to entry i, and q) are checked for finiteness: a non-finite one throws
-// as Problem::validate does. The rest of M is neither read nor checked.
-void refuse(const Problem& p, Eigen::Index i, Result& r) {
-  const Eigen::Index n = p.size();
+// The refusal: z = 0, w = q and both measures of that point from q alone (M z = 0), in one
+// pass: with z = 0, min(z, w)_i = min(0, q_i) and z_i - max(0, z_i - w_i) = min(0, q_i), so
+// the measures are lcp::residual's and lcp::siconos_error's. The data read (the diagonal up to
+// entry i, and q) are checked for finiteness: a non-finite one throws as Problem::validate
+// does. The rest of M is neither read nor checked.
+template <int N>
+void refuse_n(const Problem& p, Eigen::Index i, Result& r) {
+  const Eigen::Index n = fixed::size<N>(p.size());
   if (!std::isfinite(p.M(i, i))) p.validate();  // throws, naming the entry
   r.z.resize(n);
   r.w.resize(n);
@@ -90,14 +93,25 @@ void refuse(const Problem& p, Eigen::Index i, Result& r) {
   double* z = r.z.data();
   double* w = r.w.data();
   double finite = 0.0;
+  double worst = 0.0;
+  double sum = 0.0;
+  double qmax = 0.0;
+  double qsum = 0.0;
   for (Eigen::Index k = 0; k < n; ++k) {
     z[k] = 0.0;
     w[k] = q[k];
     finite += q[k] * 0.0;
+    const double m = std::min(0.0, q[k]);
+    worst = std::max(worst, -m);
+    sum += m * m;
+    qmax = std::max(qmax, std::abs(q[k]));
+    qsum += q[k] * q[k];
   }
   if (finite != 0.0) p.validate();  // a non-finite q: throws, naming the entry
   r.status = Status::kZeroDiagonal;
-  fixed::measures<Eigen::Dynamic>(q, z, w, n, r.residual, r.siconos_error);
+  r.residual = worst / (1.0 + qmax);
+  const double qn = std::sqrt(qsum);
+  r.siconos_error = std::sqrt(sum) / (qn > 0.0 ? qn : 1.0);
 }
 
 // Validation of the whole problem, then the sweeps from r.z (n-vector, >= 0) and both measures.
@@ -127,7 +141,7 @@ Eigen::Index run(const Problem& p, const PgsOptions& options, Result& r, const V
   r.iterations = 0;
   const Eigen::Index bad = first_nonpositive_diagonal(p);
   if (bad < n) {
-    refuse(p, bad, r);
+    fixed::dispatch(n, [&](auto size) { refuse_n<decltype(size)::value>(p, bad, r); });
     return bad;
   }
   if (start != nullptr && start->size() == n) {
