@@ -63,6 +63,8 @@ struct Row {
 };
 
 std::vector<Row> rows;
+// Per body of the eq. (6) sets: (time [us], solved) of each solver, keyed "label/contacts".
+std::map<std::string, std::vector<std::pair<double, bool>>> body_times;
 
 // CPU time of this thread: on a machine shared with other jobs, wall time counts the time the
 // thread waits for a core, which is noise for a ratio of two solvers' work.
@@ -355,6 +357,27 @@ void print_goals(int nfb_worst_steps) {
     }
     std::printf("  %s\n", compared ? verdict(met) : "");
   }
+  // Newton-FB on eq. (6) where Siconos's also solves: the median over those bodies of the
+  // per-body ratio (Siconos's gives up early on the others, so their times do not compare).
+  if (body_times.count("siconos_newton_fb/1") != 0) {
+    std::printf("  %-58s", "nfb_eq6, bodies both solve: median ratio (count)");
+    bool met = true;
+    for (int m = 1; m <= 4; ++m) {
+      const auto& a = body_times["nfb_eq6/" + std::to_string(m)];
+      const auto& b = body_times["siconos_newton_fb/" + std::to_string(m)];
+      std::vector<double> ratios;
+      for (std::size_t k = 0; k < a.size() && k < b.size(); ++k)
+        if (a[k].second && b[k].second) ratios.push_back(a[k].first / b[k].first);
+      if (ratios.empty()) {
+        std::printf(" -");
+        continue;
+      }
+      const double r = median(ratios);
+      met = met && r <= 0.5;
+      std::printf(" %.3f (%zu)", r, ratios.size());
+    }
+    std::printf("  %s\n", verdict(met));
+  }
   std::printf("  %-58s %d  %s\n", "nfb steps to 1e-12, SPD n <= 200, cond <= 1e6 (<= 15)",
               nfb_worst_steps, verdict(nfb_worst_steps <= 15));
   // Newton-FB cost per step at n = 200: median time of the solve / its steps.
@@ -428,9 +451,11 @@ int main(int argc, char** argv) {
       int solved = 0;
       int worst_iter = 0;
       double worst_res = 0.0;
+      auto& per_body = body_times[std::string(label) + "/" + std::to_string(m)];
       for (std::size_t k = 0; k < problems.size(); ++k) {
         t.push_back(median_time([&] { run(k); }, quick ? 3 : 5, quick ? 2e-4 : 1e-3));
         const auto o = outcome(k);
+        per_body.emplace_back(1e6 * t.back(), o.first);
         solved += o.first;
         worst_iter = std::max(worst_iter, o.second.first);
         worst_res = std::max(worst_res, o.second.second);

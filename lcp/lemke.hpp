@@ -23,7 +23,8 @@
 //
 // The tableau B^-1 [I, -M, -d, q] lives in a workspace sized once: a pivot does no heap
 // allocation. A final refinement re-solves M_BB z_B = -q_B on the original data when the
-// tableau's round-off leaves the residual above the tolerance.
+// tableau's round-off leaves the residual above the tolerance. For n <= 12 the pivoting runs
+// with n known at compile time (lcp/fixed_size.hpp), the same arithmetic with unrolled loops.
 #pragma once
 
 #include "lcp/lcp.hpp"
