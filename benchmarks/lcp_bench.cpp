@@ -321,13 +321,13 @@ void print_goals(int nfb_worst_steps) {
       }
       const double target = std::string(outcome) == "solved" ? 0.5 : 1.0;
       const std::string what = std::string(outcome) == "solved"
-                                   ? ours + " <= 0.5x on the collection problems it solves"
-                                   : ours + " refusal <= 1x Siconos's on the collection";
+                                   ? ours + " <= 0.5x, collection, problems it solves"
+                                   : ours + " refusal <= 1x, collection";
       if (find_row("siconos", where, theirs) != nullptr)
-        std::printf("  %-58s largest %6.3f (%s, %d problems)  %s\n", what.c_str(), worst,
+        std::printf("  %-44s largest %.3f (%s, %d problems)  %s\n", what.c_str(), worst,
                     where.c_str(), count, verdict(worst <= target));
       else
-        std::printf("  %-58s slowest %9.3f us (%s, %d problems)\n", what.c_str(), worst_abs,
+        std::printf("  %-44s slowest %.3f us (%s, %d problems)\n", what.c_str(), worst_abs,
                     where.c_str(), count);
     }
   }
@@ -338,7 +338,7 @@ void print_goals(int nfb_worst_steps) {
   for (const auto& [ours, theirs] : eq6) {
     const bool refusal = std::string(ours).find("refuses") != std::string::npos;
     const double target = refusal ? 1.0 : 0.5;
-    std::printf("  %-26s on eq. (6), 1-4 contacts (target %.1fx):", ours, target);
+    std::printf("  %-17s <= %.1fx, eq. (6), 1-4 contacts:", ours, target);
     bool met = true;
     bool compared = true;
     for (int m = 1; m <= 4; ++m) {
@@ -360,7 +360,7 @@ void print_goals(int nfb_worst_steps) {
   // Newton-FB on eq. (6) where Siconos's also solves: the median over those bodies of the
   // per-body ratio (Siconos's gives up early on the others, so their times do not compare).
   if (body_times.count("siconos_newton_fb/1") != 0) {
-    std::printf("  %-58s", "nfb_eq6, bodies both solve: median ratio (count)");
+    std::printf("  %-44s", "nfb_eq6, bodies both solve (count)");
     bool met = true;
     for (int m = 1; m <= 4; ++m) {
       const auto& a = body_times["nfb_eq6/" + std::to_string(m)];
@@ -378,7 +378,7 @@ void print_goals(int nfb_worst_steps) {
     }
     std::printf("  %s\n", verdict(met));
   }
-  std::printf("  %-58s %d  %s\n", "nfb steps to 1e-12, SPD n <= 200, cond <= 1e6 (<= 15)",
+  std::printf("  %-44s %d  %s\n", "nfb steps, SPD n <= 200, cond <= 1e6 (<= 15)",
               nfb_worst_steps, verdict(nfb_worst_steps <= 15));
   // Newton-FB cost per step at n = 200: median time of the solve / its steps.
   const Row* a = find_row("spd", "spd_n200", "nfb");
@@ -387,11 +387,11 @@ void print_goals(int nfb_worst_steps) {
     const double ours = a->median_us / a->iterations;
     if (b != nullptr && b->iterations > 0) {
       const double theirs = b->median_us / b->iterations;
-      std::printf("  %-58s %.1f us (%d steps) / %.1f us (%d steps) = %.3f  %s\n",
-                  "nfb cost per step at n = 200 <= Siconos's", ours, a->iterations, theirs,
+      std::printf("  %-28s %.1f us (%d steps) / %.1f us (%d steps) = %.3f  %s\n",
+                  "nfb per step, n = 200 (<= 1x)", ours, a->iterations, theirs,
                   b->iterations, ours / theirs, verdict(ours <= theirs));
     } else {
-      std::printf("  %-58s %.1f us (%d steps)\n", "nfb cost per step at n = 200", ours,
+      std::printf("  %-28s %.1f us (%d steps)\n", "nfb per step, n = 200", ours,
                   a->iterations);
     }
   }
