@@ -355,7 +355,7 @@ void print_goals(int nfb_worst_steps) {
       met = met && ratio <= target;
       std::printf(" %.3f", ratio);
     }
-    std::printf("  %s\n", compared ? verdict(met) : "");
+    std::printf("%s%s\n", compared ? "  " : "", compared ? verdict(met) : "");
   }
   // Newton-FB on eq. (6) where Siconos's also solves: the median over those bodies of the
   // per-body ratio (Siconos's gives up early on the others, so their times do not compare).

@@ -195,6 +195,8 @@ bool newton_direction(const Problem& p, Workspace<Max>& ws) {
     return true;
   }
   if (k == 0) return true;
+  // With Max = kSmall the resize moves no memory; in the large workspace (n > kSmall) it
+  // reallocates when the size of the block changes, as the active-set block A does.
   ws.H.resize(k, k);
   for (Eigen::Index c = 0; c < k; ++c) {
     const Eigen::Index j = ws.free(c);
