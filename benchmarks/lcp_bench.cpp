@@ -37,6 +37,7 @@
 #include <vector>
 
 #include <ctime>
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -62,6 +63,8 @@ struct Row {
 };
 
 std::vector<Row> rows;
+// Per body of the eq. (6) sets: (time [us], solved) of each solver, keyed "label/contacts".
+std::map<std::string, std::vector<std::pair<double, bool>>> body_times;
 
 // CPU time of this thread: on a machine shared with other jobs, wall time counts the time the
 // thread waits for a core, which is noise for a ratio of two solvers' work.
@@ -169,6 +172,18 @@ struct SiconosRun {
   int iterations() const { return options->iparam[SICONOS_IPARAM_ITER_DONE]; }
 };
 
+// Siconos's dense LU (its Newton-FB step) calls LAPACK; an OpenBLAS build spreads a
+// factorization of n >= 100 over helper threads, whose CPU time the thread clock does not
+// count. The comparison runs it on one thread, as ours runs. Returns false if the linked BLAS
+// has no thread control (then it is single-threaded or not OpenBLAS).
+bool single_threaded_blas() {
+  using SetThreads = void (*)(int);
+  const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  if (set == nullptr) return false;
+  set(1);
+  return true;
+}
+
 const std::pair<int, const char*> kSiconosSolvers[] = {
     {SICONOS_LCP_LEMKE, "siconos_lexicolemke"},
     {SICONOS_LCP_PGS, "siconos_pgs"},
@@ -270,6 +285,118 @@ void print_ratios(const std::string& set) {
 }
 #endif
 
+
+const Row* find_row(const std::string& set, const std::string& problem, const std::string& solver) {
+  for (const Row& r : rows)
+    if (r.set == set && r.problem == problem && r.solver == solver) return &r;
+  return nullptr;
+}
+
+// One line per goal of docs/benchmarks/lcp.md, from the rows of this run: the ratio ours /
+// Siconos (or, without Siconos, our absolute figure) and whether it is met.
+void print_goals(int nfb_worst_steps) {
+  std::printf("\n== goals (this run) ==\n");
+  const auto verdict = [](bool met) { return met ? "met" : "NOT met"; };
+  std::map<std::string, std::string> ours_of = {{"lemke", "siconos_lexicolemke"},
+                                                {"pgs", "siconos_pgs"},
+                                                {"nfb", "siconos_newton_fb"}};
+  // Collection: largest ratio over the problems our solver solves (refuses, for PGS).
+  for (const auto& [ours, theirs] : ours_of) {
+    for (const char* outcome : {"solved", "zero_diagonal"}) {
+      if (std::string(outcome) == "zero_diagonal" && ours != "pgs") continue;
+      double worst = 0.0;
+      double worst_abs = 0.0;
+      std::string where = "-";
+      int count = 0;
+      for (const Row& a : rows) {
+        if (a.set != "siconos" || a.solver != ours || a.status != outcome) continue;
+        ++count;
+        const Row* b = find_row(a.set, a.problem, theirs);
+        const double ratio = b != nullptr ? a.median_us / b->median_us : 0.0;
+        if (b != nullptr ? ratio > worst : a.median_us > worst_abs) {
+          worst = ratio;
+          worst_abs = a.median_us;
+          where = a.problem;
+        }
+      }
+      const double target = std::string(outcome) == "solved" ? 0.5 : 1.0;
+      const std::string what = std::string(outcome) == "solved"
+                                   ? ours + " <= 0.5x, collection, problems it solves"
+                                   : ours + " refusal <= 1x, collection";
+      if (find_row("siconos", where, theirs) != nullptr)
+        std::printf("  %-44s largest %.3f (%s, %d problems)  %s\n", what.c_str(), worst,
+                    where.c_str(), count, verdict(worst <= target));
+      else
+        std::printf("  %-44s slowest %.3f us (%s, %d problems)\n", what.c_str(), worst_abs,
+                    where.c_str(), count);
+    }
+  }
+  // Eq. (6), 1 to 4 contacts: medians over the bodies.
+  const std::pair<const char*, const char*> eq6[] = {{"lemke_eq6", "siconos_lexicolemke"},
+                                                     {"pgs_eq6 (refuses)", "siconos_pgs"},
+                                                     {"nfb_eq6", "siconos_newton_fb"}};
+  for (const auto& [ours, theirs] : eq6) {
+    const bool refusal = std::string(ours).find("refuses") != std::string::npos;
+    const double target = refusal ? 1.0 : 0.5;
+    std::printf("  %-17s <= %.1fx, eq. (6), 1-4 contacts:", ours, target);
+    bool met = true;
+    bool compared = true;
+    for (int m = 1; m <= 4; ++m) {
+      const std::string key = "contacts=" + std::to_string(m);
+      const Row* a = find_row("eq6", key, ours);
+      const Row* b = find_row("eq6", key, theirs);
+      if (a == nullptr) continue;
+      if (b == nullptr) {
+        compared = false;
+        std::printf(" %.3f us", a->median_us);
+        continue;
+      }
+      const double ratio = a->median_us / b->median_us;
+      met = met && ratio <= target;
+      std::printf(" %.3f", ratio);
+    }
+    std::printf("%s%s\n", compared ? "  " : "", compared ? verdict(met) : "");
+  }
+  // Newton-FB on eq. (6) where Siconos's also solves: the median over those bodies of the
+  // per-body ratio (Siconos's gives up early on the others, so their times do not compare).
+  if (body_times.count("siconos_newton_fb/1") != 0) {
+    std::printf("  %-44s", "nfb_eq6, bodies both solve (count)");
+    bool met = true;
+    for (int m = 1; m <= 4; ++m) {
+      const auto& a = body_times["nfb_eq6/" + std::to_string(m)];
+      const auto& b = body_times["siconos_newton_fb/" + std::to_string(m)];
+      std::vector<double> ratios;
+      for (std::size_t k = 0; k < a.size() && k < b.size(); ++k)
+        if (a[k].second && b[k].second) ratios.push_back(a[k].first / b[k].first);
+      if (ratios.empty()) {
+        std::printf(" -");
+        continue;
+      }
+      const double r = median(ratios);
+      met = met && r <= 0.5;
+      std::printf(" %.3f (%zu)", r, ratios.size());
+    }
+    std::printf("  %s\n", verdict(met));
+  }
+  std::printf("  %-44s %d  %s\n", "nfb steps, SPD n <= 200, cond <= 1e6 (<= 15)",
+              nfb_worst_steps, verdict(nfb_worst_steps <= 15));
+  // Newton-FB cost per step at n = 200: median time of the solve / its steps.
+  const Row* a = find_row("spd", "spd_n200", "nfb");
+  const Row* b = find_row("spd", "spd_n200", "siconos_newton_fb");
+  if (a != nullptr && a->iterations > 0) {
+    const double ours = a->median_us / a->iterations;
+    if (b != nullptr && b->iterations > 0) {
+      const double theirs = b->median_us / b->iterations;
+      std::printf("  %-28s %.1f us (%d steps) / %.1f us (%d steps) = %.3f  %s\n",
+                  "nfb per step, n = 200 (<= 1x)", ours, a->iterations, theirs,
+                  b->iterations, ours / theirs, verdict(ours <= theirs));
+    } else {
+      std::printf("  %-28s %.1f us (%d steps)\n", "nfb per step, n = 200", ours,
+                  a->iterations);
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -295,6 +422,12 @@ int main(int argc, char** argv) {
 #endif
   );
 
+#ifdef NSB_HAVE_SICONOS
+  std::printf("BLAS under Siconos: %s\n", single_threaded_blas()
+                                              ? "OpenBLAS, set to one thread"
+                                              : "no OpenBLAS thread control found");
+#endif
+
   // 1. Eq. (6): the per-step problem of the integrators, through the reusable solver.
   std::printf("\n== eq. (6) problems, eps = 0, mu = 0.5: median over %d random bodies ==\n",
               quick ? 50 : 200);
@@ -318,9 +451,11 @@ int main(int argc, char** argv) {
       int solved = 0;
       int worst_iter = 0;
       double worst_res = 0.0;
+      auto& per_body = body_times[std::string(label) + "/" + std::to_string(m)];
       for (std::size_t k = 0; k < problems.size(); ++k) {
         t.push_back(median_time([&] { run(k); }, quick ? 3 : 5, quick ? 2e-4 : 1e-3));
         const auto o = outcome(k);
+        per_body.emplace_back(1e6 * t.back(), o.first);
         solved += o.first;
         worst_iter = std::max(worst_iter, o.second.first);
         worst_res = std::max(worst_res, o.second.second);
@@ -447,6 +582,8 @@ int main(int argc, char** argv) {
 #ifdef NSB_HAVE_SICONOS
   print_ratios("siconos");
 #endif
+
+  print_goals(worst);
 
   std::ofstream out(csv);
   out << "set,problem,n,solver,median_us,status,iterations,residual,siconos_error\n";

@@ -1,5 +1,7 @@
 #include "lcp/lemke.hpp"
 
+#include "lcp/fixed_size.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -52,6 +54,7 @@ void Lemke::reserve(Eigen::Index n) {
   const auto un = static_cast<std::size_t>(n);
   tableau_.assign(un * (2 * un + 2), 0.0);
   column_.assign(un, 0.0);
+  ratio_.assign(un, 0.0);
   lu_.assign(un * un, 0.0);
   rhs_.assign(un, 0.0);
   basis_.assign(un, 0);
@@ -65,8 +68,9 @@ void Lemke::reserve(Eigen::Index n) {
 // column is -d) rows are ranked by (q_i, e_i^T) / d_i and the lexicographic minimum leaves:
 // it is the most negative q_i / d_i. Afterwards only rows with a positive entry u_i of the
 // entering column can block, ranked by (B^-1 q, B^-1)_i / u_i.
+template <int N>
 Eigen::Index Lemke::ratio_test(Eigen::Index entering, bool initial) {
-  const Eigen::Index n = n_;
+  const Eigen::Index n = fixed::size<N>(n_);
   const double* T = tableau_.data();
   const double* u = T + entering * n;
   const double* qcol = T + (2 * n + 1) * n;
@@ -75,18 +79,20 @@ Eigen::Index Lemke::ratio_test(Eigen::Index entering, bool initial) {
   for (Eigen::Index i = 0; i < n; ++i) unorm = std::max(unorm, std::abs(u[i]));
   const double threshold = pivot_tolerance_ * unorm;
 
-  double best = std::numeric_limits<double>::infinity();
+  // Each ratio is divided once and kept for the tie test (infinite: the row cannot block).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double* ratio = ratio_.data();
+  double best = kInf;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double s = sign * u[i];
-    if (s > threshold) best = std::min(best, qcol[i] / s);
+    ratio[i] = s > threshold ? qcol[i] / s : kInf;
+    best = std::min(best, ratio[i]);
   }
   if (!std::isfinite(best)) return -1;
   Eigen::Index count = 0;
   const double tie = kTieTolerance * (1.0 + std::abs(best));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double s = sign * u[i];
-    if (s > threshold && qcol[i] / s <= best + tie) candidates_[count++] = i;
-  }
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (ratio[i] <= best + tie) candidates_[count++] = i;
   if (count == 1) return candidates_[0];
   // Prefer z0 leaving among tied rows: it ends the method at a solution.
   const Eigen::Index z0 = 2 * n;
@@ -115,17 +121,36 @@ Eigen::Index Lemke::ratio_test(Eigen::Index entering, bool initial) {
 
 // Gauss–Jordan pivot on (row, entering). Basic columns are unit vectors and stay so; only
 // the non-basic columns, the column of the leaving variable and q are updated.
+template <int N>
 void Lemke::pivot(Eigen::Index row, Eigen::Index entering) {
-  const Eigen::Index n = n_;
+  const Eigen::Index n = fixed::size<N>(n_);
   double* T = tableau_.data();
-  double* u = column_.data();
-  std::copy(T + entering * n, T + entering * n + n, u);
-  const double inv = 1.0 / u[row];
   const Eigen::Index leaving = basis_[row];
   position_[leaving] = -1;
   position_[entering] = row;
   basis_[row] = entering;
   const Eigen::Index columns = 2 * n + 2;
+  if constexpr (N > 0 && N <= 6) {
+    // All 2N + 2 columns without tests: a basic column other than the entering one is a unit
+    // vector e_r with r != row, so its multiplier a is 0 and x - 0 u leaves it as it is. At
+    // these sizes the branch-free loop costs less than the tests that skip those columns.
+    double u[N] = {};
+    std::copy(T + entering * n, T + entering * n + n, u);
+    const double inv = 1.0 / u[row];
+    for (Eigen::Index v = 0; v < columns; ++v) {
+      double* c = T + v * n;
+      const double a = c[row] * inv;
+      for (Eigen::Index i = 0; i < n; ++i) c[i] -= a * u[i];
+      c[row] = a;
+    }
+    double* e = T + entering * n;
+    std::fill(e, e + n, 0.0);
+    e[row] = 1.0;
+    return;
+  }
+  double* u = column_.data();
+  std::copy(T + entering * n, T + entering * n + n, u);
+  const double inv = 1.0 / u[row];
   for (Eigen::Index v = 0; v < columns; ++v) {
     if (v == entering || (v <= 2 * n && position_[v] >= 0)) continue;
     double* c = T + v * n;
@@ -190,7 +215,15 @@ void Lemke::check(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vect
 Status Lemke::run(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
                   const LemkeOptions& options, Eigen::Ref<Vector> z) {
   check(M, q, z.size());
-  const Eigen::Index n = q.size();
+  return fixed::dispatch(q.size(), [&](auto size) {
+    return run_n<decltype(size)::value>(M, q, options, z);
+  });
+}
+
+template <int N>
+Status Lemke::run_n(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+                    const LemkeOptions& options, Eigen::Ref<Vector> z) {
+  const Eigen::Index n = fixed::size<N>(q.size());
   reserve(n);
   n_ = n;
   pivots_ = 0;
@@ -230,13 +263,13 @@ Status Lemke::run(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vect
       status = Status::kMaxIterations;
       break;
     }
-    const Eigen::Index row = ratio_test(entering, initial);
+    const Eigen::Index row = ratio_test<N>(entering, initial);
     if (row < 0) {
       status = Status::kRayTermination;
       break;
     }
     const Eigen::Index leaving = basis_[row];
-    pivot(row, entering);
+    pivot<N>(row, entering);
     ++pivots_;
     initial = false;
     if (leaving == z0) {
@@ -251,7 +284,7 @@ Status Lemke::run(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vect
     const Eigen::Index r = position_[n + j];
     z(j) = r >= 0 ? std::max(0.0, qcol[r]) : 0.0;
   }
-  residual_ = natural_residual(M, q, z);
+  residual_ = natural_residual<N>(M, q, z);
   if (status == Status::kRayTermination) {
     // z0 may have reached zero to round-off on the way (a tie with its exit that the ratio
     // test resolved the other way): then z already solves the LCP, and it is one.
@@ -264,10 +297,10 @@ Status Lemke::run(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vect
     for (Eigen::Index j = 0; j < n; ++j) column_[j] = z(j);
     const double before = residual_;
     if (refine(M, q, z)) {
-      const double r2 = natural_residual(M, q, z);
+      const double r2 = natural_residual<N>(M, q, z);
       if (!(r2 < before)) {
         for (Eigen::Index j = 0; j < n; ++j) z(j) = column_[j];
-        residual_ = natural_residual(M, q, z);
+        residual_ = natural_residual<N>(M, q, z);
       } else {
         residual_ = r2;
       }
@@ -324,9 +357,10 @@ bool Lemke::ray_verified(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<con
 }
 
 // r(z) of lcp::residual with w = M z + q kept in w_ (one product, column by column).
+template <int N>
 double Lemke::natural_residual(const Eigen::Ref<const Matrix>& M,
                                const Eigen::Ref<const Vector>& q, const Eigen::Ref<const Vector>& z) {
-  const Eigen::Index n = q.size();
+  const Eigen::Index n = fixed::size<N>(q.size());
   double* w = w_.data();
   double qmax = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -348,9 +382,22 @@ double Lemke::natural_residual(const Eigen::Ref<const Matrix>& M,
 }
 
 void Lemke::solve(const Problem& p, const LemkeOptions& options, Result& r) {
-  p.validate();
-  options.validate();
   const Eigen::Index n = p.size();
+  if (p.M.rows() != n || p.M.cols() != n) p.validate();  // throws, naming the sizes
+  fixed::dispatch(n, [&](auto size) { solve_n<decltype(size)::value>(p, options, r); });
+}
+
+// Validation (one pass over M and q), the pivoting, then both measures from the w that the
+// residual of the run computed: no second product.
+template <int N>
+void Lemke::solve_n(const Problem& p, const LemkeOptions& options, Result& r) {
+  const Eigen::Index n = fixed::size<N>(p.size());
+  if constexpr (N > 0) {
+    if (!fixed::finite<N>(p.M.data(), p.q.data(), n)) p.validate();  // throws, naming the entry
+  } else {
+    p.validate();
+  }
+  options.validate();
   if (options.covering.size() != 0 && options.covering.size() != n)
     throw std::invalid_argument("LemkeOptions::covering must be empty or of size n");
   // A reused Result keeps nothing of an earlier solve (clear() frees no memory).
@@ -358,11 +405,11 @@ void Lemke::solve(const Problem& p, const LemkeOptions& options, Result& r) {
   r.wall_time = 0.0;
   r.history.clear();
   r.z.resize(n);
-  r.status = run(p.M, p.q, options, r.z);
+  r.status = run_n<N>(p.M, p.q, options, r.z);
   r.iterations = pivots_;
   r.w.resize(n);
   std::copy(w_.data(), w_.data() + n, r.w.data());
-  evaluate_measures(p, r);
+  fixed::measures<N>(p.q.data(), r.z.data(), r.w.data(), n, r.residual, r.siconos_error);
 }
 
 Result Lemke::solve(const Problem& p, const LemkeOptions& options) {

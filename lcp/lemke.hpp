@@ -23,7 +23,8 @@
 //
 // The tableau B^-1 [I, -M, -d, q] lives in a workspace sized once: a pivot does no heap
 // allocation. A final refinement re-solves M_BB z_B = -q_B on the original data when the
-// tableau's round-off leaves the residual above the tolerance.
+// tableau's round-off leaves the residual above the tolerance. For n <= 12 the pivoting runs
+// with n known at compile time (lcp/fixed_size.hpp), the same arithmetic with unrolled loops.
 #pragma once
 
 #include "lcp/lcp.hpp"
@@ -69,13 +70,23 @@ class Lemke {
   Result solve(const Problem& p, const LemkeOptions& options = {});
 
  private:
+  // The members below taking N run with n = N known at compile time (N > 0, see
+  // lcp/fixed_size.hpp) or n = n_ (N = Eigen::Dynamic); the arithmetic is the same.
+  template <int N>
+  Status run_n(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+               const LemkeOptions& options, Eigen::Ref<Vector> z);
+  template <int N>
+  void solve_n(const Problem& p, const LemkeOptions& options, Result& r);
+  template <int N>
   void pivot(Eigen::Index row, Eigen::Index entering);
   // Leaving row for the entering variable; -1: no entry above the pivot tolerance.
+  template <int N>
   Eigen::Index ratio_test(Eigen::Index entering, bool initial);
   void check(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
              Eigen::Index z_size) const;
   bool ray_verified(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
                     const LemkeOptions& options, Eigen::Index entering);
+  template <int N>
   double natural_residual(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
                           const Eigen::Ref<const Vector>& z);
   bool refine(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
@@ -85,6 +96,7 @@ class Lemke {
   Eigen::Index n_ = 0;
   std::vector<double> tableau_;   // n x (2n + 2), column-major: w | z | z0 | q
   std::vector<double> column_;    // copy of the entering column
+  std::vector<double> ratio_;     // the ratio test's ratios
   std::vector<double> lu_;        // k x k for the refinement
   std::vector<double> rhs_;
   std::vector<double> w_;         // M z + q of the last run

@@ -9,7 +9,25 @@ namespace {
 // A Jacobian whose reciprocal condition estimate is below this is treated as singular: the
 // Newton direction would carry no correct digits.
 constexpr double kSingularRcond = 1e-14;
+// The condition estimate (several triangular solves: a third of a step's cost at n = 26) runs
+// only when the pivots of the LU spread over more than kPivotSpread. max |u_ii| / min |u_ii|
+// is a lower bound on cond(U), not an upper one, so a factor with evenly sized pivots can still
+// be nearly singular; such a factor is then treated as regular, and its direction still has to
+// be finite, pass the angle test and pass the line search, which fall back to the gradient.
+// 1e8 lies six orders of magnitude from 1 / kSingularRcond.
+constexpr double kPivotSpread = 1e8;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// True unless the LU's reciprocal condition estimate is below kSingularRcond (see above).
+template <class Lu>
+bool regular(const Lu& lu) {
+  const auto pivots = lu.matrixLU().diagonal().cwiseAbs();
+  if (pivots.size() == 0) return true;
+  const double lo = pivots.minCoeff();
+  const double hi = pivots.maxCoeff();
+  if (lo > 0.0 && hi <= kPivotSpread * lo) return true;
+  return lu.rcond() > kSingularRcond;
+}
 
 // Every vector and matrix one solve needs, sized once per solve. With Max = kSmall the
 // storage is inside the object (no heap), with Max = Eigen::Dynamic on the heap.
@@ -18,17 +36,19 @@ struct Workspace {
   using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, Max, Max>;
   using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, Max, 1>;
   using Index = Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1, 0, Max, 1>;
-  Vec z, w, z_full, w_full, phi, grad, d, trial, w_trial, phi_trial, da, db, x, b;
-  Index active, tried;
+  Vec z, w, z_full, w_full, phi, grad, d, trial, w_trial, phi_trial, da, db, x, b, rhs;
+  Index active, tried, free;
   Mat H, A;
   Eigen::PartialPivLU<Mat> lu, lu_active;
   Eigen::CompleteOrthogonalDecomposition<Mat> cod_active;
   Eigen::Index tried_size = -1;
 
   void resize(Eigen::Index n) {
-    for (Vec* v : {&z, &w, &z_full, &w_full, &phi, &grad, &d, &trial, &w_trial, &phi_trial, &da, &db, &x, &b})
+    for (Vec* v : {&z, &w, &z_full, &w_full, &phi, &grad, &d, &trial, &w_trial, &phi_trial,
+                   &da, &db, &x, &b, &rhs})
       v->resize(n);
     active.resize(n);
+    free.resize(n);
     tried.resize(n);
     H.resize(n, n);
     tried_size = -1;
@@ -113,7 +133,7 @@ bool active_set_trial(const Problem& p, const V& z, const V& w, Workspace<Max>& 
       for (Eigen::Index r = 0; r < k; ++r) ws.A(r, c) = p.M(ws.active(r), ws.active(c));
     }
     ws.lu_active.compute(ws.A);
-    if (ws.lu_active.rcond() > kSingularRcond) {
+    if (regular(ws.lu_active)) {
       ws.x.head(k) = ws.lu_active.solve(ws.b.head(k));
     } else {
       // A singular block (eq. 6 with more contacts than the body has degrees of freedom):
@@ -143,6 +163,62 @@ Status solve_with(const Problem& p, const NewtonFbOptions& options, Result& r,
   return s;
 }
 
+// The Newton direction H d = -Phi, H = D_a + D_b M, on the rows that need a linear solve. A row
+// with D_b,ii = 0 (z_i = 0 and w_i > 0 exactly, where Phi_i = 0 and D_a,ii = -1: every inactive
+// component of a point on the boundary, e.g. z = 0 or an active-set point) reads
+// D_a,ii d_i = -Phi_i and gives d_i at once. The other rows F solve
+//
+//   (D_a + D_b M)_FF d_F = -Phi_F - D_b,F M_F,B d_B,
+//
+// the same direction as the full system, by an LU of |F| x |F| instead of n x n. Returns false
+// if that block is singular (see regular()); ws.d is then unset.
+template <int Max>
+bool newton_direction(const Problem& p, Workspace<Max>& ws) {
+  const Eigen::Index n = p.size();
+  Eigen::Index k = 0;
+  bool any_fixed = false;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (ws.db(i) != 0.0 || ws.da(i) == 0.0) {
+      ws.free(k++) = i;
+    } else {
+      ws.d(i) = -ws.phi(i) / ws.da(i);
+      any_fixed = true;
+    }
+  }
+  if (k == n) {
+    ws.H.resize(n, n);
+    ws.H.noalias() = ws.db.asDiagonal() * p.M;
+    ws.H.diagonal() += ws.da;
+    ws.lu.compute(ws.H);
+    if (!regular(ws.lu)) return false;
+    ws.d = ws.lu.solve(-ws.phi);
+    return true;
+  }
+  if (k == 0) return true;
+  // With Max = kSmall the resize moves no memory; in the large workspace (n > kSmall) it
+  // reallocates when the size of the block changes, as the active-set block A does.
+  ws.H.resize(k, k);
+  for (Eigen::Index c = 0; c < k; ++c) {
+    const Eigen::Index j = ws.free(c);
+    for (Eigen::Index r = 0; r < k; ++r) ws.H(r, c) = ws.db(ws.free(r)) * p.M(ws.free(r), j);
+    ws.H(c, c) += ws.da(j);
+  }
+  for (Eigen::Index r = 0; r < k; ++r) ws.rhs(r) = -ws.phi(ws.free(r));
+  if (any_fixed) {
+    // - D_b,F M_F,B d_B, column by column over the fixed components with d_i != 0.
+    for (Eigen::Index j = 0; j < n; ++j) {
+      if (ws.db(j) != 0.0 || ws.da(j) == 0.0 || ws.d(j) == 0.0) continue;
+      for (Eigen::Index r = 0; r < k; ++r)
+        ws.rhs(r) -= ws.db(ws.free(r)) * p.M(ws.free(r), j) * ws.d(j);
+    }
+  }
+  ws.lu.compute(ws.H);
+  if (!regular(ws.lu)) return false;
+  ws.x.head(k) = ws.lu.solve(ws.rhs.head(k));
+  for (Eigen::Index r = 0; r < k; ++r) ws.d(ws.free(r)) = ws.x(r);
+  return true;
+}
+
 template <int Max>
 Status iterate(const Problem& p, const NewtonFbOptions& options, Result& r, Workspace<Max>& ws) {
   const Eigen::Index n = p.size();
@@ -160,14 +236,13 @@ Status iterate(const Problem& p, const NewtonFbOptions& options, Result& r, Work
   for (int k = 1; k <= options.max_iterations; ++k) {
     r.iterations = k;
     jacobian_diagonals(p, x, ws);
-    ws.H.noalias() = ws.db.asDiagonal() * p.M;
-    ws.H.diagonal() += ws.da;
-    ws.grad.noalias() = ws.H.transpose() * ws.phi;
+    // grad Psi = H^T Phi = D_a Phi + M^T (D_b Phi).
+    ws.rhs = ws.db.cwiseProduct(ws.phi);
+    ws.grad.noalias() = p.M.transpose() * ws.rhs;
+    ws.grad += ws.da.cwiseProduct(ws.phi);
     bool newton = false;
-    ws.lu.compute(ws.H);
-    const bool regular = ws.lu.rcond() > kSingularRcond;
-    if (regular) {
-      ws.d = ws.lu.solve(-ws.phi);
+    const bool is_regular = newton_direction(p, ws);
+    if (is_regular) {
       newton = ws.d.allFinite() &&
                ws.grad.dot(ws.d) <= -options.descent_angle * ws.grad.norm() * ws.d.norm();
     }
@@ -200,7 +275,7 @@ Status iterate(const Problem& p, const NewtonFbOptions& options, Result& r, Work
         break;
       }
     }
-    if (!accepted) return regular ? Status::kLineSearchFailed : Status::kSingularJacobian;
+    if (!accepted) return is_regular ? Status::kLineSearchFailed : Status::kSingularJacobian;
     x = ws.trial;
     ws.w = ws.w_trial;
     ws.phi = ws.phi_trial;

@@ -15,8 +15,13 @@
 // test -rho ||d||^p of De Luca et al., which rejects good Newton steps of ill-conditioned
 // problems (there ||d|| stays O(1) while Psi is already tiny). For an exact Newton step
 // grad^T d = -||Phi||^2, so the test only rejects steps from an H with cond(H) > 1/c. An Armijo
-// backtracking search on Psi then fixes the step length. On nondegenerate problems with a
-// P-matrix, the unit step is accepted near the solution and convergence is quadratic.
+// backtracking search on Psi then fixes the step length. A row with D_b,ii = 0 (z_i = 0 and
+// w_i > 0 exactly, the inactive components of z = 0 and of every active-set point) reads
+// D_a,ii d_i = -Phi_i = 0, so the linear solve runs only on the other rows: the same direction
+// from an LU of their block. Singularity is judged on that block (reciprocal condition estimate
+// below 1e-14, computed when the LU's pivots spread over more than 1e8). On nondegenerate
+// problems with a P-matrix, the unit step is accepted near the solution and convergence is
+// quadratic.
 //
 // Active-set steps (option `polish`): after each damped step, the support estimates
 // A = {i : z_i > w_i} of the new iterate and of the full (undamped) Newton point give trial

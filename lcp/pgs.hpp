@@ -6,11 +6,16 @@
 //
 // which is the exact minimiser of the i-th coordinate problem when omega = 1. It converges
 // for symmetric positive definite M with 0 < omega < 2, and in general needs M_ii > 0: a
-// zero or negative diagonal entry is reported as kZeroDiagonal before any sweep.
+// zero or negative diagonal entry is reported as kZeroDiagonal before any sweep. The refusal is
+// decided first, from the diagonal alone, and costs O(n): it returns z = 0, w = q and their
+// measures, and checks for finiteness only what it read (the diagonal up to the refused entry,
+// and q; a non-finite one throws). The rest of M is not read, so a non-finite off-diagonal
+// entry of a refused problem is not reported; a problem that is solved is validated whole.
 //
 // w = M z + q is kept up to date through the sweep (a coordinate step that changes z_i by
 // delta adds delta M_.i to w), so a sweep costs one pass over M and the residual after it
-// O(n); w is recomputed from z before a solution is reported.
+// O(n); w is recomputed from z before a solution is reported. For n <= 12 the sweeps run with
+// n known at compile time (lcp/fixed_size.hpp).
 #pragma once
 
 #include "lcp/lcp.hpp"

@@ -10,6 +10,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 using namespace nsb::lcp;
 using nsb::lcp::testing::lcp_violations;
@@ -259,4 +260,65 @@ TEST_CASE("workspace reuse: one solver, varying sizes, same answers as fresh sol
   CHECK(s == Status::kSolved);
   CHECK(relative_distance(z, m.z) < 1e-12);
   CHECK(solver.last_residual() <= LemkeOptions{}.tolerance);
+}
+
+// The in-place solve runs a core with n fixed at compile time for n <= 12 and one with a
+// run-time n above. Both must give the solution that enumeration of the complementary bases
+// finds (unique for a P-matrix), and the residuals of lcp::residual / lcp::siconos_error.
+TEST_CASE("compile-time sizes n = 1..13: the enumeration's solution and the shared measures") {
+  // Lemke's tableau and enumeration's block solve lose a few ulps times cond(M) = 10.
+  constexpr double kAgree = 1e-10;
+  std::mt19937 rng(13);
+  Lemke solver(4);  // grows on demand; reused across sizes as an integrator would
+  Result r;
+  for (Eigen::Index n = 1; n <= 13; ++n) {
+    for (int k = 0; k < 5; ++k) {
+      INFO("n = " << n << ", problem " << k);
+      const auto m = testing::manufacture(rng, testing::p_matrix(rng, n), 0.0);
+      const Result oracle = enumerate(m.problem, EnumerationOptions{1e-12, 13});
+      REQUIRE(oracle.ok());
+      solver.solve(m.problem, LemkeOptions{}, r);
+      REQUIRE(r.ok());
+      CHECK(relative_distance(r.z, oracle.z) <= kAgree);
+      CHECK(r.residual == residual(m.problem.M, m.problem.q, r.z));
+      CHECK(r.siconos_error == doctest::Approx(siconos_error(m.problem.M, m.problem.q, r.z))
+                                   .epsilon(1e-14));
+      CHECK(relative_distance(r.w, m.problem.M * r.z + m.problem.q) <= 1e-14);
+    }
+  }
+}
+
+TEST_CASE("compile-time sizes: n = 1 by hand, max_pivots = 1, NaN anywhere throws") {
+  // n = 1: M = [2], q = (-4): z = 2, w = 0; two pivots (z0 enters, then z1 replaces it).
+  const Problem one = make((Matrix(1, 1) << 2).finished(), (Vector(1) << -4).finished());
+  Lemke solver;
+  Result r;
+  solver.solve(one, LemkeOptions{}, r);
+  REQUIRE(r.ok());
+  CHECK(r.z(0) == 2.0);
+  CHECK(r.w(0) == 0.0);
+  CHECK(r.iterations == 2);
+  LemkeOptions limit;
+  limit.max_pivots = 1;
+  std::mt19937 rng(5);
+  for (Eigen::Index n = 1; n <= 12; ++n) {
+    INFO("n = " << n);
+    // Every z_i > 0: at least n + 1 pivots.
+    Problem p;
+    p.M = testing::p_matrix(rng, n);
+    p.q = -p.M * Vector::Constant(n, 1.0);
+    solver.solve(p, limit, r);
+    CHECK(r.status == Status::kMaxIterations);
+    CHECK(r.iterations == 1);
+    Problem bad = p;
+    bad.M(n - 1, 0) = std::numeric_limits<double>::quiet_NaN();
+    CHECK_THROWS_WITH_AS(solver.solve(bad, LemkeOptions{}, r),
+                         doctest::Contains(("M(" + std::to_string(n - 1) + ", 0)").c_str()),
+                         std::invalid_argument);
+    bad = p;
+    bad.q(n - 1) = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_WITH_AS(solver.solve(bad, LemkeOptions{}, r),
+                         doctest::Contains(("q(" + std::to_string(n - 1) + ")").c_str()),
+                         std::invalid_argument);
+  }
 }

@@ -150,3 +150,67 @@ TEST_CASE("failures are statuses: no solution, iteration limit") {
   CHECK_THROWS_WITH_AS(newton_fb(m.problem, bad), doctest::Contains("armijo"),
                        std::invalid_argument);
 }
+
+// A Newton step solves a linear system only on the rows with D_b,ii != 0: a component with
+// z_i = 0 and w_i > 0 has the row -d_i = -Phi_i = 0. The step must be the full system's,
+// H d = -Phi with H from fischer_burmeister() and a dense LU of all n rows.
+TEST_CASE("the Newton step on the reduced rows is the full system's step") {
+  // Both directions come from LUs of matrices with cond ~ 1e2: agreement to ~1e-14 times that.
+  constexpr double kSameStep = 1e-11;
+  std::mt19937 rng(31);
+  for (Eigen::Index n : {3, 8, 12, 13, 40}) {
+    for (int k = 0; k < 3; ++k) {
+      INFO("n = " << n << ", problem " << k);
+      const auto m = testing::manufacture(rng, testing::p_matrix(rng, n), 0.0);
+      // Start near the solution: the support perturbed by 1e-3, the rest exactly 0 (there
+      // w_i >= 0.1 before the perturbation, which moves it by less than that).
+      Vector start = m.z;
+      Eigen::Index fixed = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        if (m.z(i) > 0.0) {
+          start(i) *= 1.0 + 1e-3 * (i % 2 == 0 ? 1.0 : -1.0);
+        } else {
+          ++fixed;
+        }
+      }
+      const Vector w = m.problem.M * start + m.problem.q;
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (start(i) == 0.0) REQUIRE(w(i) > 0.0);
+      Vector phi;
+      Matrix H;
+      fischer_burmeister(m.problem, start, phi, H);
+      const Vector full = start + H.partialPivLu().solve(-phi);
+      NewtonFbOptions one;
+      one.max_iterations = 1;
+      one.polish = false;
+      const Result r = newton_fb(m.problem, one, start);
+      REQUIRE(r.iterations == 1);
+      CHECK(relative_distance(r.z, full) <= kSameStep);
+      CHECK(fixed > 0);  // the reduced system did run
+    }
+  }
+}
+
+TEST_CASE("edges: n = 0, n = 1 by hand, a reused solver across the two workspaces") {
+  NewtonFb solver;
+  Result r;
+  solver.solve(Problem{}, NewtonFbOptions{}, r);
+  CHECK(r.ok());
+  CHECK(r.z.size() == 0);
+  // n = 1: M = [2], q = (-4): z = 2.
+  Problem one;
+  one.M = (Matrix(1, 1) << 2).finished();
+  one.q = (Vector(1) << -4).finished();
+  solver.solve(one, NewtonFbOptions{}, r);
+  REQUIRE(r.ok());
+  CHECK(r.z(0) == doctest::Approx(2.0).epsilon(1e-15));
+  std::mt19937 rng(32);
+  for (Eigen::Index n : {12, 13, 12, 60, 5}) {
+    INFO("n = " << n);
+    const auto m = testing::manufacture(rng, testing::spd(rng, n, 1e3), 0.0);
+    solver.solve(m.problem, NewtonFbOptions{}, r);
+    REQUIRE(r.ok());
+    CHECK(testing::lcp_violations(m.problem, r.z, 1e-11).empty());
+    CHECK(r.residual == residual(m.problem.M, m.problem.q, r.z));
+  }
+}

@@ -4,7 +4,9 @@
 
 #include <doctest/doctest.h>
 
+#include <limits>
 #include <random>
+#include <string>
 
 using namespace nsb::lcp;
 using nsb::lcp::testing::relative_distance;
@@ -114,4 +116,92 @@ TEST_CASE("edges: n = 0, q >= 0, NaN") {
   CHECK(r.iterations == 0);
   p.q(0) = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(pgs(p), std::invalid_argument);
+}
+
+// The in-place solve runs a core with n fixed at compile time for n <= 12 and one with a
+// run-time n above: both reach the manufactured solution with lcp::residual's measures.
+TEST_CASE("compile-time sizes n = 1..13: the manufactured solution and the shared measures") {
+  std::mt19937 rng(21);
+  Result r;
+  for (Eigen::Index n = 1; n <= 13; ++n) {
+    for (int k = 0; k < 3; ++k) {
+      INFO("n = " << n << ", problem " << k);
+      const auto m = testing::manufacture(rng, testing::spd(rng, n, 10.0), 0.0);
+      pgs(m.problem, PgsOptions{}, r);
+      REQUIRE(r.ok());
+      CHECK(relative_distance(r.z, m.z) <= kConverged);
+      CHECK(r.residual == residual(m.problem.M, m.problem.q, r.z));
+      CHECK(r.siconos_error == doctest::Approx(siconos_error(m.problem.M, m.problem.q, r.z))
+                                   .epsilon(1e-14));
+    }
+  }
+}
+
+// The refusal is decided from the diagonal before the rest of M is read. Its z = 0, w = q and
+// measures must be those of lcp::residual and lcp::siconos_error at z = 0.
+TEST_CASE("refusal: z = 0, w = q and their measures; what is read is checked, n = 1..13") {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  std::mt19937 rng(22);
+  Result r;
+  for (Eigen::Index n = 1; n <= 13; ++n) {
+    INFO("n = " << n);
+    Problem p;
+    p.M = testing::spd(rng, n, 10.0);
+    p.q = testing::random_vector(rng, n);
+    const Eigen::Index bad = n / 2;
+    p.M(bad, bad) = 0.0;
+    pgs(p, PgsOptions{}, r);
+    CHECK(r.status == Status::kZeroDiagonal);
+    CHECK(r.iterations == 0);
+    CHECK(r.z.isZero(0.0));
+    CHECK(r.w == p.q);
+    const Vector zero = Vector::Zero(n);
+    CHECK(r.residual == residual(p.M, p.q, zero));
+    CHECK(r.siconos_error == doctest::Approx(siconos_error(p.M, p.q, zero)).epsilon(1e-14));
+    // The by-value form names the entry.
+    CHECK(pgs(p).message.find("M(" + std::to_string(bad) + ", " + std::to_string(bad) + ")") !=
+          std::string::npos);
+    // A non-finite q or diagonal entry is a caller's mistake, refused or not.
+    Problem nan_q = p;
+    nan_q.q(n - 1) = kNaN;
+    CHECK_THROWS_AS(pgs(nan_q, PgsOptions{}, r), std::invalid_argument);
+    Problem nan_diagonal = p;
+    nan_diagonal.M(bad, bad) = kNaN;
+    CHECK_THROWS_AS(pgs(nan_diagonal, PgsOptions{}, r), std::invalid_argument);
+    // Off the diagonal, M is not read when the problem is refused (documented in pgs.hpp);
+    // when it is solved, every entry is checked.
+    if (n > 1) {
+      Problem nan_off = p;
+      nan_off.M(n - 1, 0) = kNaN;
+      pgs(nan_off, PgsOptions{}, r);
+      CHECK(r.status == Status::kZeroDiagonal);
+      nan_off.M(bad, bad) = 1.0;
+      CHECK_THROWS_AS(pgs(nan_off, PgsOptions{}, r), std::invalid_argument);
+    }
+  }
+}
+
+TEST_CASE("edges of the in-place form: n = 0, n = 1 by hand, max_iterations = 1") {
+  Result r;
+  pgs(Problem{}, PgsOptions{}, r);
+  CHECK(r.ok());
+  CHECK(r.z.size() == 0);
+  // n = 1: M = [4], q = (-2): z = 1/2 in one sweep (the exact coordinate minimiser).
+  Problem one;
+  one.M = (Matrix(1, 1) << 4).finished();
+  one.q = (Vector(1) << -2).finished();
+  pgs(one, PgsOptions{}, r);
+  REQUIRE(r.ok());
+  CHECK(r.z(0) == 0.5);
+  CHECK(r.iterations == 1);
+  // A coupled problem needs more than one sweep.
+  std::mt19937 rng(23);
+  PgsOptions once;
+  once.max_iterations = 1;
+  for (Eigen::Index n : {2, 12, 13}) {
+    const auto m = testing::manufacture(rng, testing::spd(rng, n, 100.0), 0.0);
+    pgs(m.problem, once, r);
+    CHECK(r.status == Status::kMaxIterations);
+    CHECK(r.iterations == 1);
+  }
 }
