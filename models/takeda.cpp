@@ -410,7 +410,7 @@ double Spring::set_trial(double d) {
   // branch; rules 4-9 along an unloading or reloading line), or no move: the trial state is
   // the committed one with another d, f and work, computed as advance() would, without the
   // branch logic and, when the previous trial was such a move too, without copying the whole
-  // state. Nearly every trial of a yielded spring within one time step is such a move.
+  // state. Most trials of a yielded spring are such moves (a step moves it by a little).
   double f_line = 0.0;
   if (d == committed_.d || stays_on_branch(d, f_line)) {
     if (trial_moved_on_branch_) {
