@@ -5,6 +5,7 @@
 // beside the wall time, since a shared machine inflates the latter. Writes CSV for moreau_plot.gp.
 //
 //   moreau_bench [repeats = 3] [csv = moreau_bench.csv] [excitation = all (1..7)]
+//                [step = both (1e-4 and 1e-3)]
 #include "integrators/moreau_jean.hpp"
 #include "models/scene.hpp"
 
@@ -28,6 +29,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "moreau_bench: excitation must be 1..7, got '%s'\n", argv[3]);
     return 2;
   }
+  // One step only, for profiles of a single configuration (callgrind counts per step).
+  const double only_step = argc > 4 ? std::atof(argv[4]) : 0.0;
+  if (argc > 4 && !(only_step > 0.0)) {
+    std::fprintf(stderr, "moreau_bench: step must be a number > 0, got '%s'\n", argv[4]);
+    return 2;
+  }
+  const std::vector<double> steps =
+      only_step > 0.0 ? std::vector<double>{only_step} : std::vector<double>{1e-4, 1e-3};
   std::printf("moreau_bench: Moreau-Jean on the benchmark bridge, %d repeats (median)\n", repeats);
   std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, NSB_GIT_REVISION);
   std::ofstream csv(csv_path);
@@ -40,7 +49,7 @@ int main(int argc, char** argv) {
     if (only != 0 && exc != only) continue;
     const std::string scene_file =
         std::string(NSB_SCENES_DIR) + "/bridge-exc" + std::to_string(exc) + ".toml";
-    for (double h : {1e-4, 1e-3}) {
+    for (double h : steps) {
       std::vector<double> walls, cpus;  // wall and process CPU time of each repeat [s]
       integrators::RunResult stats;
       double peak_rotation = 0.0;

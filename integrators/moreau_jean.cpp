@@ -41,6 +41,42 @@ void add_product(double alpha, const Matrix& a, const Vector& x, Vector& y) {
   }
 }
 
+// Element-wise loops for the vectors of the step (the same operations as Eigen's expressions,
+// element by element, so the same numbers): for a few degrees of freedom, the dynamic-size
+// expressions' setup costs more than the arithmetic.
+// y = a x + b z
+void combine(double a, const Vector& x, double b, const Vector& z, Vector& y) {
+  const Eigen::Index n = y.size();
+  for (Eigen::Index i = 0; i < n; ++i) y[i] = a * x[i] + b * z[i];
+}
+// y = x + a u + b w
+void combine(const Vector& x, double a, const Vector& u, double b, const Vector& w, Vector& y) {
+  const Eigen::Index n = y.size();
+  for (Eigen::Index i = 0; i < n; ++i) y[i] = x[i] + a * u[i] + b * w[i];
+}
+void copy(const Vector& x, Vector& y) {
+  const Eigen::Index n = y.size();
+  for (Eigen::Index i = 0; i < n; ++i) y[i] = x[i];
+}
+bool all_finite(const Vector& x) {
+  const Eigen::Index n = x.size();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!std::isfinite(x[i])) return false;
+  }
+  return true;
+}
+// gdot_N = W_N^T u + what_N. Up to three terms summed in order, which is Eigen's order for
+// those sizes; Eigen's dot otherwise.
+double gap_rate(const ContactData& c, const Vector& u) {
+  const Vector& w = c.w_normal;
+  switch (w.size()) {
+    case 1: return w[0] * u[0] + c.what_normal;
+    case 2: return (w[0] * u[0] + w[1] * u[1]) + c.what_normal;
+    case 3: return (w[0] * u[0] + w[1] * u[1] + w[2] * u[2]) + c.what_normal;
+    default: return c.gap_rate(u);
+  }
+}
+
 class MoreauJean {
  public:
   MoreauJean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
@@ -85,6 +121,8 @@ class MoreauJean {
   ContactStage stage_;
   Vector lambda_n_, lambda_t_;  // impulses of every contact in this step [kN s]
   Vector force_n_, force_t_;    // lambda = Lambda / h, for the history [kN]
+  bool had_impulses_ = false;   // lambda_n_, lambda_t_ may be non-zero (a contact problem)
+  bool had_forces_ = false;     // force_n_, force_t_ may be non-zero
   std::vector<ContactState> state_;
   std::vector<char> in_index_set_;  // per contact: in the index set of this step
 
@@ -256,11 +294,10 @@ bool MoreauJean::step(double h, double t1) {
   // Free velocity: the theta-method with the smooth force linearised about (q_k, u_k),
   //   A (u_free - u_k) = h [(1-theta) f_k + theta f(t_k+1, q_k, u_k)] - h^2 theta K u_k.
   system_.forces(t1, q_, u_, f_pred_);
-  if (!f_pred_.allFinite()) return diverge(t1, "non-finite smooth force");
-  rhs_ = (h * (1.0 - theta_)) * f_k_;
-  rhs_ += (h * theta_) * f_pred_;
+  if (!all_finite(f_pred_)) return diverge(t1, "non-finite smooth force");
+  combine(h * (1.0 - theta_), f_k_, h * theta_, f_pred_, rhs_);
   if (has_stiffness_) add_product(-(h * h * theta_), K_, u_, rhs_);
-  u_free_ = u_;
+  copy(u_, u_free_);
   add_product(1.0, A_inv_, rhs_, u_free_);
 
   // Index set: contacts closed or closing within the step, g_N + (h/2) gdot_N <= 0, with
@@ -269,28 +306,29 @@ bool MoreauJean::step(double h, double t1) {
   // contact whose gap came out at +1e-17 m is not dropped for one step.
   const double gap_slack = ContactTolerances::gap(q_);
   active_.clear();
-  active_friction_ = false;
   for (int i = 0; i < m_; ++i) {
     const ContactData& c = contacts_[static_cast<std::size_t>(i)];
     in_index_set_[static_cast<std::size_t>(i)] = 0;
     if (c.far) continue;
-    if (c.gap_normal + 0.5 * h * c.gap_rate(u_) <= gap_slack) {
+    if (c.gap_normal + 0.5 * h * gap_rate(c, u_) <= gap_slack) {
       in_index_set_[static_cast<std::size_t>(i)] = 1;
       active_.push_back(i);
-      if (c.friction > 0.0) active_friction_ = true;
     }
   }
-  u_new_ = u_free_;
-  lambda_n_.setZero();
-  lambda_t_.setZero();
-  if (!active_.empty() && !solve_contacts(t1)) {
-    return diverge(t1, "non-finite contact problem");
+  copy(u_free_, u_new_);
+  // The impulses of the previous step, if it had any, are cleared.
+  if (had_impulses_) {
+    lambda_n_.setZero();
+    lambda_t_.setZero();
+    had_impulses_ = false;
+  }
+  if (!active_.empty()) {
+    had_impulses_ = true;
+    if (!solve_contacts(t1)) return diverge(t1, "non-finite contact problem");
   }
 
-  q_new_ = q_;
-  q_new_ += (h * (1.0 - theta_)) * u_;
-  q_new_ += (h * theta_) * u_new_;
-  if (!q_new_.allFinite() || !u_new_.allFinite()) return diverge(t1, "non-finite state");
+  combine(q_, h * (1.0 - theta_), u_, h * theta_, u_new_, q_new_);
+  if (!all_finite(q_new_) || !all_finite(u_new_)) return diverge(t1, "non-finite state");
 
   // Work of the contact impulses on the system over the step: Lambda . W^T (u_k + u_k+1)/2,
   // the exact change of kinetic energy they cause (Acary & Brogliato 2008, ch. 10), with the
@@ -306,7 +344,7 @@ bool MoreauJean::step(double h, double t1) {
 
   // Accept the step: evaluate the end state, keep its tangent if it changed, commit once.
   system_.forces(t1, q_new_, u_new_, f_k_);
-  if (!f_k_.allFinite()) return diverge(t1, "non-finite smooth force");
+  if (!all_finite(f_k_)) return diverge(t1, "non-finite smooth force");
   if (system_.tangent_changed()) {
     system_.tangent(t1, q_new_, u_new_, K_, C_);
     refactor_ = true;
@@ -316,14 +354,19 @@ bool MoreauJean::step(double h, double t1) {
   std::swap(u_, u_new_);
   t_ = t1;
   ++stats_.steps;
-  system_.contact_data(t_, q_, u_, contacts_);
+  // Only the normal part: the index set of the next step, Newton's law's gdot_N- and the
+  // events read nothing else at t_k (the contact problem uses the full data of t_k+1).
+  system_.contact_normals(t_, q_, u_, contacts_);
   accumulate_smooth_work(h);
   if (!std::isfinite(energy_.damping + energy_.ground + energy_.external)) {
     return diverge(t1, "non-finite energy");
   }
-  for (int i = 0; i < m_; ++i) {
-    force_n_[i] = lambda_n_[i] / h;
-    force_t_[i] = lambda_t_[i] / h;
+  if (had_impulses_ || had_forces_) {
+    for (int i = 0; i < m_; ++i) {
+      force_n_[i] = lambda_n_[i] / h;
+      force_t_[i] = lambda_t_[i] / h;
+    }
+    had_forces_ = had_impulses_;
   }
   return true;
 }
@@ -338,12 +381,16 @@ bool MoreauJean::step(double h, double t1) {
 bool MoreauJean::solve_contacts(double t1) {
   ++stats_.steps_with_lcp;
   system_.contact_data(t1, q_, u_, contacts_next_);
+  active_friction_ = false;
+  for (int i : active_) {
+    if (contacts_next_[static_cast<std::size_t>(i)].friction > 0.0) active_friction_ = true;
+  }
   lcp::FrictionalProblem& p = stage_.build(contacts_next_, active_, active_friction_, A_inv_,
                                            u_free_, ContactLevel::kVelocity);
   const int k = static_cast<int>(active_.size());
   for (int j = 0; j < k; ++j) {
-    p.gdot_n_minus[j] = contacts_[static_cast<std::size_t>(active_[static_cast<std::size_t>(j)])]
-                            .gap_rate(u_);
+    p.gdot_n_minus[j] =
+        gap_rate(contacts_[static_cast<std::size_t>(active_[static_cast<std::size_t>(j)])], u_);
   }
   const ContactStatus status = stage_.solve();
   if (status == ContactStatus::kNonFiniteInput) return false;

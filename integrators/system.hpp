@@ -88,6 +88,15 @@ class System {
   virtual int contacts() const = 0;
   virtual void contact_data(double t, const Vector& q, const Vector& u,
                             std::vector<ContactData>& out) const = 0;
+  // The normal part of contact_data(): gap_normal, w_normal, what_normal and far of every
+  // contact at (t, q, u), the same numbers; the other fields of `out` keep their values.
+  // Enough to choose an index set and to evaluate gdot_N = W_N^T u + what_N, which is all a
+  // time-stepping scheme needs at the start of most steps. The default calls contact_data();
+  // a system whose full contact data cost much more overrides it.
+  virtual void contact_normals(double t, const Vector& q, const Vector& u,
+                               std::vector<ContactData>& out) const {
+    contact_data(t, q, u, out);
+  }
 
   // Energy bookkeeping at the trial state.
   virtual PowerTerms power(double t, const Vector& q, const Vector& u) const = 0;
@@ -107,8 +116,9 @@ class System {
 // The defaults of the optional answers, so that a system writes only what it has: a unit
 // mass matrix and a state at rest unless set_mass() / set_initial_state() say otherwise, no
 // smooth force, no tangent (K = C = 0, right for forces independent of q and u), no internal
-// state (commit and revert do nothing, the tangent never changes), no contacts, no energy
-// flows and no stored energy. A system whose forces depend on q or u overrides tangent();
+// state (commit and revert do nothing, the tangent never changes), no contacts (and normal
+// contact data that are the full contact_data(), System's default), no energy flows and no
+// stored energy. A system whose forces depend on q or u overrides tangent();
 // one with contacts overrides contacts() and contact_data(); one with springs or loads
 // overrides power() and energy().
 class SystemBase : public System {

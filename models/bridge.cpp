@@ -196,11 +196,12 @@ int Bridge::motion_index(const Motion& m, bool needs_acceleration) {
 void Bridge::update_motions(double t) const {
   if (t == values_t_) return;
   for (std::size_t i = 0; i < motions_.size(); ++i) {
+    const GroundMotion::Values g = motions_[i]->values(t);
     MotionValue& v = values_[i];
-    v.d = motions_[i]->displacement(t);
-    v.v = motions_[i]->velocity(t);
+    v.d = g.displacement;
+    v.v = g.velocity;
     // The bents need no acceleration: only the seats' contact kinematics (wbar) use it.
-    v.a = needs_acceleration_[i] ? motions_[i]->acceleration(t) : 0.0;
+    v.a = needs_acceleration_[i] ? g.acceleration : 0.0;
   }
   us_dot_ = Eigen::Vector3d::Zero();
   for (std::size_t j = 0; j < p_.bents.size(); ++j) {
@@ -294,6 +295,21 @@ void Bridge::contact_data(double t, const integrators::Vector& q, const integrat
         corners_[i], q3, u3,
         seats[static_cast<std::size_t>(DeckGeometry::abutment_of(static_cast<int>(i)))]);
     copy_contact(k, p_.restitution, p_.friction, out[i]);
+  }
+}
+
+void Bridge::contact_normals(double t, const integrators::Vector& q,
+                             const integrators::Vector& u,
+                             std::vector<integrators::ContactData>& out) const {
+  if (out.size() != 4) out.resize(4);
+  const Eigen::Vector3d q3 = q.head<3>(), u3 = u.head<3>();
+  update_motions(t);
+  const std::array<PlanarMotion, 2> seats{seat_motion_cached(0), seat_motion_cached(1)};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto k = corner_contact_normal(
+        corners_[i], q3, u3,
+        seats[static_cast<std::size_t>(DeckGeometry::abutment_of(static_cast<int>(i)))]);
+    copy_contact_normal(k, out[i]);
   }
 }
 

@@ -128,6 +128,9 @@ class Bridge final : public integrators::SystemBase {
   int contacts() const override { return 4; }
   void contact_data(double t, const integrators::Vector& q, const integrators::Vector& u,
                     std::vector<integrators::ContactData>& out) const override;
+  // g_N, W_N, what_N and far only (corner_contact_normal): a quarter of the work.
+  void contact_normals(double t, const integrators::Vector& q, const integrators::Vector& u,
+                       std::vector<integrators::ContactData>& out) const override;
   // damping = (u - us_dot)^T C (u - us_dot); ground = work rate of the bents' support
   // reactions on the support motion: -sum_j (F_x,j u_gxdot,j + F_y,j u_gydot,j)
   // - us_dot^T C (u - us_dot). The seats' work enters through the contact impulses (their

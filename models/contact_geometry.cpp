@@ -96,4 +96,40 @@ ContactKinematics corner_contact(const CornerFace& c, const Eigen::Vector3d& q,
   return k;
 }
 
+ContactNormal corner_contact_normal(const CornerFace& c, const Eigen::Vector3d& q,
+                                    const Eigen::Vector3d& u, const PlanarMotion& obstacle) {
+  // The statements of corner_contact() that g_N, W_N, what_N and gdot_N depend on, unchanged:
+  // the same numbers without the tangential and second-order terms.
+  ContactNormal k;
+  const double vx = u.x(), vy = u.y(), omega = u.z();
+  const double phi = obstacle.position.z();
+  const double phid = obstacle.velocity.z();
+  const Rotation body_rotation(q.z()), obstacle_rotation(phi);
+
+  double rx, ry;
+  body_rotation.apply(c.body_point, rx, ry);
+  const double px = q.x() + rx, py = q.y() + ry;
+
+  double rax, ray;
+  obstacle_rotation.apply(c.face_point, rax, ray);
+  const double ax = obstacle.position.x() + rax, ay = obstacle.position.y() + ray;
+  const double adx = obstacle.velocity.x() + phid * -ray;
+  const double ady = obstacle.velocity.y() + phid * rax;
+
+  double nx, ny;
+  obstacle_rotation.apply(c.face_normal, nx, ny);
+  const double tx = -ny, ty = nx;  // t = J n
+  const double dx = px - ax, dy = py - ay;
+
+  k.gap_normal = nx * dx + ny * dy;
+  const double gap_tangent = tx * dx + ty * dy;
+  const double wn2 = rx * ny - ry * nx;  // r x n
+  k.w_normal.x() = nx;
+  k.w_normal.y() = ny;
+  k.w_normal.z() = wn2;
+  k.what_normal = phid * gap_tangent - (nx * adx + ny * ady);
+  k.gap_rate_normal = (nx * vx + ny * vy + wn2 * omega) + k.what_normal;
+  return k;
+}
+
 }  // namespace nsb::models

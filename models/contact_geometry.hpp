@@ -67,6 +67,17 @@ struct ContactKinematics {
 ContactKinematics corner_contact(const CornerFace& c, const Eigen::Vector3d& q,
                                  const Eigen::Vector3d& u, const PlanarMotion& obstacle);
 
+// The normal part of ContactKinematics, the same numbers: what a time-stepping scheme needs
+// to choose its index set.
+struct ContactNormal {
+  double gap_normal = 0.0;       // g_N [m]
+  Eigen::Vector3d w_normal = Eigen::Vector3d::Zero();  // W_N [-, -, m]
+  double what_normal = 0.0;      // [m/s]
+  double gap_rate_normal = 0.0;  // gdot_N = W_N^T u + what_N [m/s]
+};
+ContactNormal corner_contact_normal(const CornerFace& c, const Eigen::Vector3d& q,
+                                    const Eigen::Vector3d& u, const PlanarMotion& obstacle);
+
 // 2D cross product a x b = a_x b_y - a_y b_x.
 inline double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();

@@ -538,6 +538,32 @@ double GroundMotion::displacement(double t) const {
          p;
 }
 
+GroundMotion::Values GroundMotion::values(double t) const {
+  Values v;
+  if (!data_) return v;
+  const Data& d = *data_;
+  double tr = t - d.delay;
+  if (tr < d.t0) return v;
+  const bool after_end = tr > d.t1;
+  if (after_end) tr = d.t1;  // the displacement is held; velocity and acceleration are 0
+  const std::size_t i = d.interval(tr);
+  const double s = tr - d.t[i];
+  double p, dp, ddp;
+  d.poly(tr, p, dp, ddp);
+  // The expressions of displacement(), velocity() and acceleration().
+  v.displacement =
+      d.d_knot[i] +
+      s * (d.v_knot[i] +
+           s * (d.c0[i] / 2.0 + s * (d.c1[i] / 6.0 + s * (d.c2[i] / 12.0 + s * d.c3[i] / 20.0)))) -
+      p;
+  if (after_end) return v;
+  v.velocity =
+      d.v_knot[i] + s * (d.c0[i] + s * (d.c1[i] / 2.0 + s * (d.c2[i] / 3.0 + s * d.c3[i] / 4.0))) -
+      dp;
+  v.acceleration = d.c0[i] + s * (d.c1[i] + s * (d.c2[i] + s * d.c3[i])) - ddp;
+  return v;
+}
+
 double GroundMotion::duration() const { return data_ ? data_->t1 - data_->t0 : 0.0; }
 double GroundMotion::pga() const { return data_ ? data_->pga : 0.0; }
 double GroundMotion::start_time() const { return data_ ? data_->t0 + data_->delay : 0.0; }

@@ -55,6 +55,14 @@ class GroundMotion {  // smooth (GSL cubic spline) displacement, velocity, accel
   double displacement(double t) const;  // [m]; 0 before start; held after end
   double velocity(double t) const;      // [m/s]; 0 before start and after end
   double acceleration(double t) const;  // [m/s^2]; 0 before start and after end
+  // All three at t, from one interval search and one baseline evaluation: the same numbers
+  // as displacement(t), velocity(t) and acceleration(t).
+  struct Values {
+    double displacement = 0.0;  // [m]
+    double velocity = 0.0;      // [m/s]
+    double acceleration = 0.0;  // [m/s^2]
+  };
+  Values values(double t) const;
   double duration() const;              // [s], after time scaling
   double pga() const;                   // [m/s^2], max |a| over the samples after scaling
 

@@ -72,6 +72,13 @@ void copy_contact(const ContactKinematics& k, double restitution, double frictio
   out.far = k.gap_normal > kFarGap + kFarHorizon * std::max(0.0, -k.gap_rate_normal);
 }
 
+void copy_contact_normal(const ContactNormal& k, integrators::ContactData& out) {
+  out.gap_normal = k.gap_normal;
+  out.w_normal = k.w_normal;
+  out.what_normal = k.what_normal;
+  out.far = k.gap_normal > kFarGap + kFarHorizon * std::max(0.0, -k.gap_rate_normal);
+}
+
 void RigidDeck::contact_data(double, const integrators::Vector& q, const integrators::Vector& u,
                              std::vector<integrators::ContactData>& out) const {
   if (out.size() != 4) out.resize(4);

@@ -63,5 +63,8 @@ class RigidDeck final : public integrators::SystemBase {
 // Writes one ContactKinematics into a ContactData (sizes already 3).
 void copy_contact(const ContactKinematics& k, double restitution, double friction,
                   integrators::ContactData& out);
+// Writes the normal part (System::contact_normals) into a ContactData: gap_normal, w_normal,
+// what_normal and far, as copy_contact() does.
+void copy_contact_normal(const ContactNormal& k, integrators::ContactData& out);
 
 }  // namespace nsb::models

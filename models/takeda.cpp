@@ -16,8 +16,6 @@ namespace {
 // The bilinear variant needs k0 = f_yield / d_yield; a parameter file written by hand gets
 // this relative slack for rounding in the quoted figures.
 constexpr double kBilinearStiffnessTolerance = 1e-6;
-// Two tangents differing by less than this (relative) are the same branch slope.
-constexpr double kTangentChangeTolerance = 1e-12;
 // A monotone move crosses at most four branches (docs/takeda.md); more means a logic error.
 constexpr int kMaxBranchTransitions = 16;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -28,13 +26,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 int sign_of(double x) { return x >= 0.0 ? 1 : -1; }
 
-// Both states still on the initial elastic branch: they can then differ only in d, f and work
-// (a move on that branch changes nothing else).
-bool both_elastic(const State& a, const State& b) {
-  return a.branch == Branch::kElastic && b.branch == Branch::kElastic;
-}
-
-void copy_elastic(const State& from, State& to) {
+// The fields that a move along a straight branch changes (move_on_line).
+void copy_moving_fields(const State& from, State& to) {
   to.d = from.d;
   to.f = from.f;
   to.work = from.work;
@@ -368,6 +361,38 @@ double Spring::tangent_of(const State& s) const {
   return k_elastic_;
 }
 
+bool Spring::stays_on_branch(double d, double& f) const {
+  // The first test advance() makes on the committed state's branch, and the force it then
+  // sets: the same conditions and expressions, so that the fast path of set_trial() gives
+  // the same numbers.
+  const State& s = committed_;
+  const int m = d > s.d ? 1 : -1;
+  switch (s.branch) {
+    case Branch::kElastic: {
+      const double d_end = m * d_crack_;
+      if ((d - d_end) * m > 0.0) return false;
+      f = k_elastic_ * d;
+      return true;
+    }
+    case Branch::kBackbone: return false;  // loading moves the peak; reversal starts a line
+    case Branch::kUnloading: {
+      if (m != s.side) {
+        const double d_zero = s.line_d - s.line_f / s.line_k;
+        if ((d - d_zero) * m > 0.0) return false;
+      } else if ((d - s.line_d) * m > 0.0) {
+        return false;
+      }
+      break;
+    }
+    case Branch::kReloading: {
+      if (m != s.side || (d - s.line_end_d) * m > 0.0) return false;
+      break;
+    }
+  }
+  f = s.line_f + s.line_k * (d - s.line_d);
+  return true;
+}
+
 double Spring::set_trial(double d) {
   if (!std::isfinite(d)) {
     // A non-finite trial displacement comes from a numerical blow-up of the integration, not
@@ -378,31 +403,41 @@ double Spring::set_trial(double d) {
     trial_.f = std::numeric_limits<double>::quiet_NaN();
     trial_.work = std::numeric_limits<double>::quiet_NaN();
     trial_tangent_ = std::numeric_limits<double>::quiet_NaN();
+    trial_moved_on_branch_ = true;  // it differs from the committed state in d, f, work only
     return trial_.f;
   }
-  if (both_elastic(committed_, trial_) && std::abs(d) <= d_crack_) {
-    // Rule 1 without the general machinery. A state that never left the elastic branch
-    // differs from the initial one only in d, f and work (side, peaks and lines are those of
-    // the constructor), and the committed one has |d| <= d_crack, so the move stays on the
-    // branch exactly when |d| <= d_crack: the same numbers as advance(), without copying
-    // the whole state.
-    copy_elastic(committed_, trial_);
-    if (d != committed_.d) move_on_line(trial_, d, k_elastic_ * d);
-    trial_tangent_ = d != committed_.d ? k_elastic_ : committed_tangent_;
+  // A move that stays on the committed state's straight branch (rule 1 on the initial
+  // branch; rules 4-9 along an unloading or reloading line), or no move: the trial state is
+  // the committed one with another d, f and work, computed as advance() would, without the
+  // branch logic and, when the previous trial was such a move too, without copying the whole
+  // state. Most trials of a yielded spring are such moves (a step moves it by a little).
+  double f_line = 0.0;
+  if (d == committed_.d || stays_on_branch(d, f_line)) {
+    if (trial_moved_on_branch_) {
+      copy_moving_fields(committed_, trial_);
+    } else {
+      trial_ = committed_;
+      trial_moved_on_branch_ = true;
+    }
+    if (d != committed_.d) {
+      move_on_line(trial_, d, f_line);
+      trial_tangent_ = tangent_of(committed_);  // the branch's slope: k_elastic or line_k
+    } else {
+      trial_tangent_ = committed_tangent_;
+    }
     return trial_.f;
   }
   trial_ = committed_;
-  if (d != committed_.d) advance(trial_, d);
-  trial_tangent_ = d != committed_.d ? tangent_of(trial_) : committed_tangent_;
+  advance(trial_, d);
+  trial_moved_on_branch_ = false;
+  trial_tangent_ = tangent_of(trial_);
   return trial_.f;
 }
 
-double Spring::force() const { return trial_.f; }
-double Spring::tangent() const { return trial_tangent_; }
-
-bool Spring::tangent_changed() const {
-  return std::abs(trial_tangent_ - committed_tangent_) >
-         kTangentChangeTolerance * std::max(std::abs(committed_tangent_), k_elastic_);
+State Spring::moved(const State& from, double d) const {
+  State s = from;
+  if (d != s.d) advance(s, d);
+  return s;
 }
 
 bool Spring::elastic() const { return committed_.branch == Branch::kElastic; }
@@ -428,19 +463,21 @@ double Spring::stored_energy() const {
 double Spring::dissipated_energy() const { return trial_.work - stored_energy(); }
 
 void Spring::commit() {
-  if (both_elastic(committed_, trial_)) {
-    copy_elastic(trial_, committed_);  // the other fields are equal (see set_trial)
+  if (trial_moved_on_branch_) {
+    copy_moving_fields(trial_, committed_);  // the other fields are equal
   } else {
     committed_ = trial_;
+    trial_moved_on_branch_ = true;  // now equal
   }
   committed_tangent_ = trial_tangent_;
 }
 
 void Spring::revert() {
-  if (both_elastic(committed_, trial_)) {
-    copy_elastic(committed_, trial_);
+  if (trial_moved_on_branch_) {
+    copy_moving_fields(committed_, trial_);
   } else {
     trial_ = committed_;
+    trial_moved_on_branch_ = true;
   }
   trial_tangent_ = committed_tangent_;
 }

@@ -11,7 +11,13 @@
 // Units: kN, m; energies in kJ = kN m.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 namespace nsb::models::takeda {
+
+// Two tangents differing by less than this (relative) are the same branch slope.
+inline constexpr double kTangentChangeTolerance = 1e-12;
 
 struct Parameters {
   double k0 = 0.0;                  // initial (uncracked) stiffness [kN/m], > 0
@@ -60,9 +66,12 @@ class Spring {  // one uniaxial Takeda spring with committed and trial state
   // Trial displacement [m] -> trial force [kN]. A non-finite d (a diverged integration)
   // gives a NaN force, tangent and energy instead of throwing; revert() recovers.
   double set_trial(double d);
-  double force() const;                // trial force
-  double tangent() const;              // trial tangent stiffness [kN/m]
-  bool tangent_changed() const;        // trial tangent differs from the committed one
+  double force() const { return trial_.f; }        // trial force
+  double tangent() const { return trial_tangent_; }  // trial tangent stiffness [kN/m]
+  bool tangent_changed() const {       // trial tangent differs from the committed one
+    return std::abs(trial_tangent_ - committed_tangent_) >
+           kTangentChangeTolerance * std::max(std::abs(committed_tangent_), k_elastic_);
+  }
   bool elastic() const;                // never left its initial branch (committed state)
   double stored_energy() const;        // recoverable elastic energy at trial state [kJ]
   double dissipated_energy() const;    // hysteretic energy dissipated up to trial state [kJ]
@@ -76,6 +85,9 @@ class Spring {  // one uniaxial Takeda spring with committed and trial state
   const State& committed_state() const { return committed_; }
   double backbone(double d) const;             // monotonic (skeleton) force at d [kN]
   double unloading_stiffness(int side, double peak_d) const;  // k_u for a peak [kN/m]
+  // The state reached from `from` by a move to d under the general rules (the branch logic
+  // that set_trial() skips for a move along the current straight branch).
+  State moved(const State& from, double d) const;
 
  private:
   double backbone_magnitude(double x) const;   // b(x), x >= 0
@@ -86,6 +98,9 @@ class Spring {  // one uniaxial Takeda spring with committed and trial state
   void start_reloading(State& s, int side) const;
   double reloading_meets_backbone(double x0, double k) const;
   static void move_on_line(State& s, double d_new, double f_new);
+  // True when a move of the committed state to d != committed_.d stays on its straight
+  // branch (initial elastic, unloading or reloading line); f is then the force at d.
+  bool stays_on_branch(double d, double& f) const;
   void advance(State& s, double d) const;
   double tangent_of(const State& s) const;
 
@@ -100,6 +115,9 @@ class Spring {  // one uniaxial Takeda spring with committed and trial state
   State trial_;
   double trial_tangent_ = 0.0;
   double committed_tangent_ = 0.0;
+  // trial_ equals committed_ except possibly in d, f and work (the fields a move along a
+  // straight branch changes), so that commit() and revert() copy only those.
+  bool trial_moved_on_branch_ = true;
 };
 
 }  // namespace nsb::models::takeda

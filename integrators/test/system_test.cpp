@@ -66,3 +66,32 @@ TEST_CASE("checked_inverse_mass names the method and what is wrong") {
   u0(1) = std::numeric_limits<double>::infinity();
   check("initial state");
 }
+
+// A system that does not override contact_normals() gets contact_data(): every field the
+// same, so an integrator may ask for the normal part of any system.
+TEST_CASE("contact_normals defaults to contact_data") {
+  nsb::testsupport::TwoCornerBody::Parameters p;
+  p.friction = 0.3;
+  p.restitution = 0.5;
+  p.initial_position << 0.0, 0.5, 0.2;
+  const nsb::testsupport::TwoCornerBody s(p);
+  auto full = s.make_contact_buffer(), normal = s.make_contact_buffer();
+  for (double t : {0.0, 0.7}) {
+    Vector q(3), u(3);
+    q << 0.1, 0.4 + t, -0.3;
+    u << 1.0, -2.0, 0.5;
+    s.contact_data(t, q, u, full);
+    s.contact_normals(t, q, u, normal);
+    REQUIRE(normal.size() == full.size());
+    for (std::size_t i = 0; i < full.size(); ++i) {
+      CHECK(normal[i].gap_normal == full[i].gap_normal);
+      CHECK(normal[i].w_normal == full[i].w_normal);
+      CHECK(normal[i].w_tangent == full[i].w_tangent);
+      CHECK(normal[i].what_normal == full[i].what_normal);
+      CHECK(normal[i].wbar_normal == full[i].wbar_normal);
+      CHECK(normal[i].restitution == full[i].restitution);
+      CHECK(normal[i].friction == full[i].friction);
+      CHECK(normal[i].far == full[i].far);
+    }
+  }
+}

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -276,6 +277,47 @@ TEST_CASE("contact Jacobians and rheonomic terms with moving, rotating seats vs 
       for (std::size_t i = 0; i < 4; ++i) {
         const double fd = (cp[i].gap_normal - cm[i].gap_normal) / (2 * dq);
         CHECK(c0[i].w_normal(j) == doctest::Approx(fd).epsilon(kFdFirstTol).scale(10.0));
+      }
+    }
+  }
+}
+
+// contact_normals() computes only g_N, W_N, what_N and far; each must be exactly what
+// contact_data() gives, for skewed decks against moving, rotating seats at random states,
+// near and far from contact, and the other fields must be left alone.
+TEST_CASE("contact_normals equals the normal part of contact_data exactly") {
+  const Record rx = sine_record(2.0, 0.7, 1.3), rr = sine_record(0.01, 0.9, 0.5);
+  Bridge::Excitation e;
+  e.seats[0] = {motion(rx), motion(rr), motion(rr)};
+  e.seats[1] = {motion(rr), motion(rx), motion(rx)};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), time(0.0, 12.0);
+  for (double skew : {0.0, 20.0}) {
+    for (double gap : {0.0127, 0.5}) {
+      Bridge::Parameters p = Bridge::Parameters::benchmark();
+      p.deck.skew_deg = skew;
+      p.deck.gap_left = p.deck.gap_right = gap;
+      Bridge b(p, e);
+      auto full = b.make_contact_buffer(), normal = b.make_contact_buffer();
+      for (int k = 0; k < 500; ++k) {
+        const double t = time(rng);
+        const Vector q = Eigen::Vector3d(0.2 * unit(rng), 0.2 * unit(rng), 0.01 * unit(rng));
+        const Vector u = Eigen::Vector3d(2.0 * unit(rng), 2.0 * unit(rng), 0.1 * unit(rng));
+        b.contact_data(t, q, u, full);
+        for (auto& c : normal) {  // marks in the fields contact_normals must not touch
+          c.w_tangent.setConstant(-7.0);
+          c.what_tangent = c.wbar_normal = c.wbar_tangent = -7.0;
+        }
+        b.contact_normals(t, q, u, normal);
+        for (std::size_t i = 0; i < 4; ++i) {
+          CHECK(normal[i].gap_normal == full[i].gap_normal);
+          CHECK(normal[i].w_normal == full[i].w_normal);
+          CHECK(normal[i].what_normal == full[i].what_normal);
+          CHECK(normal[i].far == full[i].far);
+          CHECK(normal[i].gap_rate(u) == full[i].gap_rate(u));
+          CHECK(normal[i].w_tangent == Vector::Constant(3, -7.0));
+          CHECK(normal[i].wbar_normal == -7.0);
+        }
       }
     }
   }

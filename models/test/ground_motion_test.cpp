@@ -289,6 +289,40 @@ TEST_CASE("ground motion: d, v, a are derivatives of each other (with baseline c
   }
 }
 
+// values() evaluates d, v and a together; each must be exactly what the single evaluations
+// give, at random times, at the knots, before the start, after the end and at both ends, for
+// a uniformly sampled record with a delay and for a non-uniformly sampled one.
+TEST_CASE("ground motion: values() equals displacement(), velocity(), acceleration() exactly") {
+  GroundMotionOptions delayed;
+  delayed.delay = 0.37;
+  delayed.target_pga = 3.0;
+  const Record uniform = nsb::models::read_at2(kMotions / "RSN1084_NORTHR_SCS142.AT2");
+  std::mt19937 rng(19);
+  std::vector<double> tk, ak;  // knots at random spacings
+  std::uniform_real_distribution<double> spacing(0.005, 0.03), accel(-3.0, 3.0);
+  for (double x = 0.0; tk.size() < 500; x += spacing(rng)) {
+    tk.push_back(x);
+    ak.push_back(accel(rng));
+  }
+  const GroundMotion motions[] = {GroundMotion(uniform, delayed),
+                                  GroundMotion(make_record(tk, ak)), GroundMotion()};
+  for (const GroundMotion& gm : motions) {
+    const double t0 = gm.start_time(), t1 = gm.end_time();
+    std::vector<double> times{t0, t1, t0 - 1.0, t1 + 1.0, std::nextafter(t0, -1.0),
+                              std::nextafter(t1, 1e9)};
+    std::uniform_real_distribution<double> u(t0 - 0.5, t1 + 0.5);
+    for (int i = 0; i < 2000; ++i) times.push_back(u(rng));
+    for (double x : tk) times.push_back(x);
+    for (double x : times) {
+      const GroundMotion::Values v = gm.values(x);
+      INFO("t = " << x);
+      CHECK(v.displacement == gm.displacement(x));
+      CHECK(v.velocity == gm.velocity(x));
+      CHECK(v.acceleration == gm.acceleration(x));
+    }
+  }
+}
+
 TEST_CASE("ground motion: baseline correction ends at rest and removes an offset drift") {
   // True motion d = D sin^2(pi t/T) sin(2 pi f t): starts and ends at rest, many cycles.
   const double D = 0.05, T = 20.0, f = 1.0, dt = 0.01;

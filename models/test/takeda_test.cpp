@@ -294,6 +294,82 @@ TEST_CASE("takeda: a non-finite trial displacement gives a non-finite force, not
   CHECK_THROWS_AS(Spring{bad}, std::invalid_argument);
 }
 
+namespace {
+
+// Every field of two states, compared exactly: the fast path of set_trial() must reproduce
+// the general rules bit for bit.
+void check_same_state(const nsb::models::takeda::State& got,
+                      const nsb::models::takeda::State& want) {
+  CHECK(got.d == want.d);
+  CHECK(got.f == want.f);
+  CHECK(got.branch == want.branch);
+  CHECK(got.side == want.side);
+  CHECK(got.peak_pos_d == want.peak_pos_d);
+  CHECK(got.peak_neg_d == want.peak_neg_d);
+  CHECK(got.line_d == want.line_d);
+  CHECK(got.line_f == want.line_f);
+  CHECK(got.line_k == want.line_k);
+  CHECK(got.line_end_d == want.line_end_d);
+  CHECK(got.parent_reloading == want.parent_reloading);
+  CHECK(got.parent_d == want.parent_d);
+  CHECK(got.parent_f == want.parent_f);
+  CHECK(got.parent_k == want.parent_k);
+  CHECK(got.parent_end_d == want.parent_end_d);
+  CHECK(got.work == want.work);
+}
+
+}  // namespace
+
+// set_trial() skips the branch logic for a move along the committed state's straight branch
+// (initial elastic, unloading or reloading line). On random paths that trial twice per
+// commit, as a time step does (predictor, then end state), and sometimes revert, every trial
+// state must equal the state the general rules give (Spring::moved), and the tangent of a
+// straight branch its slope.
+TEST_CASE("takeda: a trial along the current branch equals the general rules exactly") {
+  std::mt19937 rng(2718);
+  for (const Parameters& p : parameter_sets()) {
+    Spring s(p);
+    const double dy = p.d_yield;
+    const double k_elastic = p.f_crack > 0.0 ? p.k0 : p.f_yield / p.d_yield;
+    std::uniform_real_distribution<double> target(-5.0 * dy, 5.0 * dy);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::normal_distribution<double> small(0.0, 0.02 * dy);
+    int along_line = 0;  // trials that stayed on a committed unloading or reloading line
+    for (int i = 0; i < 4000; ++i) {
+      const auto committed = s.committed_state();
+      for (int trial = 0; trial < 2; ++trial) {
+        const double u = unit(rng);
+        const double d = u < 0.05 ? target(rng)
+                         : u < 0.1 ? committed.d  // no move
+                                   : committed.d + small(rng);
+        const double f = s.set_trial(d);
+        const auto want = s.moved(committed, d);
+        check_same_state(s.trial_state(), want);
+        CHECK(f == want.f);
+        if (want.branch == committed.branch && want.line_d == committed.line_d &&
+            d != committed.d) {
+          if (want.branch == Branch::kElastic) CHECK(s.tangent() == k_elastic);
+          if (want.branch == Branch::kUnloading || want.branch == Branch::kReloading) {
+            CHECK(s.tangent() == want.line_k);
+            ++along_line;
+          }
+        }
+      }
+      if (unit(rng) < 0.1) {
+        s.revert();
+        check_same_state(s.trial_state(), committed);
+        CHECK_FALSE(s.tangent_changed());
+      } else {
+        const auto trial = s.trial_state();
+        s.commit();
+        check_same_state(s.committed_state(), trial);
+        check_same_state(s.trial_state(), trial);
+      }
+    }
+    CHECK(along_line > 1000);  // the path spends most trials on unloading and reloading lines
+  }
+}
+
 TEST_CASE("takeda: random paths stay within the backbone envelope") {
   std::mt19937 rng(12345);
   for (const Parameters& p : parameter_sets()) {
