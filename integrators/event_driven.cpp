@@ -17,6 +17,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -111,6 +112,13 @@ class EventDriven {
     lambda_n_ = Vector::Zero(m_);
     lambda_t_ = Vector::Zero(m_);
     h_ = Vector::Zero(2 * m_);
+    phase_b_ = Matrix::Zero(n_, 2 * m_);
+    phase_r_ = Matrix::Zero(n_, 2 * m_);
+    phase_rt_minv_ = Matrix::Zero(2 * m_, n_);
+    phase_wbar_ = Vector::Zero(2 * m_);
+    phase_a_free_ = Vector::Zero(n_);
+    phase_lambda_ = Vector::Zero(2 * m_);
+    phase_b_lambda_ = Vector::Zero(n_);
     xs_.assign(static_cast<std::size_t>(2 * n_ + kEnergyTerms), 0.0);
     stats_.method = "event_driven";
     ContactStageOptions stage_options;
@@ -148,6 +156,29 @@ class EventDriven {
   // gddot_T,i = W_T,i^T udot + wbar_T,i = 0 (sticking). Redundant constraints (four corners
   // closed on a three-DOF deck) give a singular system; its minimum-norm solution is one
   // admissible distribution of the forces.
+  // The reduced system of the closed contacts, A lambda = rhs with A = (R^T M^-1) B, by a
+  // complete orthogonal decomposition (A is singular when closed contacts are redundant), and
+  // udot = a_free + M^-1 (B lambda). Up to kSmallClosed unknowns the matrices have fixed
+  // maximum sizes (storage inside the objects), so the decomposition and its solve allocate
+  // nothing; the larger case keeps one workspace whose size changes only with k.
+  template <class SquareMatrix>
+  void solve_closed(int k, SquareMatrix& a,
+                    Eigen::CompleteOrthogonalDecomposition<SquareMatrix>& cod) {
+    using Column =
+        Eigen::Matrix<double, Eigen::Dynamic, 1, 0, SquareMatrix::MaxRowsAtCompileTime, 1>;
+    a.resize(k, k);
+    a.noalias() = phase_rt_minv_.topRows(k) * phase_b_.leftCols(k);
+    Column rhs(k);
+    rhs.noalias() = phase_r_.leftCols(k).transpose() * phase_a_free_;
+    rhs = -(rhs + phase_wbar_.head(k));
+    cod.compute(a);
+    const Column lambda = cod.solve(rhs);
+    phase_lambda_.head(k) = lambda;
+    phase_b_lambda_.noalias() = phase_b_.leftCols(k) * lambda;
+    udot_ = phase_a_free_;
+    udot_.noalias() += minv_ * phase_b_lambda_;
+  }
+
   void phase_forces(double t, const Vector& q, const Vector& u) {
     sys_.forces(t, q, u, f_);
     lambda_n_.setZero();
@@ -162,8 +193,10 @@ class EventDriven {
       return;
     }
     sys_.contact_data(t, q, u, cbuf_);
-    Matrix B(n_, k), R(n_, k);
-    Vector wbar(k);
+    // Columns of the closed contacts into the workspace sized once for every contact (n x 2m):
+    // the right-hand side of every smooth-phase step runs this, so nothing here allocates.
+    auto B = phase_b_.leftCols(k);
+    auto R = phase_r_.leftCols(k);
     int j = 0;
     for (int i = 0; i < m_; ++i) {
       const auto& md = modes_[idx(i)];
@@ -174,27 +207,31 @@ class EventDriven {
       if (sliding(md)) {
         B.col(j) -= c.friction * slip_sign(md) * c.w_tangent;
       }
-      wbar[j] = c.wbar_normal;
+      phase_wbar_[j] = c.wbar_normal;
       ++j;
       if (md == ContactState::kStick) {
         R.col(j) = c.w_tangent;
         B.col(j) = c.w_tangent;
-        wbar[j] = c.wbar_tangent;
+        phase_wbar_[j] = c.wbar_tangent;
         ++j;
       }
     }
-    const Vector a_free = minv_ * f_;
-    const Matrix A = R.transpose() * minv_ * B;
-    const Vector rhs = -(R.transpose() * a_free + wbar);
-    const Vector lam = A.completeOrthogonalDecomposition().solve(rhs);
-    udot_ = a_free + minv_ * (B * lam);
+    phase_a_free_.noalias() = minv_ * f_;
+    // A = (R^T M^-1) B and rhs = -(R^T a_free + wbar), evaluated in that order.
+    auto rt_minv = phase_rt_minv_.topRows(k);
+    rt_minv.noalias() = R.transpose() * minv_;
+    if (k <= kSmallClosed) {
+      solve_closed(k, phase_small_, phase_small_cod_);
+    } else {
+      solve_closed(k, phase_large_, phase_large_cod_);
+    }
     j = 0;
     for (int i = 0; i < m_; ++i) {
       const auto& md = modes_[idx(i)];
       if (!closed(md)) continue;
-      lambda_n_[i] = lam[j++];
+      lambda_n_[i] = phase_lambda_[j++];
       if (md == ContactState::kStick) {
-        lambda_t_[i] = lam[j++];
+        lambda_t_[i] = phase_lambda_[j++];
       } else if (sliding(md)) {
         lambda_t_[i] = -cbuf_[idx(i)].friction * slip_sign(md) * lambda_n_[i];
       }
@@ -299,7 +336,7 @@ class EventDriven {
     gsl_function gf;
     gf.function = &Thunk::call;
     gf.params = &thunk;
-    gsl_root_fsolver* s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    gsl_root_fsolver* s = brent_solver_.get();
     double lo = a, hi = b;
     if (gsl_root_fsolver_set(s, &gf, a, b) == GSL_SUCCESS) {
       for (int it = 0; it < kBrentIterations; ++it) {
@@ -309,7 +346,6 @@ class EventDriven {
         if (gsl_root_test_interval(lo, hi, opt_.event_time_tolerance, 0.0) == GSL_SUCCESS) break;
       }
     }
-    gsl_root_fsolver_free(s);
     // Keep the side past the crossing (Brent's bracket always straddles the root).
     if (fun(hi) >= 0.0 && fun(lo) < 0.0) return lo;
     return hi;
@@ -404,6 +440,21 @@ class EventDriven {
   std::vector<ContactData> cbuf_;
   std::vector<ContactState> modes_;
   Vector f_, q_, u_, udot_, lambda_n_, lambda_t_, h_;
+  // Workspace of phase_forces: columns of the closed contacts, R^T M^-1, the reduced system.
+  static constexpr int kSmallClosed = 8;  // unknowns (closed + sticking) of the fixed-size path
+  using SmallSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kSmallClosed,
+                                    kSmallClosed>;
+  // Brent's root bracketing (GSL), allocated once: every event location reuses it.
+  struct FsolverFree {
+    void operator()(gsl_root_fsolver* s) const { gsl_root_fsolver_free(s); }
+  };
+  std::unique_ptr<gsl_root_fsolver, FsolverFree> brent_solver_{
+      gsl_root_fsolver_alloc(gsl_root_fsolver_brent)};
+  Matrix phase_b_, phase_r_, phase_rt_minv_, phase_large_;
+  Vector phase_wbar_, phase_a_free_, phase_lambda_, phase_b_lambda_;
+  SmallSquare phase_small_;
+  Eigen::CompleteOrthogonalDecomposition<SmallSquare> phase_small_cod_;
+  Eigen::CompleteOrthogonalDecomposition<Matrix> phase_large_cod_;
   State xs_;
   Dense dense_ = odeint::make_dense_output(1e-8, 1e-8, Dopri());
   RunResult stats_;
