@@ -33,20 +33,22 @@ bool Claim::holds() const {
 
 namespace {
 
-std::string number(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream s;
-  s << std::setprecision(17) << v;
-  return s.str();
-}
-
 std::string short_number(double v) {
   std::ostringstream s;
   s << std::setprecision(4) << v;
   return s.str();
 }
 
-std::string quoted(const std::string& text) {
+}  // namespace
+
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream s;
+  s << std::setprecision(17) << v;
+  return s.str();
+}
+
+std::string json_string(const std::string& text) {
   std::string out = "\"";
   for (char ch : text) {
     switch (ch) {
@@ -66,8 +68,6 @@ std::string quoted(const std::string& text) {
   return out + "\"";
 }
 
-}  // namespace
-
 std::string Claim::reason() const {
   if (!failure.empty()) return "not evaluated: " + failure;
   if (checks.empty()) return "no checks";
@@ -86,22 +86,25 @@ std::string claims_json(const std::vector<Claim>& claims) {
   s << "{\"claims\": [";
   for (std::size_t i = 0; i < claims.size(); ++i) {
     const Claim& c = claims[i];
-    s << (i ? ",\n" : "\n") << "  {\"id\": " << quoted(c.id)
-      << ", \"statement\": " << quoted(c.statement)
-      << ", \"holds\": " << (c.holds() ? "true" : "false") << ", \"reason\": " << quoted(c.reason())
+    s << (i ? ",\n" : "\n") << "  {\"id\": " << json_string(c.id)
+      << ", \"statement\": " << json_string(c.statement)
+      << ", \"holds\": " << (c.holds() ? "true" : "false")
+      << ", \"reason\": " << json_string(c.reason())
       << ",\n   \"measured\": {";
     for (std::size_t k = 0; k < c.measured.size(); ++k) {
-      s << (k ? ", " : "") << quoted(c.measured[k].first) << ": " << number(c.measured[k].second);
+      s << (k ? ", " : "") << json_string(c.measured[k].first) << ": "
+        << json_number(c.measured[k].second);
     }
     s << "},\n   \"checks\": [";
     for (std::size_t k = 0; k < c.checks.size(); ++k) {
       const Check& ck = c.checks[k];
-      s << (k ? ",\n              " : "") << "{\"quantity\": " << quoted(ck.quantity)
-        << ", \"value\": " << number(ck.value) << ", \"op\": " << quoted(ck.op)
-        << ", \"threshold\": " << number(ck.threshold) << ", \"why\": " << quoted(ck.why) << "}";
+      s << (k ? ",\n              " : "") << "{\"quantity\": " << json_string(ck.quantity)
+        << ", \"value\": " << json_number(ck.value) << ", \"op\": " << json_string(ck.op)
+        << ", \"threshold\": " << json_number(ck.threshold)
+        << ", \"why\": " << json_string(ck.why) << "}";
     }
     s << "],\n   \"runs\": [";
-    for (std::size_t k = 0; k < c.runs.size(); ++k) s << (k ? ", " : "") << quoted(c.runs[k]);
+    for (std::size_t k = 0; k < c.runs.size(); ++k) s << (k ? ", " : "") << json_string(c.runs[k]);
     s << "]}";
   }
   s << "\n]}\n";

@@ -43,6 +43,11 @@ struct Claim {
 // Throws std::invalid_argument for an unknown op.
 bool compare(double value, const std::string& op, double threshold);
 
+// JSON text of a number (17 significant digits; null when not finite) and of a string
+// (quoted, with ", \ and newlines escaped). Shared by claims.json and uncertainty.json.
+std::string json_number(double v);
+std::string json_string(const std::string& text);
+
 // claims.json: {"claims": [{"id", "statement", "holds", "reason", "measured": {...},
 // "checks": [{"quantity", "value", "op", "threshold", "why"}], "runs": [...]}]}.
 // Numbers are written with 17 significant digits; a non-finite number is written as null.

@@ -736,22 +736,6 @@ Fig6Sweep fig6_sweep(const fs::path& scenes, const fs::path& dir, const std::vec
 
 namespace {
 
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream s;
-  s << std::setprecision(17) << v;
-  return s.str();
-}
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (char ch : text) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    out += ch;
-  }
-  return out + "\"";
-}
-
 std::string short_number(double v) {
   std::ostringstream s;
   s << std::setprecision(3) << v;

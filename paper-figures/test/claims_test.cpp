@@ -67,3 +67,16 @@ TEST_CASE("claims.json and claims.md carry the verdict and its numbers") {
   CHECK(contains(md, "| holds |"));
   CHECK(contains(md, "exponent = 1.25 (> 1)"));
 }
+
+TEST_CASE("JSON numbers and strings") {
+  using nsb::paper_figures::json_number;
+  using nsb::paper_figures::json_string;
+  // JSON (RFC 8259) has no NaN or infinity: they are written as null.
+  CHECK(json_number(std::numeric_limits<double>::quiet_NaN()) == "null");
+  CHECK(json_number(std::numeric_limits<double>::infinity()) == "null");
+  // 17 significant digits read back to the same double: 0.1 is 0.1000000000000000055...
+  CHECK(json_number(0.1) == "0.10000000000000001");
+  CHECK(json_number(-2.0) == "-2");
+  // A quote, a backslash and a newline are escaped (RFC 8259, section 7).
+  CHECK(json_string("a\"b\\c\nd") == "\"a\\\"b\\\\c\\nd\"");
+}
