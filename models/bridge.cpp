@@ -284,33 +284,36 @@ void Bridge::revert() {
   for (auto& s : springs_y_) s.revert();
 }
 
-void Bridge::contact_data(double t, const integrators::Vector& q, const integrators::Vector& u,
-                          std::vector<integrators::ContactData>& out) const {
+template <class Write>
+void Bridge::each_corner(double t, const integrators::Vector& q, const integrators::Vector& u,
+                         std::vector<integrators::ContactData>& out, Write write) const {
   if (out.size() != 4) out.resize(4);
   const Eigen::Vector3d q3 = q.head<3>(), u3 = u.head<3>();
   update_motions(t);
   const std::array<PlanarMotion, 2> seats{seat_motion_cached(0), seat_motion_cached(1)};
   for (std::size_t i = 0; i < 4; ++i) {
-    const auto k = corner_contact(
-        corners_[i], q3, u3,
-        seats[static_cast<std::size_t>(DeckGeometry::abutment_of(static_cast<int>(i)))]);
-    copy_contact(k, p_.restitution, p_.friction, out[i]);
+    const auto seat = static_cast<std::size_t>(DeckGeometry::abutment_of(static_cast<int>(i)));
+    write(corners_[i], q3, u3, seats[seat], out[i]);
   }
+}
+
+void Bridge::contact_data(double t, const integrators::Vector& q, const integrators::Vector& u,
+                          std::vector<integrators::ContactData>& out) const {
+  each_corner(t, q, u, out,
+              [this](const CornerFace& c, const Eigen::Vector3d& q3, const Eigen::Vector3d& u3,
+                     const PlanarMotion& seat, integrators::ContactData& d) {
+                copy_contact(corner_contact(c, q3, u3, seat), p_.restitution, p_.friction, d);
+              });
 }
 
 void Bridge::contact_normals(double t, const integrators::Vector& q,
                              const integrators::Vector& u,
                              std::vector<integrators::ContactData>& out) const {
-  if (out.size() != 4) out.resize(4);
-  const Eigen::Vector3d q3 = q.head<3>(), u3 = u.head<3>();
-  update_motions(t);
-  const std::array<PlanarMotion, 2> seats{seat_motion_cached(0), seat_motion_cached(1)};
-  for (std::size_t i = 0; i < 4; ++i) {
-    const auto k = corner_contact_normal(
-        corners_[i], q3, u3,
-        seats[static_cast<std::size_t>(DeckGeometry::abutment_of(static_cast<int>(i)))]);
-    copy_contact_normal(k, out[i]);
-  }
+  each_corner(t, q, u, out,
+              [](const CornerFace& c, const Eigen::Vector3d& q3, const Eigen::Vector3d& u3,
+                 const PlanarMotion& seat, integrators::ContactData& d) {
+                copy_contact_normal(corner_contact_normal(c, q3, u3, seat), d);
+              });
 }
 
 integrators::PowerTerms Bridge::power(double t, const integrators::Vector&,

@@ -159,6 +159,11 @@ class Bridge final : public integrators::SystemBase {
     return index == kNone ? kZero : values_[static_cast<std::size_t>(index)];
   }
   PlanarMotion seat_motion_cached(int seat) const;
+  // Fills out[i] for the four corners with write(corner, q, u, seat motion, out[i]), the seats'
+  // motion evaluated once at t: the loop shared by contact_data and contact_normals.
+  template <class Write>
+  void each_corner(double t, const integrators::Vector& q, const integrators::Vector& u,
+                   std::vector<integrators::ContactData>& out, Write write) const;
 
   Parameters p_;
   Excitation excitation_;
