@@ -40,10 +40,6 @@ constexpr double kMinRelativeStep = 1e-14;
 // Accepted steps between two calls of the progress callback.
 constexpr std::int64_t kProgressInterval = 4096;
 
-void require(bool ok, const char* field, const char* what) {
-  if (!ok) throw std::invalid_argument(std::string("compliance options: ") + field + ": " + what);
-}
-
 // Hermite basis on [0, 1] for position from (q0, u0 h, q1, u1 h): exact for cubics.
 struct Hermite {
   double h00, h10, h01, h11;
@@ -108,9 +104,9 @@ class Core {
     const double delta = -c.gap_normal;
     const double delta_rate = -c.gap_rate(u_);
     const NormalForce fn =
-        hertz_damp_force(opt_.stiffness, chi_[i], v_minus_[i], delta, delta_rate);
+        hertz_damp_force(opt_.effective_stiffness(), chi_[i], v_minus_[i], delta, delta_rate);
     lambda_n_[i] = fn.force;
-    damping_part_[i] = fn.force - opt_.stiffness * delta * std::sqrt(delta);
+    damping_part_[i] = fn.force - opt_.effective_stiffness() * delta * std::sqrt(delta);
     f_.noalias() += c.w_normal * fn.force;
     return fn;
   }
@@ -542,7 +538,7 @@ class ComplianceRun {
   double contact_potential() const {
     double v = 0.0;
     for (const ContactData& c : core_.contacts_) {
-      if (!c.far && c.gap_normal < 0.0) v += 0.4 * options_.stiffness * std::pow(-c.gap_normal, 2.5);
+      if (!c.far && c.gap_normal < 0.0) v += 0.4 * options_.effective_stiffness() * std::pow(-c.gap_normal, 2.5);
     }
     return v;
   }
@@ -607,23 +603,24 @@ class ComplianceRun {
 }  // namespace
 
 std::string_view to_string(DampingLaw law) {
-  switch (law) {
-    case DampingLaw::kHertzDamp: return "hertzdamp";
-    case DampingLaw::kFlores: return "flores";
-    case DampingLaw::kHuntCrossleyExact: return "hunt_crossley_exact";
+  for (const auto& n : kDampingLawNames) {
+    if (n.value == law) return n.name;
   }
   return "unknown";
 }
 
 const std::vector<std::string>& damping_law_names() {
-  static const std::vector<std::string> names{"hertzdamp", "flores", "hunt_crossley_exact"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v;
+    for (const auto& n : kDampingLawNames) v.emplace_back(n.name);
+    return v;
+  }();
   return names;
 }
 
 DampingLaw parse_damping_law(std::string_view name) {
-  for (DampingLaw law :
-       {DampingLaw::kHertzDamp, DampingLaw::kFlores, DampingLaw::kHuntCrossleyExact}) {
-    if (name == to_string(law)) return law;
+  for (const auto& n : kDampingLawNames) {
+    if (n.name == name) return n.value;
   }
   throw std::invalid_argument("damping_law: '" + std::string(name) +
                               "' is not one of hertzdamp, flores, hunt_crossley_exact");
@@ -692,24 +689,6 @@ TangentForce regularized_coulomb(double mu, double lambda_n, double slip_rate, d
   r.d_normal = -mu * sat;
   r.d_slip = (std::abs(x) < 1.0) ? -mu * lambda_n / eps_v : 0.0;
   return r;
-}
-
-void ComplianceOptions::validate() const {
-  require(std::isfinite(end_time), "end_time", "must be finite [s]");
-  require(tolerance > 0.0 && tolerance < 0.1, "tolerance", "must be in (0, 0.1)");
-  require(stiffness > 0.0 && std::isfinite(stiffness), "stiffness",
-          "must be finite and > 0 [kN/m^1.5]");
-  require(stick_slip_velocity > 0.0 && std::isfinite(stick_slip_velocity),
-          "stick_slip_velocity", "must be finite and > 0 [m/s]");
-  require(law == DampingLaw::kHertzDamp || law == DampingLaw::kFlores ||
-              law == DampingLaw::kHuntCrossleyExact,
-          "law", "must be hertzdamp, flores or hunt_crossley_exact");
-  require(max_step > 0.0 && std::isfinite(max_step), "max_step", "must be finite and > 0 [s]");
-  require(min_impact_velocity > 0.0 && std::isfinite(min_impact_velocity),
-          "min_impact_velocity", "must be finite and > 0 [m/s]");
-  require(initial_step > 0.0 && std::isfinite(initial_step), "initial_step",
-          "must be finite and > 0 [s]");
-  require(max_steps > 0, "max_steps", "must be > 0");
 }
 
 RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder,

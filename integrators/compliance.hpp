@@ -27,6 +27,9 @@
 #include "integrators/recorder.hpp"
 #include "integrators/system.hpp"
 
+#include <array>
+#include <span>
+
 #include <string>
 #include <string_view>
 #include <vector>
@@ -55,7 +58,12 @@ enum class DampingLaw {
 // distinguishes from a plastic impact.
 inline constexpr double kMinLawRestitution = 1e-3;
 
-// Scene names: "hertzdamp", "flores", "hunt_crossley_exact".
+// The one list of the laws' names (scene key solver.damping_law, summary.json).
+inline constexpr std::array<config::Name<DampingLaw>, 3> kDampingLawNames{
+    {{"hertzdamp", DampingLaw::kHertzDamp},
+     {"flores", DampingLaw::kFlores},
+     {"hunt_crossley_exact", DampingLaw::kHuntCrossleyExact}}};
+
 std::string_view to_string(DampingLaw law);
 // Throws std::invalid_argument naming the allowed names.
 DampingLaw parse_damping_law(std::string_view name);
@@ -88,11 +96,12 @@ struct TangentForce {
 TangentForce regularized_coulomb(double mu, double lambda_n, double slip_rate, double eps_v);
 
 struct ComplianceOptions {
+  static constexpr std::string_view kMethod = "compliance";  // solver.method in scene files
   double end_time = 1.0;               // final time [s], > the system's initial time
   double tolerance = 1e-8;             // Odeint absolute and relative tolerance, in (0, 0.1)
   double stiffness = 2.747e7;          // Hertz k [kN/m^1.5], > 0 (868.7 kN/mm^1.5,
-                                       //   Muthukumar & DesRoches 2006); the scene's
-                                       //   contact_stiffness * stiffness_factor
+                                       //   Muthukumar & DesRoches 2006)
+  double stiffness_factor = 1.0;       // multiplies stiffness (the paper's 1e-4 ... 1e2), > 0
   double stick_slip_velocity = 1e-3;   // eps_v of eq. (10) [m/s], > 0
   DampingLaw law = DampingLaw::kHertzDamp;
   double max_step = 1e-3;              // largest step [s], > 0: keeps the recorded history
@@ -101,7 +110,11 @@ struct ComplianceOptions {
                                        //   at rest would otherwise get unbounded damping
   double initial_step = 1e-5;          // first trial step [s], > 0
   long max_steps = 50'000'000;         // accepted + rejected steps before giving up, > 0
-  void validate() const;               // throws std::invalid_argument naming the field
+  // The contact stiffness the run uses: stiffness * stiffness_factor [kN/m^1.5].
+  double effective_stiffness() const { return stiffness * stiffness_factor; }
+  // The schema of these fields (keys of a scene's [solver] table, units, ranges).
+  static std::span<const config::Field<ComplianceOptions>> fields();
+  void validate() const;               // throws std::invalid_argument naming the key
 };
 
 // Integrates `system` from its initial state to options.end_time. Records a sample after
@@ -116,5 +129,10 @@ struct ComplianceOptions {
 // progress is called every few thousand steps with the time reached; it may be empty.
 RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder,
                      const Progress& progress = {});
+// The run API's entry for this method (integrators/run.hpp).
+inline RunResult run_method(System& system, const ComplianceOptions& options, Recorder& recorder,
+                            const Progress& progress) {
+  return compliance(system, options, recorder, progress);
+}
 
 }  // namespace nsb::integrators

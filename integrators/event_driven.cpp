@@ -23,31 +23,6 @@
 
 namespace nsb::integrators {
 
-void EventDrivenOptions::validate() const {
-  auto fail = [](const std::string& what) {
-    throw std::invalid_argument("event_driven options: " + what);
-  };
-  if (!std::isfinite(end_time)) fail("end_time must be finite [s]");
-  if (!(tolerance > 0.0 && tolerance < 1.0)) fail("tolerance must be in (0, 1)");
-  if (!(lcp_tolerance > 0.0) || !std::isfinite(lcp_tolerance)) fail("lcp_tolerance must be > 0");
-  if (!(event_time_tolerance > 0.0) || !std::isfinite(event_time_tolerance)) {
-    fail("event_time_tolerance must be > 0 [s]");
-  }
-  if (!(closing_velocity >= 0.0) || !std::isfinite(closing_velocity)) {
-    fail("closing_velocity must be >= 0 [m/s]");
-  }
-  if (!(stick_velocity >= 0.0) || !std::isfinite(stick_velocity)) {
-    fail("stick_velocity must be >= 0 [m/s]");
-  }
-  if (!(gap_tolerance >= 0.0) || !std::isfinite(gap_tolerance)) {
-    fail("gap_tolerance must be >= 0 [m]");
-  }
-  if (!(max_step >= 0.0) || !std::isfinite(max_step)) fail("max_step must be >= 0 [s]");
-  if (!(initial_step > 0.0) || !std::isfinite(initial_step)) fail("initial_step must be > 0 [s]");
-  if (max_events_per_window <= 0) fail("max_events_per_window must be > 0");
-  if (!(event_window > 0.0) || !std::isfinite(event_window)) fail("event_window must be > 0 [s]");
-}
-
 namespace {
 
 namespace odeint = boost::numeric::odeint;

@@ -28,9 +28,13 @@
 #include "integrators/system.hpp"
 #include "lcp/solve.hpp"
 
+#include <span>
+#include <string_view>
+
 namespace nsb::integrators {
 
 struct EventDrivenOptions {
+  static constexpr std::string_view kMethod = "event_driven";  // solver.method in scene files
   double end_time = 1.0;            // final time [s], > initial time of the system
   double tolerance = 1e-8;          // Odeint absolute and relative error tolerance, in (0, 1)
   lcp::Solver solver = lcp::Solver::kLemke;  // solver of the impact and contact LCPs
@@ -50,7 +54,9 @@ struct EventDrivenOptions {
   int max_events_per_window = 2000; // bound on events in any window of length event_window,
                                     //   > 0; reaching it gives a kWarning and forces closure
   double event_window = 1e-2;       // [s], > 0
-  void validate() const;            // throws std::invalid_argument naming the field
+  // The schema of these fields (keys of a scene's [solver] table, units, ranges).
+  static std::span<const config::Field<EventDrivenOptions>> fields();
+  void validate() const;            // throws std::invalid_argument naming the key
 };
 
 // Integrates `system` from its initial state to options.end_time. Fills the recorder with
@@ -62,5 +68,10 @@ struct EventDrivenOptions {
 // state), kStalled (a step size that underflows, the event bound reached twice in a row).
 RunResult event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder,
                        const Progress& progress = {});
+// The run API's entry for this method (integrators/run.hpp).
+inline RunResult run_method(System& system, const EventDrivenOptions& options, Recorder& recorder,
+                            const Progress& progress) {
+  return event_driven(system, options, recorder, progress);
+}
 
 }  // namespace nsb::integrators

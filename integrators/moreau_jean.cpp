@@ -498,25 +498,6 @@ void MoreauJean::sample(bool force) {
 
 }  // namespace
 
-void MoreauJeanOptions::validate() const {
-  if (!std::isfinite(end_time)) {
-    throw std::invalid_argument("MoreauJeanOptions.end_time must be finite [s]");
-  }
-  if (!(step > 0.0) || !std::isfinite(step)) {
-    throw std::invalid_argument("MoreauJeanOptions.step must be a finite number > 0 [s]");
-  }
-  if (!(theta >= 0.5 && theta <= 1.0)) {
-    throw std::invalid_argument("MoreauJeanOptions.theta must be in [0.5, 1]");
-  }
-  if (!(lcp_tolerance > 0.0) || !std::isfinite(lcp_tolerance)) {
-    throw std::invalid_argument("MoreauJeanOptions.lcp_tolerance must be a finite number > 0");
-  }
-  if (!(event_velocity_tolerance > 0.0) || !std::isfinite(event_velocity_tolerance)) {
-    throw std::invalid_argument(
-        "MoreauJeanOptions.event_velocity_tolerance must be a finite number > 0 [m/s]");
-  }
-}
-
 RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
                       const Progress& progress) {
   MoreauJean integrator(system, options, recorder, progress);

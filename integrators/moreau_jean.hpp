@@ -23,10 +23,14 @@
 #include "integrators/system.hpp"
 #include "lcp/solve.hpp"
 
+#include <span>
+#include <string_view>
+
 
 namespace nsb::integrators {
 
 struct MoreauJeanOptions {
+  static constexpr std::string_view kMethod = "moreau";  // solver.method in scene files
   double end_time = 1.0;       // final time [s], > initial time of the system
   double step = 1e-4;          // time step h [s], > 0; the last step is shortened to end_time
   double theta = 0.5;          // theta of the theta-method, in [0.5, 1]
@@ -37,7 +41,9 @@ struct MoreauJeanOptions {
   // Normal or tangential contact velocity [m/s] below which a contact counts as resting or
   // sticking, for events only (it does not change the dynamics); > 0.
   double event_velocity_tolerance = 1e-6;
-  void validate() const;       // throws std::invalid_argument naming the field
+  // The schema of these fields (keys of a scene's [solver] table, units, ranges).
+  static std::span<const config::Field<MoreauJeanOptions>> fields();
+  void validate() const;       // throws std::invalid_argument naming the key
 };
 
 // Integrates system from its initial state to options.end_time. Samples the history into
@@ -49,5 +55,10 @@ struct MoreauJeanOptions {
 // the best answer), kCompletedWithFallbacks, kCompleted.
 RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
                       const Progress& progress = {});
+// The run API's entry for this method (integrators/run.hpp).
+inline RunResult run_method(System& system, const MoreauJeanOptions& options, Recorder& recorder,
+                            const Progress& progress) {
+  return moreau_jean(system, options, recorder, progress);
+}
 
 }  // namespace nsb::integrators

@@ -9,26 +9,31 @@
 namespace nsb::integrators {
 
 std::string_view to_string(EventKind k) {
-  switch (k) {
-    case EventKind::kImpact: return "impact";
-    case EventKind::kClose: return "close";
-    case EventKind::kOpen: return "open";
-    case EventKind::kStick: return "stick";
-    case EventKind::kSlip: return "slip";
-    case EventKind::kWarning: return "warning";
+  for (const auto& n : kEventKindNames) {
+    if (n.value == k) return n.name;
   }
   return "unknown";
 }
 
+std::optional<EventKind> parse_event_kind(std::string_view name) {
+  for (const auto& n : kEventKindNames) {
+    if (n.name == name) return n.value;
+  }
+  return std::nullopt;
+}
+
 std::string_view to_string(RunStatus s) {
-  switch (s) {
-    case RunStatus::kCompleted: return "completed";
-    case RunStatus::kCompletedWithFallbacks: return "completed_with_fallbacks";
-    case RunStatus::kContactUnsolved: return "contact_unsolved";
-    case RunStatus::kDiverged: return "diverged";
-    case RunStatus::kStalled: return "stalled";
+  for (const auto& n : kRunStatusNames) {
+    if (n.value == s) return n.name;
   }
   return "unknown";
+}
+
+std::optional<RunStatus> parse_run_status(std::string_view name) {
+  for (const auto& n : kRunStatusNames) {
+    if (n.name == name) return n.value;
+  }
+  return std::nullopt;
 }
 
 bool succeeded(RunStatus s) {
@@ -71,15 +76,19 @@ Recorder::Recorder(const System& system, double sample_dt)
   if (!(sample_dt >= 0.0) || !std::isfinite(sample_dt)) {
     throw std::invalid_argument("output.sample_dt must be a finite number >= 0 [s]");
   }
-  columns_.push_back("t");
-  for (auto& n : system.coordinate_names()) columns_.push_back(n);
-  for (auto& n : system.velocity_names()) columns_.push_back(n);
-  for (int i = 1; i <= ncontacts_; ++i) {
-    columns_.push_back("gN" + std::to_string(i));
-    columns_.push_back("lambdaN" + std::to_string(i));
-    columns_.push_back("lambdaT" + std::to_string(i));
+  column_info_.push_back({"t", ColumnKind::kTime, 0});
+  int i = 0;
+  for (auto& n : system.coordinate_names()) column_info_.push_back({n, ColumnKind::kCoordinate, i++});
+  i = 0;
+  for (auto& n : system.velocity_names()) column_info_.push_back({n, ColumnKind::kVelocity, i++});
+  for (int c = 0; c < ncontacts_; ++c) {
+    const std::string number = std::to_string(c + 1);
+    column_info_.push_back({"gN" + number, ColumnKind::kGap, c});
+    column_info_.push_back({"lambdaN" + number, ColumnKind::kNormalForce, c});
+    column_info_.push_back({"lambdaT" + number, ColumnKind::kTangentForce, c});
   }
-  columns_.push_back("energy_error");
+  column_info_.push_back({"energy_error", ColumnKind::kEnergyError, 0});
+  for (const auto& c : column_info_) columns_.push_back(c.name);
 }
 
 void Recorder::sample(double t, const Vector& q, const Vector& u,

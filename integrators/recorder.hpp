@@ -3,9 +3,12 @@
 // contract documented in docs/outputs.md.
 #pragma once
 
+#include "config/schema.hpp"
 #include "integrators/system.hpp"
 
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -23,7 +26,17 @@ enum class EventKind {
   kSlip,     // a closed contact starts to slip (or reverses its slip direction)
   kWarning,  // the integrator reports something the user should see (see Event::note)
 };
+// The one list of event names (events.csv "kind", summary.json "events"), in this order.
+inline constexpr std::array<config::Name<EventKind>, 6> kEventKindNames{
+    {{"impact", EventKind::kImpact},
+     {"close", EventKind::kClose},
+     {"open", EventKind::kOpen},
+     {"stick", EventKind::kStick},
+     {"slip", EventKind::kSlip},
+     {"warning", EventKind::kWarning}}};
 std::string_view to_string(EventKind k);
+// The kind of a name of kEventKindNames; std::nullopt for anything else.
+std::optional<EventKind> parse_event_kind(std::string_view name);
 
 struct Event {
   double t = 0.0;     // [s]
@@ -53,6 +66,7 @@ struct EnergyBalance {
 // How a run ended. Every integrator reports one; the app maps it to the exit code
 // (docs/run-api.md): 0 for the two completed states, 1 for the others.
 enum class RunStatus {
+  kNotRun,                  // no integration took place (a default RunResult): nothing to use.
   kCompleted,               // reached end_time; every contact problem was solved by the
                             //   configured solver. The history is usable.
   kCompletedWithFallbacks,  // reached end_time; some contact problems needed the fallback
@@ -65,14 +79,24 @@ enum class RunStatus {
                             //   the event bound reached twice in a row): stopped at
                             //   failure_time.
 };
+// The one list of status names (summary.json "status", results.csv "status").
+inline constexpr std::array<config::Name<RunStatus>, 6> kRunStatusNames{
+    {{"not_run", RunStatus::kNotRun},
+     {"completed", RunStatus::kCompleted},
+     {"completed_with_fallbacks", RunStatus::kCompletedWithFallbacks},
+     {"contact_unsolved", RunStatus::kContactUnsolved},
+     {"diverged", RunStatus::kDiverged},
+     {"stalled", RunStatus::kStalled}}};
 std::string_view to_string(RunStatus s);
+// The status of a name of kRunStatusNames; std::nullopt for anything else.
+std::optional<RunStatus> parse_run_status(std::string_view name);
 // True for kCompleted and kCompletedWithFallbacks.
 bool succeeded(RunStatus s);
 
 // The outcome and statistics of one run, written to summary.json. Every integrator returns
 // one:  RunResult <method>(System&, const <Method>Options&, Recorder&).
 struct RunResult {
-  RunStatus status = RunStatus::kCompleted;
+  RunStatus status = RunStatus::kNotRun;  // set by finish_status() when a run ends
   std::string method;                  // "moreau", "event_driven" or "compliance"
   bool completed = false;              // reached end_time
   std::string message;                 // why it stopped early, if it did
@@ -108,6 +132,22 @@ using Progress = std::function<void(double t)>;
 // residual of 1e-9 does not print as 0.000000 as std::to_string would.
 std::string format_number(double v);
 
+// What a history column holds, so that callers find columns by type rather than by name.
+enum class ColumnKind {
+  kTime,         // t [s]
+  kCoordinate,   // a generalized coordinate q_i
+  kVelocity,     // a generalized velocity u_i
+  kGap,          // g_N of a contact [m]
+  kNormalForce,  // lambda_N of a contact [kN]
+  kTangentForce, // lambda_T of a contact [kN]
+  kEnergyError,  // the relative energy-balance error
+};
+struct Column {
+  std::string name;
+  ColumnKind kind = ColumnKind::kTime;
+  int index = 0;  // 0-based coordinate, velocity or contact index; 0 for t and energy_error
+};
+
 // Collects the time history at a fixed sampling interval, and every event.
 // Columns: t, <coordinate names>, <velocity names>, then per contact i = 1..m
 // gN<i>, lambdaN<i>, lambdaT<i>, then energy_error.
@@ -131,6 +171,10 @@ class Recorder {
   // The sampling interval [s] given at construction (0 = every call to sample()).
   double sample_dt() const { return sample_dt_; }
   const std::vector<std::string>& columns() const { return columns_; }
+  // The columns with their kinds, in the order of columns().
+  const std::vector<Column>& column_info() const { return column_info_; }
+  // The number of contacts recorded (gN, lambdaN, lambdaT columns each).
+  int contacts() const { return ncontacts_; }
   std::size_t rows() const { return columns_.empty() ? 0 : data_.size() / columns_.size(); }
   double at(std::size_t row, std::size_t col) const { return data_[row * columns_.size() + col]; }
   // Index of a column by name; throws std::out_of_range if absent.
@@ -146,6 +190,7 @@ class Recorder {
   double sample_dt_ = 0.0;
   double next_sample_ = -1e300;
   std::vector<std::string> columns_;
+  std::vector<Column> column_info_;
   std::vector<double> data_;
   std::vector<Event> events_;
 };

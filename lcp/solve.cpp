@@ -11,20 +11,16 @@
 namespace nsb::lcp {
 
 std::string_view to_string(Solver s) {
-  switch (s) {
-    case Solver::kLemke: return "lemke";
-    case Solver::kPgs: return "pgs";
-    case Solver::kNewtonFb: return "nfb";
-    case Solver::kEnumeration: return "enum";
+  for (const auto& n : kSolverNames) {
+    if (n.value == s) return n.name;
   }
   return "unknown";
 }
 
 std::optional<Solver> parse_solver(std::string_view name) {
-  if (name == "lemke") return Solver::kLemke;
-  if (name == "pgs") return Solver::kPgs;
-  if (name == "nfb") return Solver::kNewtonFb;
-  if (name == "enum") return Solver::kEnumeration;
+  for (const auto& n : kSolverNames) {
+    if (n.name == name) return n.value;
+  }
   return std::nullopt;
 }
 

@@ -1,7 +1,10 @@
 // Choosing an LCP solver by name, with one signature for all of them.
 #pragma once
 
+#include "config/schema.hpp"
 #include "lcp/lcp.hpp"
+
+#include <array>
 
 #include <optional>
 #include <string_view>
@@ -9,6 +12,11 @@
 namespace nsb::lcp {
 
 enum class Solver { kLemke, kPgs, kNewtonFb, kEnumeration };
+// The one list of solver names (scene keys, the CLI, summary.json).
+inline constexpr std::array<config::Name<Solver>, 4> kSolverNames{{{"lemke", Solver::kLemke},
+                                                                  {"pgs", Solver::kPgs},
+                                                                  {"nfb", Solver::kNewtonFb},
+                                                                  {"enum", Solver::kEnumeration}}};
 
 std::string_view to_string(Solver s);
 // "lemke" | "pgs" | "nfb" | "enum"; std::nullopt for anything else.

@@ -826,7 +826,8 @@ integrators::RunConfig make_run_config(const SolverSettings& s) {
   integrators::ComplianceOptions o;
   o.end_time = s.end_time;
   o.tolerance = s.tolerance;
-  o.stiffness = s.contact_stiffness * s.stiffness_factor;
+  o.stiffness = s.contact_stiffness;
+  o.stiffness_factor = s.stiffness_factor;
   o.stick_slip_velocity = s.stick_slip_velocity;
   o.law = integrators::parse_damping_law(s.damping_law);
   return o;
