@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -159,6 +160,12 @@ bool draw(const std::vector<models::Spectrum>& spectra, const std::string& termi
        << gp_string(fs::path(spectra[k].record).filename().string());
   }
   gp << '\n';
+  // A gnuplot that is missing or exits early closes the pipe: SIGPIPE is ignored meanwhile
+  // so that the write fails (reported) instead of ending nsbridge.
+  struct IgnoreSigpipe {
+    void (*previous)(int) = std::signal(SIGPIPE, SIG_IGN);
+    ~IgnoreSigpipe() { std::signal(SIGPIPE, previous); }
+  } ignore;
   FILE* pipe = ::popen("gnuplot >/dev/null 2>&1", "w");
   if (pipe == nullptr) return false;
   const std::string script = gp.str();

@@ -62,9 +62,12 @@ double uniform_step(const Record& r) {
   return mean;
 }
 
-// Sub-steps of a record interval h for outputs at most period / kOutputsPerPeriod apart.
+// Sub-steps of a record interval h for outputs at most period / kOutputsPerPeriod apart. The
+// ratio is lowered by kRatioSlack before rounding up so that a ratio that is an integer but
+// for round-off (0.02 * 20 / 0.4 = 1.0000000000000002) gives that integer.
+constexpr double kRatioSlack = 1e-12;
 int substeps(double h, double period) {
-  return std::max(1, static_cast<int>(std::ceil(h * kOutputsPerPeriod / period - 1e-12)));
+  return std::max(1, static_cast<int>(std::ceil(h * kOutputsPerPeriod / period - kRatioSlack)));
 }
 
 // Advances (u, v) over one record interval of m equal sub-steps with the load linear from p0
@@ -142,6 +145,9 @@ double spectral_displacement(const Record& r, double period, double zeta) {
   check_period(period);
   check_damping(zeta);
   if (period == 0.0) return 0.0;
+  if (r.t.size() < 2 || r.t.size() != r.a.size()) {  // what the loop below reads; validate_record
+    throw std::invalid_argument("record '" + r.source + "': needs at least 2 samples of (t, a)");
+  }
   const double omega = 2.0 * std::numbers::pi / period;
   const double h_uniform = uniform_step(r);
   double h = h_uniform > 0.0 ? h_uniform : r.t[1] - r.t[0];

@@ -88,6 +88,14 @@ if command -v gnuplot >/dev/null; then
     test "$(ls -A "$tmp/plots" | sort | tr '\n' ' ')" = "s.csv s.png s.svg "
 fi
 
+# No gnuplot on the PATH: exit 1, a message, and neither the plot nor the CSV.
+mkdir -p "$tmp/nognu"
+PATH=/nonexistent "$nsb" spectrum "$elc" --plot "$tmp/nognu/s.png" --csv "$tmp/nognu/s.csv" \
+  > /dev/null 2> "$tmp/nognu.err"
+check "without gnuplot: exit 1" test $? -eq 1
+check "without gnuplot: the message names --plot" grep -q 'plot .*gnuplot failed' "$tmp/nognu.err"
+check "without gnuplot: no file written" test -z "$(ls -A "$tmp/nognu")"
+
 # Bad input: exit 2, the argument named, no output file.
 expect 2 'missing\.AT2.*does not exist' -- spectrum "$tmp/missing.AT2"
 expect 2 'damping' -- spectrum "$elc" --damping 1
