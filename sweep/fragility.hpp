@@ -99,7 +99,8 @@ struct FragilityFit {
   FitStatus status = FitStatus::kNotRun;
   std::string message;     // why there is no estimate, or what to know about the bands
   int iterations = 0;      // simplex iterations of the point fit (0 for fit_moments)
-  double log_likelihood = 0.0;  // log_likelihood(stripes, theta, beta) at the estimate
+  double log_likelihood = 0.0;  // log_likelihood(stripes, theta, beta) at the estimate; 0
+                                //   without an estimate and for fit_moments
 };
 
 struct BootstrapBands {
@@ -111,15 +112,16 @@ struct BootstrapBands {
                           //   kMinBootstrapFits resamples had one
   std::string message;   // why not computed, or how many resamples were left out
 };
-// The fewest fitted resamples from which 2.5 and 97.5 percentiles are taken: with 40, the
-// 2.5 % percentile is the smallest value (interpolation between order statistics).
+// The fewest fitted resamples from which 2.5 and 97.5 percentiles are taken: 40 = 1/0.025,
+// the fewest for which one refit is expected beyond each percentile.
 inline constexpr int kMinBootstrapFits = 40;
 
 // The binomial log-likelihood of the stripes for a curve (theta, beta), without the constant
 // sum_j ln C(n_j, k_j):
 //   l = sum_j [ k_j ln Phi(z_j) + (n_j - k_j) ln Phi(-z_j) ],   z_j = ln(im_j / theta) / beta.
-// Evaluated with ln Phi(z) = ln(erfc(-z / sqrt 2) / 2) from gsl_sf_log_erfc, finite for any
-// finite z (no underflow to ln 0 in the tails). Requires theta > 0, beta > 0.
+// Evaluated with ln Phi(z) = ln(erfc(-z / sqrt 2) / 2), from std::erfc and, where erfc
+// underflows (-z / sqrt 2 > 26), from gsl_sf_log_erfc: finite for any finite z (no ln 0 in
+// the tails). Requires theta > 0, beta > 0.
 double log_likelihood(const std::vector<Stripe>& stripes, double theta, double beta);
 
 // Throws std::invalid_argument naming the first bad stripe: "stripe 3 (im = -0.1): im: must be
