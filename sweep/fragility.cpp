@@ -104,7 +104,8 @@ struct NoEstimate {
 // data are not (quasi-)separated (Albert & Anderson 1984, Biometrika 71(1):1-10): no IM c
 // has only non-exceedances below it and only exceedances above it. Concavity also makes
 // g(b) = max_a l(a, b) concave, with g'(0) proportional to sum_j (k_j - n_j p)(ln x_j - m)
-// (p the overall fraction, m the mean ln x): the maximum has b > 0 iff that is > 0.
+// (p the overall fraction, m the mean ln x): the maximum has b > 0 iff that is > 0. (Data
+// separated the other way, exceedances only below some IM, make that sum negative.)
 std::optional<NoEstimate> why_no_estimate(const std::vector<Stripe>& stripes) {
   if (stripes.empty()) return NoEstimate{FitStatus::kNoData, "no stripes: nothing to fit"};
   long runs = 0, exceeded = 0;
