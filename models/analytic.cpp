@@ -1,5 +1,5 @@
-// Closed-form references; see analytic.hpp for the formulas and docs/analytic.md,
-// docs/criterion.md for the derivations.
+// Closed-form references; see analytic.hpp for the formulas and docs/analytic.md for the
+// derivations.
 #include "models/analytic.hpp"
 
 #include <algorithm>
@@ -449,17 +449,17 @@ ImpactCases solve_impact_by_cases(const ImpactProblem& p) {
   for (Eigen::Index i = 0; i < m; ++i) total *= 4;
   Eigen::MatrixXd A(n2, n2);
   Eigen::VectorXd b(n2);
-  std::vector<ContactState> st(static_cast<std::size_t>(m));
+  std::vector<ImpactCase> st(static_cast<std::size_t>(m));
   for (int code = 0; code < total; ++code) {
     int c = code;
     bool skip = false;
     for (Eigen::Index i = 0; i < m; ++i) {
-      st[static_cast<std::size_t>(i)] = static_cast<ContactState>(c % 4);
+      st[static_cast<std::size_t>(i)] = static_cast<ImpactCase>(c % 4);
       c /= 4;
       // Without friction stick and slide coincide (Lambda_T = 0): keep one of them.
-      if (p.friction(i) == 0.0 && (st[static_cast<std::size_t>(i)] == ContactState::kStick ||
+      if (p.friction(i) == 0.0 && (st[static_cast<std::size_t>(i)] == ImpactCase::kStick ||
                                    st[static_cast<std::size_t>(i)] ==
-                                       ContactState::kSlideNegative)) {
+                                       ImpactCase::kSlideNegative)) {
         skip = true;
       }
     }
@@ -471,20 +471,20 @@ ImpactCases solve_impact_by_cases(const ImpactProblem& p) {
       const double e = p.restitution(i);
       const double mu = p.friction(i);
       switch (st[static_cast<std::size_t>(i)]) {
-        case ContactState::kInactive:
+        case ImpactCase::kInactive:
           A(i, i) = 1.0;          // Lambda_N = 0
           A(m + i, m + i) = 1.0;  // Lambda_T = 0
           break;
-        case ContactState::kStick:
+        case ImpactCase::kStick:
           // gdot_N+ + e gdot_N- = 0 and gdot_T+ = 0, gdot+ = G z + gdot-.
           A.row(i) = p.delassus.row(i);
           b(i) = -(1.0 + e) * p.gdot_minus(i);
           A.row(m + i) = p.delassus.row(m + i);
           b(m + i) = -p.gdot_minus(m + i);
           break;
-        case ContactState::kSlidePositive:
-        case ContactState::kSlideNegative: {
-          const double s = st[static_cast<std::size_t>(i)] == ContactState::kSlidePositive ? 1.0
+        case ImpactCase::kSlidePositive:
+        case ImpactCase::kSlideNegative: {
+          const double s = st[static_cast<std::size_t>(i)] == ImpactCase::kSlidePositive ? 1.0
                                                                                         : -1.0;
           A.row(i) = p.delassus.row(i);
           b(i) = -(1.0 + e) * p.gdot_minus(i);
@@ -512,16 +512,16 @@ ImpactCases solve_impact_by_cases(const ImpactProblem& p) {
       const double e = p.restitution(i), mu = p.friction(i);
       const double gn0 = gp(i) + e * p.gdot_minus(i);
       switch (st[static_cast<std::size_t>(i)]) {
-        case ContactState::kInactive:
+        case ImpactCase::kInactive:
           ok = gn0 >= -vtol;
           break;
-        case ContactState::kStick:
+        case ImpactCase::kStick:
           ok = ln >= -itol && std::abs(lt) <= mu * ln + itol;
           break;
-        case ContactState::kSlidePositive:
+        case ImpactCase::kSlidePositive:
           ok = ln >= -itol && (mu == 0.0 || gp(m + i) >= -vtol);
           break;
-        case ContactState::kSlideNegative:
+        case ImpactCase::kSlideNegative:
           ok = ln >= -itol && gp(m + i) <= vtol;
           break;
       }
@@ -532,7 +532,7 @@ ImpactCases solve_impact_by_cases(const ImpactProblem& p) {
     s.lambda_t = z.tail(m);
     s.gdot_n_plus = gp.head(m);
     s.gdot_t_plus = gp.tail(m);
-    s.states = st;
+    s.cases = st;
     // Distinct solutions are distinct post-impact velocities: G z1 = G z2 <=> W z1 = W z2
     // (G = W^T M^-1 W), so equal contact velocities mean equal u+ even when the impulses
     // differ (an indeterminate split between contacts).
@@ -574,61 +574,6 @@ DeckImpact deck_impact(const DeckBody& g, const std::vector<int>& corners,
   Eigen::VectorXd z(2 * m);
   z << out.contact.lambda_n, out.contact.lambda_t;
   out.velocity_after = velocity_before + minv.asDiagonal() * (W * z);
-  return out;
-}
-
-// =======================================================================================
-// Rotation criterion
-
-void CriterionInput::validate() const {
-  require(std::isfinite(skew_deg) && std::abs(skew_deg) < 90.0,
-          "skew: must be in (-90, 90) degrees");
-  require(std::isfinite(width) && width > 0.0, "width: must be > 0 [m]");
-  require(std::isfinite(length) && length > 0.0, "length: must be > 0 [m]");
-  require(std::isfinite(friction) && friction >= 0.0, "friction: must be >= 0");
-}
-
-double eta(const CriterionInput& in, double impulse_ratio) {
-  in.validate();
-  const double a = deg2rad(in.skew_deg);
-  const double wl = in.width / in.length;
-  // (L/W) cos a (sin a - k cos a): the offset of the impulse line of action along the end
-  // face, in units of the half face length W/(2 cos a); see docs/criterion.md.
-  return std::sin(2.0 * a) / (2.0 * wl) - impulse_ratio * std::cos(a) * std::cos(a) / wl;
-}
-
-Criterion rotation_criterion(const CriterionInput& in) {
-  in.validate();
-  const double a = deg2rad(in.skew_deg);
-  const double wl = in.width / in.length;
-  const double base = std::sin(2.0 * a) / (2.0 * wl);
-  const double fr = in.friction * std::cos(a) * std::cos(a) / wl;
-  Criterion c;
-  c.eta_plus = base + fr;
-  c.eta_minus = base - fr;
-  c.rotation = std::max(std::abs(c.eta_plus), std::abs(c.eta_minus)) > 1.0;
-  c.printed_eta_plus = base + 2.0 * fr;
-  c.printed_eta_minus = base - 2.0 * fr;
-  c.printed_rotation = std::max(std::abs(c.printed_eta_plus), std::abs(c.printed_eta_minus)) > 1.0;
-  return c;
-}
-
-CriterionPrediction predict_right_end_impact(const CriterionInput& in, double vx, double vy,
-                                             double restitution) {
-  in.validate();
-  require(std::isfinite(vx) && vx > 0.0, "vx: must be > 0 (towards the right abutment)");
-  require(std::isfinite(vy), "vy: must be finite");
-  require(restitution >= 0.0 && restitution <= 1.0, "restitution: must be in [0, 1]");
-  const double a = deg2rad(in.skew_deg);
-  const double gn = -vx * std::cos(a) + vy * std::sin(a);
-  const double gt = -vx * std::sin(a) - vy * std::cos(a);
-  require(gn < 0.0, "vx, vy: the end must approach the abutment (gdot_N- < 0)");
-  CriterionPrediction out;
-  const double e = restitution;
-  out.sliding = std::abs(gt) > in.friction * (1.0 + e) * std::abs(gn);
-  out.impulse_ratio = out.sliding ? -sgn(gt) * in.friction : gt / ((1.0 + e) * gn);
-  out.eta = eta(in, out.impulse_ratio);
-  out.rotation = std::abs(out.eta) > 1.0;
   return out;
 }
 
