@@ -17,6 +17,7 @@
 #include <ctime>
 #include <fstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 int main(int argc, char** argv) {
@@ -55,12 +56,13 @@ int main(int argc, char** argv) {
       double peak_rotation = 0.0;
       double duration = 0.0;
       for (int r = 0; r < repeats; ++r) {
-        models::Scene scene = models::load_scene(scene_file);
+        models::Scene scene = models::load_scene(scene_file, {"solver.method=moreau"});
         integrators::Recorder rec(*scene.system, scene.output.sample_dt);
+        const auto& read = std::get<integrators::MoreauJeanOptions>(scene.run);
         integrators::MoreauJeanOptions o;
-        o.end_time = scene.solver.end_time;
+        o.end_time = read.end_time;
         o.step = h;
-        o.theta = scene.solver.theta;
+        o.theta = read.theta;
         duration = o.end_time - scene.system->initial_time();
         const auto start = std::chrono::steady_clock::now();
         const std::clock_t cpu_start = std::clock();
