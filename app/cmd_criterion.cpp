@@ -1,7 +1,7 @@
 // nsbridge criterion: the rotation criterion eta of eq. (1), in the form derived from the
 // impact law (eqs. 3-7; docs/criterion.md), with the formula as printed for comparison.
 #include "app/commands.hpp"
-#include "app/format.hpp"
+#include "io/csv.hpp"
 #include "models/analytic.hpp"
 
 #include <cmath>
@@ -22,7 +22,7 @@ struct CriterionArgs {
   bool json = false;
 };
 
-std::string number(double x) { return shortest(x); }
+std::string number(double x) { return io::shortest(x); }
 
 // Six significant digits for people to read.
 std::string short_number(double x) {

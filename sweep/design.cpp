@@ -32,12 +32,7 @@ std::string_view to_string(Mode m) {
   return "grid";
 }
 
-std::string format_number(double v) {
-  if (!std::isfinite(v)) return {};
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
+std::string format_number(double v) { return io::csv_number(v); }
 
 namespace {
 

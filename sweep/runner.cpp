@@ -2,6 +2,7 @@
 
 #include "integrators/output.hpp"
 #include "integrators/run.hpp"
+#include "io/build_info.hpp"
 #include "models/scene.hpp"
 #include "sweep/csv.hpp"
 #include "sweep/mpi.hpp"
@@ -23,10 +24,6 @@
 #include <stdexcept>
 #include <thread>
 
-#ifndef NSB_GIT_REVISION
-#define NSB_GIT_REVISION "unknown"
-#endif
-
 namespace nsb::sweep {
 
 namespace fs = std::filesystem;
@@ -36,7 +33,7 @@ void SweepOptions::validate() const {
   if (jobs < 0) throw std::invalid_argument("--jobs: must be >= 0 (0 = all cores)");
 }
 
-std::string code_revision() { return NSB_GIT_REVISION; }
+std::string code_revision() { return io::build_info().revision; }
 
 bool mpi_built_in() {
 #ifdef NSB_HAVE_MPI

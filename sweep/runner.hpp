@@ -88,7 +88,7 @@ SweepSummary run_sweep(const std::filesystem::path& design_file, const SweepOpti
 // True when nsbridge was built with MPI.
 bool mpi_built_in();
 
-// The code revision recorded in manifest.toml (git revision at configure time).
+// The code revision recorded in manifest.toml: io::build_info().revision, taken at build time.
 std::string code_revision();
 
 // A progress bar on stderr (terminal only): runs done, failed, estimated time left.

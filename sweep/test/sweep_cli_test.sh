@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end tests of `nsbridge sweep`: design errors (exit 2, nothing written), a failing run
 # inside a sweep (exit 1, a row with its status), resume, refusal of a changed design, the
-# equality of --jobs 1 and --jobs 2, the Fig. 6 design and the plots.
+# equality of --jobs 1 and --jobs 2, the Fig. 6 design and the plots, and --gnuplot.
 #   bash sweep/test/sweep_cli_test.sh NSBRIDGE
 set -uo pipefail
 nsb=$1
@@ -85,6 +85,12 @@ design "$tmp/oat.toml" bridge-exc7 $'mode = "oat"\nset = ["solver.end_time=3"]
 run 0 '5 in the design' sweep "$tmp/oat.toml" --out "$tmp/oat" --plot --limit 0.001
 for f in tornado.csv tornado.png tornado.svg; do check "plot $f" test -s "$tmp/oat/plots/$f"; done
 check "tornado rows" test "$(wc -l < "$tmp/oat/plots/tornado.csv")" -eq 3
+
+# --- The plots are drawn by the gnuplot that --gnuplot names ------------------------------------
+printf '#!/bin/sh\nexit 3\n' > "$tmp/no-gnuplot"
+chmod +x "$tmp/no-gnuplot"
+run 1 'gnuplot failed' sweep "$tmp/oat.toml" --out "$tmp/oat" --plot-only --limit 0.001 \
+  --gnuplot "$tmp/no-gnuplot"
 
 echo "sweep_cli_test: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]
