@@ -9,6 +9,8 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <random>
 #include <set>
 #include <sstream>
@@ -577,6 +579,21 @@ void validate_design(const Design& d) {
                 at + ": factor " + f.key + " = " + format_number(v));
       }
     }
+  }
+}
+
+const std::vector<std::string>& base_coordinates(const Design& d) {
+  static std::mutex mutex;
+  static std::map<std::vector<std::string>, std::vector<std::string>> known;
+  std::vector<std::string> key = d.set;
+  key.push_back(d.scene.string());
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (const auto it = known.find(key); it != known.end()) return it->second;
+  try {
+    const models::Scene scene = models::load_scene(d.scene, d.set);
+    return known[key] = scene.system->coordinate_names();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(d.file.string() + ": scene: " + e.what());
   }
 }
 

@@ -201,7 +201,7 @@ SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& opti
   if (error) std::rethrow_exception(error);
   if (!remote_error.empty()) throw std::runtime_error(remote_error);
   write_results(d, options, plan.rows);
-  s.failed = failed_rows(d, plan.rows);
+  s.failed = count_failed(d, plan.rows);
   s.results = options.out / "results.csv";
   return s;
 }
