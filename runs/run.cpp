@@ -26,7 +26,8 @@ PreparedRun prepare(const RunRequest& request) {
 RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
   models::Scene& scene = prepared.scene;
   integrators::Recorder history(*scene.system, scene.output.sample_dt);
-  integrators::RunResult result = integrators::integrate(*scene.system, scene.run, history, progress);
+  integrators::RunResult result =
+      integrators::integrate(*scene.system, scene.run, history, progress);
   Digest digest = make_digest(history, result);
   std::vector<std::string> warnings = std::move(prepared.warnings);
   for (auto& w : result_warnings(history, digest, result)) warnings.push_back(std::move(w));

@@ -445,7 +445,8 @@ void read_factors(const Context& c, const toml::table& root, Design& d) {
   const auto* factors = root.get("factor");
   if (factors == nullptr) return;
   const auto* a = factors->as_array();
-  if (a == nullptr || !a->is_array_of_tables()) c.fail(factors, "factor", "must be [[factor]] tables");
+  if (a == nullptr || !a->is_array_of_tables())
+    c.fail(factors, "factor", "must be [[factor]] tables");
   std::set<std::string> keys;
   for (std::size_t k = 0; k < a->size(); ++k) {
     Factor f = read_factor(c, *(*a)[k].as_table(), d.file.parent_path(), k, d.mode);

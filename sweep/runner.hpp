@@ -1,7 +1,7 @@
 // Running a sweep: every run of a design is an ordinary runs::execute() call with its own
-// outputs under DIR/runs/<id>/ (runs::write_record), on a pool of threads or on MPI ranks; DIR/results.csv
-// gathers one row per run, sorted by run id, and does not depend on how the runs were
-// distributed (docs/sweep.md).
+// outputs under DIR/runs/<id>/ (runs::write_record), on a pool of threads or on MPI ranks;
+// DIR/results.csv gathers one row per run, sorted by run id, and does not depend on how the
+// runs were distributed (docs/sweep.md).
 #pragma once
 
 #include "sweep/design.hpp"

@@ -165,7 +165,8 @@ TEST_CASE("write_record replaces an older set as a whole and keeps the user's ow
   const auto base = fresh_dir("swap");
   const auto dir = base / "out";
   std::filesystem::create_directories(dir);
-  for (const char* f : {"history.csv", "events.csv", "summary.json"}) std::ofstream(dir / f) << "old";
+  for (const char* f : {"history.csv", "events.csv", "summary.json"})
+    std::ofstream(dir / f) << "old";
   write_record(dir, record_of("scene", rec, stats));
   CHECK(read(dir / "history.csv") == history_csv(rec));
   CHECK(read(dir / "summary.json") == summary_json(record_of("scene", rec, stats)));
