@@ -1,17 +1,18 @@
 // nsbridge spectrum: elastic response spectra (Sd, PSV, PSA) of ground-motion records by the
 // exact piecewise-linear recurrence (models/response_spectrum.hpp; docs/spectra.md).
 #include "app/commands.hpp"
-#include "app/format.hpp"
+#include "io/csv.hpp"
+#include "io/files.hpp"
+#include "io/gnuplot.hpp"
+#include "io/json.hpp"
 #include "models/ground_motion.hpp"
 #include "models/response_spectrum.hpp"
-#include "sweep/csv.hpp"
 
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -100,17 +101,6 @@ models::Record read_record(const std::string& name, double unit) {
   return models::read_two_column(path, unit);
 }
 
-// gnuplot's terminal for the --plot file's extension.
-std::string plot_terminal(const std::string& file) {
-  std::string ext = fs::path(file).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".png") return "pngcairo size 900,600";
-  if (ext == ".svg") return "svg size 900,600";
-  if (ext == ".pdf") return "pdfcairo size 6in,4in";
-  throw InputError("spectrum: --plot " + file + ": expected a file ending in .png, .svg or .pdf");
-}
-
 // An output file's folder must exist, so that nothing fails after the work is done.
 void check_output(const std::string& option, const std::string& file) {
   if (file.empty()) return;
@@ -135,21 +125,18 @@ std::string gp_string(const std::string& s) {
   return out + '"';
 }
 
-// Draws PSA against T (log axis), one curve per record, into `file` with gnuplot. Returns
-// false when gnuplot fails.
-bool draw(const std::vector<models::Spectrum>& spectra, const std::string& terminal,
-          const fs::path& file) {
+// The gnuplot script of PSA against T (log axis), one curve per record, the data inline.
+std::string plot_script(const std::vector<models::Spectrum>& spectra) {
   std::ostringstream gp;
-  gp << "set terminal " << terminal << "\nset output " << gp_string(file.string()) << '\n'
-     << "set logscale x\nset grid\nset xlabel 'period T [s]'\nset ylabel 'PSA [g]'\n"
+  gp << "set logscale x\nset grid\nset xlabel 'period T [s]'\nset ylabel 'PSA [g]'\n"
      << "set title " << gp_string("Pseudo-acceleration spectra, damping " +
-                                  shortest(spectra.front().damping))
+                                  io::shortest(spectra.front().damping))
      << "\nset key top right noenhanced\n";
   for (std::size_t k = 0; k < spectra.size(); ++k) {
     gp << "$r" << k << " << EOD\n";
     for (std::size_t i = 0; i < spectra[k].periods.size(); ++i) {
       if (spectra[k].periods[i] > 0.0) {
-        gp << shortest(spectra[k].periods[i]) << ' ' << shortest(spectra[k].psa_g[i]) << '\n';
+        gp << io::shortest(spectra[k].periods[i]) << ' ' << io::shortest(spectra[k].psa_g[i]) << '\n';
       }
     }
     gp << "EOD\n";
@@ -160,25 +147,15 @@ bool draw(const std::vector<models::Spectrum>& spectra, const std::string& termi
        << gp_string(fs::path(spectra[k].record).filename().string());
   }
   gp << '\n';
-  // A gnuplot that is missing or exits early closes the pipe: SIGPIPE is ignored meanwhile
-  // so that the write fails (reported) instead of ending nsbridge.
-  struct IgnoreSigpipe {
-    void (*previous)(int) = std::signal(SIGPIPE, SIG_IGN);
-    ~IgnoreSigpipe() { std::signal(SIGPIPE, previous); }
-  } ignore;
-  FILE* pipe = ::popen("gnuplot >/dev/null 2>&1", "w");
-  if (pipe == nullptr) return false;
-  const std::string script = gp.str();
-  const bool written = std::fwrite(script.data(), 1, script.size(), pipe) == script.size();
-  return ::pclose(pipe) == 0 && written;
+  return gp.str();
 }
 
 std::string csv_text(const std::vector<models::Spectrum>& spectra) {
   std::string out = "record,period,psa_g,sd_m,psv_m_s\n";
   for (const auto& s : spectra) {
     for (std::size_t i = 0; i < s.periods.size(); ++i) {
-      out += sweep::csv_quote(s.record) + "," + shortest(s.periods[i]) + "," +
-             shortest(s.psa_g[i]) + "," + shortest(s.sd_m[i]) + "," + shortest(s.psv_m_s[i]) +
+      out += io::csv_quote(s.record) + "," + io::shortest(s.periods[i]) + "," +
+             io::shortest(s.psa_g[i]) + "," + io::shortest(s.sd_m[i]) + "," + io::shortest(s.psv_m_s[i]) +
              "\n";
     }
   }
@@ -187,7 +164,7 @@ std::string csv_text(const std::vector<models::Spectrum>& spectra) {
 
 std::string json_array(const std::vector<double>& x) {
   std::string out = "[";
-  for (std::size_t i = 0; i < x.size(); ++i) out += (i ? ", " : "") + json_number(x[i]);
+  for (std::size_t i = 0; i < x.size(); ++i) out += (i ? ", " : "") + io::json_number(x[i]);
   return out + "]";
 }
 
@@ -196,8 +173,8 @@ void print(const std::vector<models::Spectrum>& spectra, const std::vector<model
   for (std::size_t k = 0; k < spectra.size(); ++k) {
     const auto& s = spectra[k];
     if (json) {
-      std::cout << "{\"record\": " << json_string(s.record) << ", \"damping\": "
-                << json_number(s.damping) << ", \"periods\": " << json_array(s.periods)
+      std::cout << "{\"record\": " << io::json_string(s.record) << ", \"damping\": "
+                << io::json_number(s.damping) << ", \"periods\": " << json_array(s.periods)
                 << ", \"psa_g\": " << json_array(s.psa_g) << ", \"sd_m\": " << json_array(s.sd_m)
                 << ", \"psv_m_s\": " << json_array(s.psv_m_s) << "}\n";
       continue;
@@ -224,15 +201,17 @@ void run_spectrum(const SpectrumArgs& a) {
   models::SpectrumOptions options;
   options.damping = a.damping;
   if (!(a.damping >= 0.0 && a.damping < 1.0)) {
-    throw InputError("spectrum: --damping " + shortest(a.damping) +
+    throw InputError("spectrum: --damping " + io::shortest(a.damping) +
                      ": expected a fraction of critical damping in [0, 1)");
   }
   if (!(a.unit > 0.0) || !std::isfinite(a.unit)) {
-    throw InputError("spectrum: --unit " + shortest(a.unit) +
+    throw InputError("spectrum: --unit " + io::shortest(a.unit) +
                      ": expected a finite factor > 0 [m/s^2 per file unit]");
   }
   options.periods = parse_periods(a.periods);
-  const std::string terminal = a.plot.empty() ? "" : plot_terminal(a.plot);
+  if (!a.plot.empty() && io::terminal_for(a.plot).empty()) {
+    throw InputError("spectrum: --plot " + a.plot + ": expected a file ending in .png, .svg or .pdf");
+  }
   check_output("--csv", a.csv);
   check_output("--plot", a.plot);
   std::vector<models::Record> records;
@@ -249,23 +228,22 @@ void run_spectrum(const SpectrumArgs& a) {
   // once the CSV is written (atomically).
   if (!a.plot.empty()) {
     const fs::path tmp = fs::path(a.plot).parent_path() /
-                         ("." + fs::path(a.plot).filename().string() + ".tmp" +
-                          std::to_string(::getpid()));
+                         (".tmp" + std::to_string(::getpid()) + "-" +
+                          fs::path(a.plot).filename().string());
     std::error_code ec;
-    if (!draw(spectra, terminal, tmp)) {
-      fs::remove(tmp, ec);
+    if (!io::draw_gnuplot("gnuplot", plot_script(spectra), tmp).empty()) {
       std::cerr << "nsbridge: spectrum: --plot " << a.plot << ": gnuplot failed; no file written\n";
       exit_code() = 1;
       return;
     }
-    if (!a.csv.empty()) sweep::write_file_atomically(a.csv, csv_text(spectra));
+    if (!a.csv.empty()) io::write_file_atomically(a.csv, csv_text(spectra));
     fs::rename(tmp, a.plot, ec);
     if (ec) {
       fs::remove(tmp, ec);
       throw std::runtime_error(a.plot + ": cannot write");
     }
   } else if (!a.csv.empty()) {
-    sweep::write_file_atomically(a.csv, csv_text(spectra));
+    io::write_file_atomically(a.csv, csv_text(spectra));
   }
   print(spectra, records, a.json);
 }

@@ -11,6 +11,7 @@
 #include "integrators/compliance.hpp"
 #include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
+#include "io/build_info.hpp"
 #include "models/scene.hpp"
 
 #include <CLI/CLI.hpp>
@@ -164,7 +165,8 @@ int main(int argc, char** argv) {
   const auto law = nsb::integrators::parse_damping_law(law_name);
   const double e_eff = nsb::integrators::hunt_crossley_restitution(
       nsb::integrators::damping_factor(law, restitution));
-  std::printf("compliance_bench: build %s, revision %s\n", NSB_BUILD_TYPE, NSB_GIT_REVISION);
+  std::printf("compliance_bench: build %s, revision %s\n", NSB_BUILD_TYPE,
+              nsb::io::build_info().revision.c_str());
   std::printf("scene %s, law %s, e_set %.3f, e_effective %.6f\n", scene.c_str(),
               law_name.c_str(), restitution, e_eff);
   if (!history_dir.empty()) std::filesystem::create_directories(history_dir);

@@ -41,33 +41,6 @@ std::string short_number(double v) {
 
 }  // namespace
 
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream s;
-  s << std::setprecision(17) << v;
-  return s.str();
-}
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (char ch : text) {
-    switch (ch) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      default:
-        out += ch;
-    }
-  }
-  return out + "\"";
-}
-
 std::string Claim::reason() const {
   if (!failure.empty()) return "not evaluated: " + failure;
   if (checks.empty()) return "no checks";

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "integrators/recorder.hpp"
+#include "io/json.hpp"
 
 namespace nsb::paper_figures {
 
@@ -43,10 +44,11 @@ struct Claim {
 // Throws std::invalid_argument for an unknown op.
 bool compare(double value, const std::string& op, double threshold);
 
-// JSON text of a number (17 significant digits; null when not finite) and of a string
-// (quoted, with ", \ and newlines escaped). Shared by claims.json and uncertainty.json.
-std::string json_number(double v);
-std::string json_string(const std::string& text);
+// JSON text of a number (shortest round-trip; null when not finite) and of a string (every
+// control character escaped): io's, as in summary.json. Used by claims.json and
+// uncertainty.json.
+using io::json_number;
+using io::json_string;
 
 // claims.json: {"claims": [{"id", "statement", "holds", "reason", "measured": {...},
 // "checks": [{"quantity", "value", "op", "threshold", "why"}], "runs": [...]}]}.

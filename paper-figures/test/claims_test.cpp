@@ -74,9 +74,13 @@ TEST_CASE("JSON numbers and strings") {
   // JSON (RFC 8259) has no NaN or infinity: they are written as null.
   CHECK(json_number(std::numeric_limits<double>::quiet_NaN()) == "null");
   CHECK(json_number(std::numeric_limits<double>::infinity()) == "null");
-  // 17 significant digits read back to the same double: 0.1 is 0.1000000000000000055...
-  CHECK(json_number(0.1) == "0.10000000000000001");
+  // The shortest text that reads back to the same double (summary.json's form): 0.1 is
+  // 0.1000000000000000055..., and "0.1" is the shortest text that reads back to it.
+  CHECK(json_number(0.1) == "0.1");
+  CHECK(std::stod(json_number(0.1 + 0.2)) == 0.1 + 0.2);
   CHECK(json_number(-2.0) == "-2");
-  // A quote, a backslash and a newline are escaped (RFC 8259, section 7).
+  // A quote, a backslash and a newline are escaped (RFC 8259, section 7), and so is every
+  // other control character.
   CHECK(json_string("a\"b\\c\nd") == "\"a\\\"b\\\\c\\nd\"");
+  CHECK(json_string("\x01\t") == "\"\\u0001\\t\"");
 }

@@ -2,6 +2,7 @@
 # touches the header only when the revision changes, so that a build without a new commit
 # recompiles nothing.
 #   cmake -DGIT=<git> -DSRC=<source dir> -DOUT=<header> -P git_revision.cmake
+# io::build_info() reads it: nsbridge --version, the sweep manifest and the benchmarks.
 set(revision "unknown")
 if(GIT)
   execute_process(COMMAND ${GIT} -C ${SRC} rev-parse --short=12 HEAD
@@ -17,7 +18,7 @@ if(GIT)
     endif()
   endif()
 endif()
-set(text "// Generated at build time by app/git_revision.cmake: do not edit.\n#pragma once\n#define NSB_GIT_REVISION \"${revision}\"\n")
+set(text "// Generated at build time by io/git_revision.cmake: do not edit.\n#pragma once\n#define NSB_GIT_REVISION \"${revision}\"\n")
 if(EXISTS ${OUT})
   file(READ ${OUT} old)
 endif()

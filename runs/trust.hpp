@@ -2,18 +2,20 @@
 // Thresholds and their derivation: docs/cli.md, "Warnings".
 //
 // Each warning is one line "<code>: <what was found>; <what the method needs>", with <code>
-// one of energy_balance, penetration, step_period, step_record. They are printed, appended to
-// RunResult::warnings (summary.json "warnings"), and `nsbridge run --strict` exits 1 on any.
+// one of energy_balance, penetration, step_period, step_record. runs::execute appends them to
+// RunResult::warnings and Digest::warnings (summary.json "warnings"), for `nsbridge run` and
+// every run of a sweep alike; `nsbridge run` prints them and with --strict exits 1 on any.
 #pragma once
 
 #include "integrators/recorder.hpp"
 #include "integrators/run.hpp"
 #include "integrators/system.hpp"
+#include "runs/digest.hpp"
 
 #include <string>
 #include <vector>
 
-namespace nsb::app {
+namespace nsb::runs {
 
 struct TrustLimits {
   // Largest relative energy-balance error EnergyBalance::error accepted, in (0, 1).
@@ -44,11 +46,12 @@ std::vector<std::string> step_warnings(integrators::System& system,
                                        const integrators::RunConfig& config, double record_step,
                                        const TrustLimits& limits = {});
 
-// Warnings about a finished run: its energy-balance error and, for the rigid-contact methods
-// (not compliance, whose penetration is the modelled contact deformation), its deepest
-// penetration.
-std::vector<std::string> result_warnings(const integrators::Recorder& recorder,
+// Warnings about a finished run from its digest: its energy-balance error and, for the
+// rigid-contact methods (not compliance, whose penetration is the modelled contact
+// deformation), the deepest penetration of each contact (its gap columns, by ColumnKind).
+std::vector<std::string> result_warnings(const integrators::Recorder& history,
+                                         const Digest& digest,
                                          const integrators::RunResult& result,
                                          const TrustLimits& limits = {});
 
-}  // namespace nsb::app
+}  // namespace nsb::runs

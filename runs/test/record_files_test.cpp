@@ -1,6 +1,6 @@
-// Tests of the output files: their columns and keys (the contract of docs/outputs.md), exact
-// round trip of numbers, no partial file on failure.
-#include "integrators/output.hpp"
+// Tests of the output files of a run record: their columns and keys (the contract of
+// docs/outputs.md), exact round trip of numbers, no partial file on failure.
+#include "runs/files.hpp"
 #include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
@@ -13,8 +13,13 @@
 #include <string>
 #include <unistd.h>
 
-namespace nsb::integrators {
+namespace nsb::runs {
 namespace {
+
+using integrators::EventKind;
+using integrators::Recorder;
+using integrators::RunResult;
+using integrators::Vector;
 
 // Three DOF, two contacts: enough to name every kind of column.
 using TwoCorners = nsb::testsupport::TwoCornerBody;
@@ -51,6 +56,11 @@ Recorder filled_recorder(TwoCorners& s) {
   rec.event(0.25, 2, EventKind::kSlip);
   rec.event(0.25, 0, EventKind::kWarning, "note, with \"quotes\"");
   return rec;
+}
+
+// A record as runs::run makes it, from a recorder and a result.
+RunRecord record_of(const std::string& scene, const Recorder& rec, const RunResult& stats) {
+  return RunRecord{scene, "test", stats, rec, make_digest(rec, stats)};
 }
 
 }  // namespace
@@ -95,7 +105,7 @@ TEST_CASE("summary.json holds the documented keys") {
   stats.lcp_status["solved"] = 3;
   stats.energy.error = 1e-9;
   stats.warnings = {"a \"warning\""};
-  const std::string j = summary_json("bridge-exc7", rec, stats);
+  const std::string j = summary_json(record_of("bridge-exc7", rec, stats));
   for (const char* key :
        {"\"scene\": \"bridge-exc7\"", "\"method\": \"moreau\"", "\"completed\": true",
         "\"message\"", "\"end_time\"", "\"steps\": 7", "\"rejected_steps\": 0",
@@ -112,15 +122,15 @@ TEST_CASE("summary.json holds the documented keys") {
   CHECK(j.find("nan") == std::string::npos);
 }
 
-TEST_CASE("write_outputs writes the three files and leaves no temporary behind") {
+TEST_CASE("write_record writes the three files and leaves no temporary behind") {
   TwoCorners s({});
   const Recorder rec = filled_recorder(s);
   RunResult stats;
   const auto dir = fresh_dir("ok") / "nested";
-  write_outputs(dir, "scene", rec, stats);
+  write_record(dir, record_of("scene", rec, stats));
   CHECK(read(dir / "history.csv") == history_csv(rec));
   CHECK(read(dir / "events.csv") == events_csv(rec));
-  CHECK(read(dir / "summary.json") == summary_json("scene", rec, stats));
+  CHECK(read(dir / "summary.json") == summary_json(record_of("scene", rec, stats)));
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
   CHECK(files == 3);
@@ -134,12 +144,12 @@ TEST_CASE("a failed write throws naming the path and leaves no half file") {
   std::filesystem::create_directories(base);
   SUBCASE("the directory is a file") {
     std::ofstream(base / "file") << "x";
-    CHECK_THROWS_WITH_AS(write_outputs(base / "file", "s", rec, {}),
+    CHECK_THROWS_WITH_AS(write_record(base / "file", record_of("s", rec, {})),
                          doctest::Contains("file"), std::runtime_error);
   }
   SUBCASE("a target name is taken by a directory: nothing is renamed into place") {
     std::filesystem::create_directories(base / "out" / "summary.json" / "x");
-    CHECK_THROWS_AS(write_outputs(base / "out", "s", rec, {}), std::runtime_error);
+    CHECK_THROWS_AS(write_record(base / "out", record_of("s", rec, {})), std::runtime_error);
     for (const auto& e : std::filesystem::directory_iterator(base / "out")) {
       INFO(e.path().string());
       CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
@@ -148,17 +158,18 @@ TEST_CASE("a failed write throws naming the path and leaves no half file") {
   std::filesystem::remove_all(base);
 }
 
-TEST_CASE("write_outputs replaces an older set as a whole and keeps the user's own files") {
+TEST_CASE("write_record replaces an older set as a whole and keeps the user's own files") {
   TwoCorners s({});
   const Recorder rec = filled_recorder(s);
   RunResult stats;
   const auto base = fresh_dir("swap");
   const auto dir = base / "out";
   std::filesystem::create_directories(dir);
-  for (const char* f : {"history.csv", "events.csv", "summary.json"}) std::ofstream(dir / f) << "old";
-  write_outputs(dir, "scene", rec, stats);
+  for (const char* f : {"history.csv", "events.csv", "summary.json"})
+    std::ofstream(dir / f) << "old";
+  write_record(dir, record_of("scene", rec, stats));
   CHECK(read(dir / "history.csv") == history_csv(rec));
-  CHECK(read(dir / "summary.json") == summary_json("scene", rec, stats));
+  CHECK(read(dir / "summary.json") == summary_json(record_of("scene", rec, stats)));
   // Nothing but the output directory is left in its parent (no staging or old directory).
   int entries = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(base)) ++entries;
@@ -166,7 +177,7 @@ TEST_CASE("write_outputs replaces an older set as a whole and keeps the user's o
   // A directory holding the user's own file keeps it, and receives the new set.
   std::ofstream(dir / "notes.txt") << "mine";
   std::ofstream(dir / "events.csv") << "old";
-  write_outputs(dir, "scene", rec, stats);
+  write_record(dir, record_of("scene", rec, stats));
   CHECK(read(dir / "notes.txt") == "mine");
   CHECK(read(dir / "events.csv") == events_csv(rec));
   std::filesystem::remove_all(base);
@@ -180,7 +191,7 @@ TEST_CASE("a failed write leaves the previous set as it was: never a mix of old 
   std::filesystem::create_directories(dir / "summary.json" / "x");  // cannot be replaced
   std::ofstream(dir / "history.csv") << "old";
   std::ofstream(dir / "events.csv") << "old";
-  CHECK_THROWS_AS(write_outputs(dir, "s", rec, {}), std::runtime_error);
+  CHECK_THROWS_AS(write_record(dir, record_of("s", rec, {})), std::runtime_error);
   CHECK(read(dir / "history.csv") == "old");
   CHECK(read(dir / "events.csv") == "old");
   int entries = 0;
@@ -189,21 +200,4 @@ TEST_CASE("a failed write leaves the previous set as it was: never a mix of old 
   std::filesystem::remove_all(base);
 }
 
-TEST_CASE("prepare_output_dir finds before a run what write_outputs would fail on") {
-  const auto base = fresh_dir("prepare");
-  CHECK_THROWS_WITH_AS(prepare_output_dir(""), doctest::Contains("empty path"),
-                       std::invalid_argument);
-  prepare_output_dir(base / "a" / "b");
-  CHECK(std::filesystem::is_directory(base / "a" / "b"));
-  std::ofstream(base / "file") << "x";
-  CHECK_THROWS_WITH_AS(prepare_output_dir(base / "file" / "sub"),
-                       doctest::Contains("cannot create the directory"), std::invalid_argument);
-  CHECK_THROWS_WITH_AS(prepare_output_dir(base / "file"),
-                       doctest::Contains("cannot create the directory"), std::invalid_argument);
-  int entries = 0;  // the probe is gone
-  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(base)) ++entries;
-  CHECK(entries == 2);
-  std::filesystem::remove_all(base);
-}
-
-}  // namespace nsb::integrators
+}  // namespace nsb::runs

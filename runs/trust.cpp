@@ -1,6 +1,6 @@
-#include "app/trust.hpp"
+#include "runs/trust.hpp"
 
-#include "app/format.hpp"
+#include "io/csv.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -9,7 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 
-namespace nsb::app {
+namespace nsb::runs {
 
 namespace {
 
@@ -17,12 +17,8 @@ namespace {
 // relative to positions of order 10 m), not a result: they never warn.
 constexpr double kRoundoffDepth = 1e-9;
 
-// Three significant digits for messages.
-std::string brief(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
+// Three significant digits for messages (printf's %.3g).
+std::string brief(double x) { return integrators::format_number(x); }
 
 }  // namespace
 
@@ -61,14 +57,14 @@ void check_initial_state(const integrators::System& system) {
   const double kinetic = 0.5 * u.dot(system.mass() * u);
   if (!std::isfinite(kinetic)) {
     throw std::invalid_argument(
-        "the initial velocity (" + shortest(u.cwiseAbs().maxCoeff()) +
+        "the initial velocity (" + io::shortest(u.cwiseAbs().maxCoeff()) +
         " in magnitude) makes the kinetic energy 1/2 u^T M u overflow; expected an initial "
         "velocity whose energy is a finite number");
   }
   const double stored = system.energy(system.initial_time(), q).stored;
   if (!std::isfinite(stored)) {
     throw std::invalid_argument(
-        "the initial position (" + shortest(q.cwiseAbs().maxCoeff()) +
+        "the initial position (" + io::shortest(q.cwiseAbs().maxCoeff()) +
         " in magnitude) makes the stored energy overflow; expected an initial position whose "
         "energy is a finite number");
   }
@@ -98,7 +94,8 @@ std::vector<std::string> step_warnings(integrators::System& system,
   return w;
 }
 
-std::vector<std::string> result_warnings(const integrators::Recorder& recorder,
+std::vector<std::string> result_warnings(const integrators::Recorder& history,
+                                         const Digest& digest,
                                          const integrators::RunResult& result,
                                          const TrustLimits& limits) {
   limits.validate();
@@ -116,22 +113,18 @@ std::vector<std::string> result_warnings(const integrators::Recorder& recorder,
   // penetration is its numerical violation. The compliance method's penetration is the Hertz
   // deformation of the contact, a result of its model, and is not checked.
   if (result.method == "compliance") return w;
-  const auto& cols = recorder.columns();
-  for (std::size_t c = 0; c < cols.size(); ++c) {
-    if (cols[c].rfind("gN", 0) != 0) continue;
-    double lo = INFINITY, hi = -INFINITY, t_lo = 0.0;
-    for (std::size_t r = 0; r < recorder.rows(); ++r) {
-      const double g = recorder.at(r, c);
-      if (!std::isfinite(g)) continue;
-      if (g < lo) lo = g, t_lo = recorder.at(r, 0);
-      hi = std::max(hi, g);
-    }
+  const auto& info = history.column_info();
+  for (std::size_t c = 1; c < info.size(); ++c) {
+    if (info[c].kind != integrators::ColumnKind::kGap) continue;
+    // peaks[c - 1]: the peaks skip the time column.
+    const ColumnPeak& gap = digest.peaks[c - 1];
+    const double lo = gap.min, hi = gap.max;
     if (!(lo < -kRoundoffDepth)) continue;
     const double depth = -lo;
     const double range = hi - lo;
     if (depth > limits.penetration * range) {
-      w.push_back("penetration: contact " + cols[c].substr(2) + " penetrates " +
-                  brief(depth) + " m at t = " + brief(t_lo) + " s, " +
+      w.push_back("penetration: contact " + std::to_string(info[c].index + 1) + " penetrates " +
+                  brief(depth) + " m at t = " + brief(gap.t_min) + " s, " +
                   brief(100.0 * depth / range) + " % of its range of gaps " + brief(range) +
                   " m; the method is trusted up to " + brief(100.0 * limits.penetration) +
                   " % (reduce solver.step)");
@@ -140,4 +133,4 @@ std::vector<std::string> result_warnings(const integrators::Recorder& recorder,
   return w;
 }
 
-}  // namespace nsb::app
+}  // namespace nsb::runs

@@ -1,15 +1,14 @@
-// The files of one run: history.csv, events.csv and summary.json. Their columns and keys are
-// a stable contract, documented in docs/outputs.md.
+// Files written so that a reader never sees a partial one: a single file through a temporary
+// name and rename, a set of files (one run's outputs) so that its directory never holds a mix
+// of an old and a new set.
 #pragma once
-
-#include "integrators/recorder.hpp"
 
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace nsb::integrators {
+namespace nsb::io {
 
 // Checks, before a run, that dir can receive its outputs: creates it (and its parents) and
 // probes that a directory can be made beside it and files written into it. Throws
@@ -26,14 +25,8 @@ void prepare_output_dir(const std::filesystem::path& dir);
 void write_file_set(const std::filesystem::path& dir,
                     const std::vector<std::pair<std::string, std::string>>& files);
 
-// history.csv, events.csv and summary.json (last) into dir through write_file_set.
-void write_outputs(const std::filesystem::path& dir, const std::string& scene_name,
-                   const Recorder& recorder, const RunResult& stats);
+// Writes text to file via ".<name>.tmp<pid>" beside it and rename. Throws std::runtime_error
+// naming the path on failure, after removing the temporary.
+void write_file_atomically(const std::filesystem::path& file, const std::string& text);
 
-// The text of each file, for tests and for callers that write elsewhere.
-std::string history_csv(const Recorder& recorder);
-std::string events_csv(const Recorder& recorder);
-std::string summary_json(const std::string& scene_name, const Recorder& recorder,
-                         const RunResult& stats);
-
-}  // namespace nsb::integrators
+}  // namespace nsb::io
