@@ -28,7 +28,6 @@ class RunBookkeeping {
   // The result being filled: integrators add their own counters (factorizations,
   // steps_with_lcp, rejected_steps), the message and warnings here.
   RunResult& result() { return result_; }
-  std::int64_t steps() const { return result_.steps; }
 
   // One accepted step.
   void count_step() { ++result_.steps; }
