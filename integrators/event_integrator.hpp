@@ -37,9 +37,7 @@ using Dense = odeint::result_of::make_dense_output<Dopri>::type;
 // is integrated to the same tolerance as the motion.
 enum EnergyIndex { kDamping = 0, kGround, kExternal, kNormal, kFriction, kEnergyTerms };
 
-// The mode of one contact during a smooth phase is an integrators::ContactState
-// (contact_stage.hpp), shared with Moreau–Jean. A closed contact slides with the sign of its
-// slip velocity (kSlipPositive / kSlipNegative), or is kClosed when frictionless.
+// One event-driven run: the state between events and the steps that advance it.
 class EventDriven {
  public:
   EventDriven(System& system, const EventDrivenOptions& options, Recorder& recorder,
@@ -133,6 +131,9 @@ class EventDriven {
   double force_shift_ = 0.0, velocity_shift_ = 0.0;
   Matrix minv_;
   std::vector<ContactData> cbuf_;
+  // The mode of each contact in the current smooth phase (contact_stage.hpp's ContactState,
+  // shared with Moreau–Jean): a closed contact slides with the sign of its slip velocity
+  // (kSlipPositive / kSlipNegative), or is kClosed when frictionless.
   std::vector<ContactState> modes_;
   Vector f_, q_, u_, udot_, lambda_n_, lambda_t_, h_;
   // Indicators at the start of the current step (h_prev_) and at its end (h_end_).

@@ -1,5 +1,6 @@
 #include "integrators/run_bookkeeping.hpp"
 
+#include <stdexcept>
 #include <string>
 
 namespace nsb::integrators {
@@ -14,8 +15,12 @@ constexpr int kStatusCount = static_cast<int>(lcp::Status::kTooLarge) + 1;
 RunBookkeeping::RunBookkeeping(std::string_view method, const Progress& progress,
                                std::int64_t progress_interval)
     : progress_(progress),
-      interval_(progress_interval),
+      interval_mask_(progress_interval - 1),
       start_(std::chrono::steady_clock::now()) {
+  if (progress_interval < 1 || (progress_interval & interval_mask_) != 0) {
+    throw std::invalid_argument("RunBookkeeping: progress_interval must be a power of two, got " +
+                                std::to_string(progress_interval));
+  }
   result_.method = std::string(method);
 }
 

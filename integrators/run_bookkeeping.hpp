@@ -21,7 +21,9 @@ namespace nsb::integrators {
 class RunBookkeeping {
  public:
   // Starts the wall clock. progress (may be empty) is called every progress_interval
-  // accepted steps and once at the end; it must outlive this object.
+  // accepted steps and once at the end; it must outlive this object. progress_interval is a
+  // power of two (the test per step is then a mask, not a division); throws
+  // std::invalid_argument otherwise.
   RunBookkeeping(std::string_view method, const Progress& progress,
                  std::int64_t progress_interval);
 
@@ -34,7 +36,7 @@ class RunBookkeeping {
   // Calls progress with the time reached when the accepted steps are a multiple of the
   // interval.
   void progress_at_interval(double t) const {
-    if (progress_ && result_.steps % interval_ == 0) progress_(t);
+    if (progress_ && (result_.steps & interval_mask_) == 0) progress_(t);
   }
 
   // A non-finite state, force or energy stopped the run at time t (RunStatus::kDiverged).
@@ -66,7 +68,7 @@ class RunBookkeeping {
  private:
   RunResult result_;
   const Progress& progress_;
-  std::int64_t interval_ = 1;
+  std::int64_t interval_mask_ = 0;  // progress_interval - 1
   std::chrono::steady_clock::time_point start_;
   bool diverged_ = false;
   bool stalled_ = false;
