@@ -75,13 +75,15 @@ GnuplotVariable gnuplot_string(const std::string& name, const std::string& text)
   return {name, q + "'"};
 }
 
+fs::path gnuplot_dir() { return NSB_GNUPLOT_DIR; }
+
 Drawing draw_table(const Canvas& canvas, const std::string& name, const Table& table,
                    const std::vector<GnuplotVariable>& variables, PlotSize size) {
   Drawing d;
   const fs::path csv = canvas.dir / (name + ".csv");
   table.write(csv);
   d.files.push_back(csv);
-  const fs::path script = fs::path(NSB_GNUPLOT_DIR) / (name + ".gp");
+  const fs::path script = gnuplot_dir() / (name + ".gp");
   std::ifstream in(script);
   if (!in) {
     d.error = name + ": cannot read " + script.string();

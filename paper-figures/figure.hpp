@@ -82,6 +82,9 @@ struct GnuplotVariable {
 GnuplotVariable gnuplot_number(const std::string& name, double v);          // 17 digits
 GnuplotVariable gnuplot_string(const std::string& name, const std::string& text);  // quoted
 
+// The folder of the figures' gnuplot scripts: paper-figures/gnuplot of the source tree.
+std::filesystem::path gnuplot_dir();
+
 // Writes the table as <dir>/<name>.csv and draws it with the script gnuplot/<name>.gp of the
 // source tree (NSB_GNUPLOT_DIR), the variables set before the script and `data` naming the
 // CSV. The .gp written beside the figure is the variables followed by the script, so that it
