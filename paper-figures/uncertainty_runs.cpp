@@ -111,8 +111,6 @@ SlidingState sliding_state(const RunRow& r, double mu, std::string& failure) {
 
 }  // namespace
 
-// motions have them (Fig. 6's abscissa and C2's).
-using InputPga = std::map<int, std::array<double, 2>>;
 InputPga input_pgas(const fs::path& scenes, const std::vector<int>& excitations) {
   InputPga pga;
   for (int n : excitations) {
