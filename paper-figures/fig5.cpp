@@ -59,10 +59,11 @@ Figure fig5_sliding_contact() {
     const Sliding longest = longest_sliding_of(s.runs.at(kExc5Moreau));
     std::vector<RunSpec> v;
     if (longest.contact == 0) return v;
-    v.push_back({kExc5Sliding,
-                 exc(kExampleRun),
-                 {"solver.method=moreau", "solver.end_time=" + factor_name(longest.end + kSlidingLead),
-                  "output.sample_dt=0"}});
+    v.push_back(
+        {kExc5Sliding,
+         exc(kExampleRun),
+         {"solver.method=moreau", "solver.end_time=" + factor_name(longest.end + kSlidingLead),
+          "output.sample_dt=0"}});
     return v;
   };
   f.draw = [name = f.name](const Study& s, const Canvas& canvas) {

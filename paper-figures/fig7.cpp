@@ -34,7 +34,8 @@ Figure fig7_compliance() {
       for (const History* h : k) row.push_back(value_at(*h, "theta", ts[i]));
       t.add(row);
     }
-    return draw_table(canvas, name, t, {gnuplot_string("factors", factor_list(s.setup.factors))}, {1200, 500});
+    return draw_table(canvas, name, t, {gnuplot_string("factors", factor_list(s.setup.factors))},
+                      {1200, 500});
   };
   return f;
 }

@@ -107,8 +107,8 @@ Drawing draw_eta_map(const std::string& name, const Study& s, const Canvas& canv
   const models::Scene bridge = load_run_scene(s, exc5_moreau());
   const double width = dynamic_cast<const models::Bridge&>(*bridge.system).parameters().deck.width;
   t.add({2, 0.5, 0.0, width / length, 1, 1, 0});
-  return draw_table(canvas, name, t, {gnuplot_number("agree", agree), gnuplot_number("total", total)},
-                    {1100, 700});
+  return draw_table(canvas, name, t,
+                    {gnuplot_number("agree", agree), gnuplot_number("total", total)}, {1100, 700});
 }
 
 }  // namespace

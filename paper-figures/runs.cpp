@@ -108,7 +108,8 @@ std::string RunRecord::status_text() const {
 }
 
 void RunSet::add(RunRecord r) {
-  if (find(r.spec.name) != nullptr) throw std::logic_error("paper-figures: two runs named " + r.spec.name);
+  if (find(r.spec.name) != nullptr)
+    throw std::logic_error("paper-figures: two runs named " + r.spec.name);
   runs_.push_back(std::move(r));
 }
 

@@ -72,7 +72,8 @@ std::vector<ClaimRun> fig6_runs(const std::vector<int>& pga_runs,
 }
 
 const std::vector<ClaimRun>& claim_runs() {
-  static const std::vector<ClaimRun> r = fig6_runs(uncertainty::kStudyPgaRuns, uncertainty::kStudyMu0Runs);
+  static const std::vector<ClaimRun> r =
+      fig6_runs(uncertainty::kStudyPgaRuns, uncertainty::kStudyMu0Runs);
   return r;
 }
 
@@ -110,7 +111,8 @@ std::vector<std::string> point_overrides(const std::vector<double>& v, const Cla
                                 std::to_string(run.excitation));
   }
   auto at = [&](const char* key) { return v[index_of(key)]; };
-  const double width = at("deck_width"), gap = run.pounding ? at("gap") : uncertainty::kNoPoundingGap;
+  const double width = at("deck_width"),
+               gap = run.pounding ? at("gap") : uncertainty::kNoPoundingGap;
   // The scenes' longitudinal targets are 1.2 times the transverse ones (docs/bridge.md); the
   // ratio scales them, so that the nominal ratio gives the scenes' values exactly.
   const double nominal_ratio = assumptions()[index_of("longitudinal_ratio")].nominal;

@@ -199,9 +199,9 @@ Fig6Sweep fig6_sweep(const std::filesystem::path& scenes, const std::filesystem:
   const SceneTargets targets = u::scene_targets(scenes, runs);
   const std::vector<u::Point> nominal{
       {"nominal", nominal_point(), std::vector<std::string>(assumptions().size()), "", ""}};
-  const sweep::Design d =
-      u::make_design("fig6", scenes / ("bridge-exc" + std::to_string(u::kBaseExcitation) + ".toml"),
-                     nominal, targets, 0.0, runs, [](const u::Point&, const ClaimRun&) { return true; });
+  const sweep::Design d = u::make_design(
+      "fig6", scenes / ("bridge-exc" + std::to_string(u::kBaseExcitation) + ".toml"), nominal,
+      targets, 0.0, runs, [](const u::Point&, const ClaimRun&) { return true; });
   Fig6Sweep out;
   const u::Rows rows = u::run_design(d, dir, workers, out.runs, out.failed);
   std::filesystem::remove_all(dir / "runs");

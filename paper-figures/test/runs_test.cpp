@@ -38,7 +38,8 @@ struct RunDir {
   }
 };
 
-const char* kEvents = "t,contact,kind,note\n0.15,2,impact,\n0.25,0,warning,\"a, b\"\n0.3,1,impact,\n";
+const char* kEvents =
+    "t,contact,kind,note\n0.15,2,impact,\n0.25,0,warning,\"a, b\"\n0.3,1,impact,\n";
 
 }  // namespace
 
