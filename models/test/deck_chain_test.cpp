@@ -145,9 +145,9 @@ TEST_CASE("hinge impacts conserve the total linear momentum (Moreau–Jean, even
     const Eigen::Vector2d p0 = momentum(p, rec, 0), p1 = momentum(p, rec, last);
     const double scale = 140.5 * 1.0 + 150.5 * 0.5;  // sum m |v| at t = 0 [t m/s]
     CHECK((p1 - p0).norm() <= kRoundOff * scale);
-    MESSAGE(std::string(moreau ? "Moreau–Jean" : "event-driven"), ": |P(0.1) - P(0)| = ", (p1 - p0).norm(),
-            " t m/s, ", r.steps_with_lcp, " contact solves, ", rec.count(ni::EventKind::kImpact),
-            " impact events");
+    MESSAGE(std::string(moreau ? "Moreau–Jean" : "event-driven"),
+            ": |P(0.1) - P(0)| = ", (p1 - p0).norm(), " t m/s, ", r.steps_with_lcp,
+            " contact solves, ", rec.count(ni::EventKind::kImpact), " impact events");
     // The decks did collide: deck 1 lost most of its closing speed.
     CHECK(rec.at(last, rec.column("vx1")) < 0.5);
     for (const char* g : {"gN1", "gN2", "gN7", "gN8"}) {
