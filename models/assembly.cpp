@@ -59,9 +59,8 @@ Assembly::Assembly(Parts parts)
   }
   set_mass(mass);
   set_initial_state(q0, u0);
-  build_bents_and_damping(mass);
+  build_bents(mass);
   build_contacts();
-  us_dot_ = integrators::Vector::Zero(n);
   seats_.assign(parts_.prescribed.size(), PlanarMotion{});
   check_initial_gaps();
 }
@@ -104,41 +103,53 @@ void Assembly::validate_parts() const {
   }
 }
 
-void Assembly::build_bents_and_damping(const integrators::Matrix& mass) {
-  std::vector<BodyDamping> blocks(parts_.bodies.size());
-  for (std::size_t b = 0; b < blocks.size(); ++b) blocks[b].offset = static_cast<int>(3 * b);
-  for (const auto& p : parts_.bents) {
-    BentState s{.offset = 3 * p.body, .position = p.position, .x = takeda::Spring(p.longitudinal),
-                .y = takeda::Spring(p.transverse),
-                .ground_x = motions_.add(p.ground_longitudinal, false),
-                .ground_y = motions_.add(p.ground_transverse, false)};
-    bents_.push_back(std::move(s));
-    // K0 += k0_x b_x b_x^T + k0_y b_y b_y^T, written as models::Bridge writes it.
-    Eigen::Matrix3d& k0 = blocks[static_cast<std::size_t>(p.body)].k0;
-    const Eigen::Vector3d by(0.0, 1.0, p.position);
-    k0(0, 0) += p.longitudinal.k0;
-    k0 += p.transverse.k0 * by * by.transpose();
+void Assembly::build_bents(const integrators::Matrix& mass) {
+  body_forces_.resize(parts_.bodies.size());
+  bent_slot_.resize(parts_.bents.size());
+  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+    BodyForces& body = body_forces_[i];
+    body.offset = static_cast<int>(3 * i);
+    body.bent_begin = bents_.size();
+    for (std::size_t j = 0; j < parts_.bents.size(); ++j) {
+      const auto& p = parts_.bents[j];
+      if (static_cast<std::size_t>(p.body) != i) continue;
+      bent_slot_[j] = bents_.size();
+      bents_.push_back({.offset = body.offset, .position = p.position,
+                        .x = takeda::Spring(p.longitudinal), .y = takeda::Spring(p.transverse),
+                        .ground_x = motions_.add(p.ground_longitudinal, false),
+                        .ground_y = motions_.add(p.ground_transverse, false)});
+      // K0 += k0_x b_x b_x^T + k0_y b_y b_y^T, written as models::Bridge writes it.
+      const Eigen::Vector3d by(0.0, 1.0, p.position);
+      body.k0(0, 0) += p.longitudinal.k0;
+      body.k0 += p.transverse.k0 * by * by.transpose();
+    }
+    body.bent_end = bents_.size();
   }
-  if (!parts_.damping) return;
+  us_dot_.assign(body_forces_.size(), Eigen::Vector3d::Zero());
+  if (parts_.damping) build_damping(mass);
+}
+
+void Assembly::build_damping(const integrators::Matrix& mass) {
   const auto& d = *parts_.damping;
   integrators::Matrix k0 = integrators::Matrix::Zero(mass.rows(), mass.cols());
-  for (const auto& blk : blocks) k0.block<3, 3>(blk.offset, blk.offset) = blk.k0;
+  for (const auto& b : body_forces_) k0.block<3, 3>(b.offset, b.offset) = b.k0;
   try {
     rayleigh_ = rayleigh(mass, k0, d.mode_i, d.ratio_i, d.mode_j, d.ratio_j);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("damping: ") + e.what());
   }
-  for (auto& blk : blocks) {
-    blk.c = rayleigh_.a0 * mass.block<3, 3>(blk.offset, blk.offset) + rayleigh_.a1 * blk.k0;
+  for (auto& b : body_forces_) {
+    b.damped = true;
+    b.c = rayleigh_.a0 * mass.block<3, 3>(b.offset, b.offset) + rayleigh_.a1 * b.k0;
+    // us = sum_j (qs_x u_gx,j + qs_y u_gy,j), qs the columns K0_bb^-1 k0_j b_j.
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(b.k0);
+    for (std::size_t j = b.bent_begin; j < b.bent_end; ++j) {
+      BentState& bent = bents_[j];
+      bent.qs_x = ldlt.solve(Eigen::Vector3d(bent.x.parameters().k0, 0.0, 0.0));
+      bent.qs_y =
+          ldlt.solve(bent.y.parameters().k0 * Eigen::Vector3d(0.0, 1.0, bent.position));
+    }
   }
-  // us = sum_j (qs_x u_gx,j + qs_y u_gy,j), qs the columns K0_bb^-1 k0_j b_j of the bent's body.
-  for (std::size_t j = 0; j < bents_.size(); ++j) {
-    const auto& p = parts_.bents[j];
-    const Eigen::LDLT<Eigen::Matrix3d> ldlt(blocks[static_cast<std::size_t>(p.body)].k0);
-    bents_[j].qs_x = ldlt.solve(Eigen::Vector3d(p.longitudinal.k0, 0.0, 0.0));
-    bents_[j].qs_y = ldlt.solve(p.transverse.k0 * Eigen::Vector3d(0.0, 1.0, p.position));
-  }
-  damping_ = std::move(blocks);
 }
 
 void Assembly::build_contacts() {
@@ -178,26 +189,27 @@ void Assembly::check_initial_gaps() const {
 
 void Assembly::update_motions(double t) const {
   if (!motions_.update(t)) return;
-  for (const auto& blk : damping_) us_dot_.segment<3>(blk.offset).setZero();
-  if (!damping_.empty()) {
-    for (const auto& b : bents_) {
-      us_dot_.segment<3>(b.offset) += b.qs_x * motions_.value(b.ground_x).v +
-                                      b.qs_y * motions_.value(b.ground_y).v;
+  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+    const BodyForces& body = body_forces_[i];
+    if (!body.damped) continue;
+    Eigen::Vector3d us = Eigen::Vector3d::Zero();
+    for (std::size_t j = body.bent_begin; j < body.bent_end; ++j) {
+      const BentState& b = bents_[j];
+      us += b.qs_x * motions_.value(b.ground_x).v + b.qs_y * motions_.value(b.ground_y).v;
     }
+    us_dot_[i] = us;
   }
-  for (std::size_t p = 0; p < seats_.size(); ++p) seats_[p] = seat_pose(p);
+  for (std::size_t p = 0; p < seats_.size(); ++p) seat_pose(p, seats_[p]);
 }
 
-PlanarMotion Assembly::seat_pose(std::size_t p) const {
+void Assembly::seat_pose(std::size_t p, PlanarMotion& m) const {
   const SeatIndex& ix = seat_index_[p];
   const auto &mx = motions_.value(ix.x), &my = motions_.value(ix.y),
              &mr = motions_.value(ix.phi);
   const Eigen::Vector2d& a = parts_.prescribed[p].reference;
-  PlanarMotion m;
   m.position << a.x() + mx.d, a.y() + my.d, mr.d;
   m.velocity << mx.v, my.v, mr.v;
   m.acceleration << mx.a, my.a, mr.a;
-  return m;
 }
 
 PlanarMotion Assembly::prescribed_motion(int p, double t) const {
@@ -207,48 +219,49 @@ PlanarMotion Assembly::prescribed_motion(int p, double t) const {
 
 integrators::Matrix Assembly::damping_matrix() const {
   integrators::Matrix c = integrators::Matrix::Zero(dofs(), dofs());
-  for (const auto& blk : damping_) c.block<3, 3>(blk.offset, blk.offset) = blk.c;
+  for (const auto& b : body_forces_) c.block<3, 3>(b.offset, b.offset) = b.c;
   return c;
 }
 
 integrators::Matrix Assembly::initial_stiffness() const {
   integrators::Matrix k = integrators::Matrix::Zero(dofs(), dofs());
-  for (const auto& b : bents_) {
-    const Eigen::Vector3d by(0.0, 1.0, b.position);
-    k(b.offset, b.offset) += b.x.parameters().k0;
-    k.block<3, 3>(b.offset, b.offset) += b.y.parameters().k0 * by * by.transpose();
-  }
+  for (const auto& b : body_forces_) k.block<3, 3>(b.offset, b.offset) = b.k0;
   return k;
 }
 
 double Assembly::bent_force_longitudinal(int j) const {
-  return bents_.at(static_cast<std::size_t>(j)).x.force();
+  return bents_[bent_slot_.at(static_cast<std::size_t>(j))].x.force();
 }
 
 double Assembly::bent_force_transverse(int j) const {
-  return bents_.at(static_cast<std::size_t>(j)).y.force();
+  return bents_[bent_slot_.at(static_cast<std::size_t>(j))].y.force();
 }
 
 void Assembly::forces(double t, const integrators::Vector& q, const integrators::Vector& u,
                       integrators::Vector& f) {
   update_motions(t);
-  f.setZero();
-  for (auto& b : bents_) {
-    const double s = b.position;
-    const int o = b.offset;
-    // Body displacement at the bent relative to the bent's own ground (small rotations).
-    const double dx = q(o) - motions_.value(b.ground_x).d;
-    const double dy = q(o + 1) + s * q(o + 2) - motions_.value(b.ground_y).d;
-    const double fx = b.x.set_trial(dx);
-    const double fy = b.y.set_trial(dy);
-    f(o) -= fx;
-    f(o + 1) -= fy;
-    f(o + 2) -= s * fy;  // torque of the transverse bent force about the body centre
-  }
-  for (const auto& blk : damping_) {
-    const Eigen::Vector3d vr = u.segment<3>(blk.offset) - us_dot_.segment<3>(blk.offset);
-    const Eigen::Vector3d fs = f.segment<3>(blk.offset);
-    f.segment<3>(blk.offset) = fs - blk.c * vr;
+  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+    const BodyForces& body = body_forces_[i];
+    Eigen::Vector3d fs = Eigen::Vector3d::Zero();
+    for (std::size_t j = body.bent_begin; j < body.bent_end; ++j) {
+      BentState& b = bents_[j];
+      const double s = b.position;
+      const int o = b.offset;
+      // Body displacement at the bent relative to the bent's own ground (small rotations).
+      const double dx = q(o) - motions_.value(b.ground_x).d;
+      const double dy = q(o + 1) + s * q(o + 2) - motions_.value(b.ground_y).d;
+      const double fx = b.x.set_trial(dx);
+      const double fy = b.y.set_trial(dy);
+      fs(0) -= fx;
+      fs(1) -= fy;
+      fs(2) -= s * fy;  // torque of the transverse bent force about the body centre
+    }
+    if (body.damped) {
+      const Eigen::Vector3d vr = u.segment<3>(body.offset) - us_dot_[i];
+      f.segment<3>(body.offset) = fs - body.c * vr;
+    } else {
+      f.segment<3>(body.offset) = fs;
+    }
   }
 }
 
@@ -266,7 +279,7 @@ void Assembly::tangent(double, const integrators::Vector&, const integrators::Ve
     K(o + 2, o + 2) += ky * s * s;
   }
   C.setZero(dofs(), dofs());
-  for (const auto& blk : damping_) C.block<3, 3>(blk.offset, blk.offset) = blk.c;
+  for (const auto& b : body_forces_) C.block<3, 3>(b.offset, b.offset) = b.c;
 }
 
 bool Assembly::tangent_changed() const {
@@ -286,8 +299,7 @@ void Assembly::revert() {
   for (auto& b : bents_) b.y.revert();
 }
 
-void Assembly::size_buffer(std::vector<integrators::ContactData>& out) const {
-  if (out.size() == parts_.contacts.size()) return;
+void Assembly::resize_buffer(std::vector<integrators::ContactData>& out) const {
   out.resize(parts_.contacts.size());
   for (auto& c : out) {
     c.w_normal = integrators::Vector::Zero(dofs());
@@ -299,8 +311,15 @@ void Assembly::contact_data(double t, const integrators::Vector& q, const integr
                             std::vector<integrators::ContactData>& out) const {
   size_buffer(out);
   update_motions(t);
+  // The corners of one body are consecutive: its state is copied once for them.
+  Eigen::Vector3d qa, ua;
+  int body = -1;
   for (const auto& c : seat_contacts_) {
-    const Eigen::Vector3d qa = q.segment<3>(c.offset), ua = u.segment<3>(c.offset);
+    if (c.offset != body) {
+      body = c.offset;
+      qa = q.segment<3>(body);
+      ua = u.segment<3>(body);
+    }
     const auto k = corner_contact(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
     parts::write_contact(k, c.offset, c.restitution, c.friction, out[c.slot]);
   }
@@ -318,8 +337,14 @@ void Assembly::contact_normals(double t, const integrators::Vector& q,
                                std::vector<integrators::ContactData>& out) const {
   size_buffer(out);
   update_motions(t);
+  Eigen::Vector3d qa, ua;
+  int body = -1;
   for (const auto& c : seat_contacts_) {
-    const Eigen::Vector3d qa = q.segment<3>(c.offset), ua = u.segment<3>(c.offset);
+    if (c.offset != body) {
+      body = c.offset;
+      qa = q.segment<3>(body);
+      ua = u.segment<3>(body);
+    }
     const auto k =
         corner_contact_normal(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
     parts::write_contact_normal(k, c.offset, out[c.slot]);
@@ -338,10 +363,12 @@ integrators::PowerTerms Assembly::power(double t, const integrators::Vector&,
   integrators::PowerTerms pw;
   update_motions(t);
   double ground = 0.0;
-  for (const auto& blk : damping_) {
-    const Eigen::Vector3d us = us_dot_.segment<3>(blk.offset);
-    const Eigen::Vector3d vr = u.segment<3>(blk.offset) - us;
-    const Eigen::Vector3d cvr = blk.c * vr;
+  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+    const BodyForces& body = body_forces_[i];
+    if (!body.damped) continue;
+    const Eigen::Vector3d& us = us_dot_[i];
+    const Eigen::Vector3d vr = u.segment<3>(body.offset) - us;
+    const Eigen::Vector3d cvr = body.c * vr;
     pw.damping += vr.dot(cvr);
     ground -= us.dot(cvr);
   }

@@ -91,9 +91,13 @@ class Assembly final : public integrators::SystemBase {
     int ground_x = parts::MotionTable::kNone, ground_y = parts::MotionTable::kNone;
     Eigen::Vector3d qs_x = Eigen::Vector3d::Zero(), qs_y = Eigen::Vector3d::Zero();
   };
-  // The damping block of one body: C_bb, and us_dot_b at the cached time.
-  struct BodyDamping {
+  // One body's share of the smooth force: its bents bents_[bent_begin, bent_end), its damping
+  // block C_bb and its initial stiffness K0_bb. Summing body by body into fixed-size vectors
+  // performs models::Bridge's operations for a single body.
+  struct BodyForces {
     int offset = 0;
+    std::size_t bent_begin = 0, bent_end = 0;
+    bool damped = false;
     Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
     Eigen::Matrix3d k0 = Eigen::Matrix3d::Zero();
   };
@@ -116,24 +120,30 @@ class Assembly final : public integrators::SystemBase {
   };
 
   void validate_parts() const;
-  void build_bents_and_damping(const integrators::Matrix& mass);
+  void build_bents(const integrators::Matrix& mass);
+  void build_damping(const integrators::Matrix& mass);
   void build_contacts();
   void check_initial_gaps() const;
   // Evaluates the motions at t unless cached, then us_dot and the seats' poses.
   void update_motions(double t) const;
-  PlanarMotion seat_pose(std::size_t p) const;
-  void size_buffer(std::vector<integrators::ContactData>& out) const;
+  void seat_pose(std::size_t p, PlanarMotion& m) const;
+  // Sizes `out` for contacts() entries of dofs() rows, unless it already has them.
+  void size_buffer(std::vector<integrators::ContactData>& out) const {
+    if (out.size() != parts_.contacts.size()) resize_buffer(out);
+  }
+  void resize_buffer(std::vector<integrators::ContactData>& out) const;
 
   Parts parts_;
   parts::MotionTable motions_;
-  std::vector<BentState> bents_;
-  std::vector<BodyDamping> damping_;  // bodies with a damping block, in body order
+  std::vector<BentState> bents_;         // grouped by body, in the given order within a body
+  std::vector<std::size_t> bent_slot_;   // bents_ index of the given bent j
+  std::vector<BodyForces> body_forces_;  // one per body
   std::vector<SeatIndex> seat_index_;
   std::vector<SeatContact> seat_contacts_;
   std::vector<BodyContact> body_contacts_;
   RayleighDamping rayleigh_;
   // Workspaces of the const evaluations, sized at construction.
-  mutable integrators::Vector us_dot_;        // us_dot at the motions' cached time
+  mutable std::vector<Eigen::Vector3d> us_dot_;  // us_dot per body at the motions' time
   mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time
 };
 

@@ -127,8 +127,7 @@ int MotionTable::add(const Motion& m, bool needs_acceleration) {
   return static_cast<int>(i);
 }
 
-bool MotionTable::update(double t) const {
-  if (t == t_) return false;
+void MotionTable::evaluate(double t) const {
   for (std::size_t i = 0; i < motions_.size(); ++i) {
     const GroundMotion::Values g = motions_[i]->values(t);
     Value& v = values_[i];
@@ -137,7 +136,6 @@ bool MotionTable::update(double t) const {
     v.a = needs_acceleration_[i] ? g.acceleration : 0.0;
   }
   t_ = t;
-  return true;
 }
 
 }  // namespace nsb::models::parts

@@ -150,13 +150,19 @@ class MotionTable {
   // springs do not).
   int add(const Motion& m, bool needs_acceleration);
   // Evaluates every motion at t unless the values are already at t; true if it evaluated.
-  bool update(double t) const;
+  bool update(double t) const {
+    if (t == t_) return false;
+    evaluate(t);
+    return true;
+  }
   const Value& value(int index) const {
     static constexpr Value kZero{};
     return index == kNone ? kZero : values_[static_cast<std::size_t>(index)];
   }
 
  private:
+  void evaluate(double t) const;
+
   std::vector<Motion> motions_;
   std::vector<char> needs_acceleration_;
   mutable std::vector<Value> values_;
