@@ -169,3 +169,34 @@ TEST_CASE("bad parts are rejected naming the part and field") {
   p.damping = parts::RayleighParts{.ratio_i = 0.05, .ratio_j = 0.05, .mode_i = 2, .mode_j = 2};
   CHECK(error_of(p).find("damping: ") == 0);
 }
+
+TEST_CASE("bents: a push past yield follows the backbone, and the tangent drops to r k") {
+  // Bilinear Takeda (models/takeda.hpp): beyond d_y the backbone is F = f_y + r k (d - d_y),
+  // r = 0.05. Both bents see dx = 2 d_y: F = 100 + 0.05 * 1e4 * 0.01 = 105 kN each.
+  Assembly a(on_bents());
+  Eigen::VectorXd f(3);
+  a.forces(0.0, Eigen::Vector3d(2 * kYieldDisplacement, 0.0, 0.0), Eigen::Vector3d::Zero(), f);
+  CHECK(f(0) == doctest::Approx(-2 * 105.0).epsilon(1e-12));
+  CHECK(a.tangent_changed());
+  Eigen::MatrixXd K(3, 3), C(3, 3);
+  a.tangent(0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), K, C);
+  CHECK(K(0, 0) == doctest::Approx(2 * 0.05 * kK0).epsilon(1e-12));
+  a.revert();  // back to the committed elastic state
+  CHECK(!a.tangent_changed());
+}
+
+TEST_CASE("a prescribed body is posed at its reference plus its support motion") {
+  nsb::models::Record r{.t = {0.0, 0.5, 1.0, 1.5}, .a = {0.0, 3.0, -2.0, 0.0}, .source = "test"};
+  nsb::models::GroundMotionOptions o;
+  o.baseline_correction = false;
+  const auto m = std::make_shared<const nsb::models::GroundMotion>(r, o);
+  auto p = on_bents();
+  p.prescribed = {{.reference = {1.0, 2.0}, .longitudinal = m, .transverse = nullptr,
+                   .rotation = m}};
+  Assembly a(p);
+  const auto g = m->values(0.6);
+  const auto pose = a.prescribed_motion(0, 0.6);
+  CHECK(pose.position == Eigen::Vector3d(1.0 + g.displacement, 2.0, g.displacement));
+  CHECK(pose.velocity == Eigen::Vector3d(g.velocity, 0.0, g.velocity));
+  CHECK(pose.acceleration == Eigen::Vector3d(g.acceleration, 0.0, g.acceleration));
+}
