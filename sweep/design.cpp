@@ -489,7 +489,8 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
   const Context c{file.string()};
   const toml::table root = parse_design(file);
   check_keys(c, root, "",
-             {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor", "fragility"});
+             {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor",
+              "fragility"});
   Design d;
   d.file = fs::absolute(file).lexically_normal();
   read_scene(c, root, extra_set, d);
