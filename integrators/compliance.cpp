@@ -300,6 +300,7 @@ class ComplianceRun {
     t_ = system_.initial_time();
     x_ = State::Zero(2 * n_);
     xnew_ = State::Zero(2 * n_);
+    momentum_ = Vector::Zero(n_);
     const Vector q0 = system_.initial_position();
     const Vector u0 = system_.initial_velocity();
     if (q0.size() != n_ || u0.size() != n_) {
@@ -440,7 +441,8 @@ class ComplianceRun {
       target_ = std::numeric_limits<double>::infinity();
       std::fill(pending_.begin(), pending_.end(), 0);
     }
-    if (closed_now) core_.evaluate(t_, x_, false, ContactFields::kAll);  // forces with the new v_minus, for the record
+    // The forces with the new v_minus, for the record.
+    if (closed_now) core_.evaluate(t_, x_, false, ContactFields::kAll);
     accumulate_energy(h);
     recorder_.sample(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
                      energy_.error);
@@ -476,7 +478,8 @@ class ComplianceRun {
   }
 
   void update_state_energy() {
-    energy_.kinetic = 0.5 * core_.u_.dot(system_.mass() * core_.u_);
+    momentum_.noalias() = system_.mass() * core_.u_;  // M u, in a buffer sized once
+    energy_.kinetic = 0.5 * core_.u_.dot(momentum_);
     const EnergyState es = system_.energy(t_, core_.q_);
     energy_.stored = es.stored + contact_potential();
     energy_.hysteretic = es.hysteretic;
@@ -509,6 +512,7 @@ class ComplianceRun {
   double t_ = 0.0;
   double target_ = std::numeric_limits<double>::infinity();  // closure time to land on
   State x_, xnew_;
+  Vector momentum_;
 };
 
 }  // namespace

@@ -124,7 +124,8 @@ std::string claims_markdown(const std::vector<Claim>& claims) {
       << ").\n\n";
     if (!c.law.name.empty()) {
       s << "Damping law of eq. (9): `" << c.law.name << "`, chi = " << short_number(c.law.chi)
-        << ", effective restitution of a single impact " << short_number(c.law.effective_restitution)
+        << ", effective restitution of a single impact "
+        << short_number(c.law.effective_restitution)
         << " (the nonsmooth runs use eps = " << short_number(c.law.nonsmooth_restitution)
         << ").\n\n";
     }
