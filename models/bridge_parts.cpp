@@ -126,7 +126,7 @@ Assembly::Parts bridge_parts(const Bridge::Parameters& p, const SegmentedDeck& d
   for (std::size_t i = 0; i < n; ++i) {
     parts::RigidBody b = deck.segments[i];
     b.skew_deg = p.deck.skew_deg;
-    b.initial_position.x() += deck.rest_position(i);
+    b.rest = Eigen::Vector3d(deck.rest_position(i), 0.0, 0.0);
     parts.bodies.push_back(b);
   }
   for (std::size_t j = 0; j < parts.bents.size(); ++j) {

@@ -24,8 +24,9 @@ Assembly::Parts bridge_parts(const Bridge::Parameters& p, const Bridge::Excitati
 // parts"). Layout at rest: the segments lie along global x at y = 0, theta = 0, left to
 // right, hinge k clear distance gap_k along the axis between segments k and k + 1; the whole
 // deck (segments and hinge gaps, total length L_tot) is centred on x = 0, so that one segment
-// is models::Bridge's deck. Segment i's initial position is its rest centre plus
-// segments[i].initial_position.
+// is models::Bridge's deck. Segment i's coordinates are its displacement from its rest centre
+// (parts::RigidBody::rest), as the one deck's are: segments[i].initial_position is that
+// displacement at t = 0.
 struct SegmentedDeck {
   std::vector<parts::RigidBody> segments;  // >= 1; their skew_deg is replaced by the bridge's
   std::vector<DeckChain::Joint> hinges;    // segments - 1; hinge k joins segments k and k + 1

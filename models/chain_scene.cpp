@@ -82,7 +82,14 @@ std::unique_ptr<integrators::System> build_deck_chain(Section& m) {
   p.joints = read_joints(m, "joints", bodies.size() + 1,
                          "one per deck plus one: left abutment, hinges, right abutment");
   try {
-    return std::make_unique<Assembly>(DeckChain::parts(p));
+    // The coordinates of the outputs: each deck's displacement from its rest position.
+    Assembly::Parts parts = DeckChain::parts(p);
+    for (std::size_t i = 0; i < parts.bodies.size(); ++i) {
+      parts.bodies[i].rest = Eigen::Vector3d(DeckChain::rest_position(p, static_cast<int>(i)),
+                                             0.0, 0.0);
+      parts.bodies[i].initial_position = p.decks[i].initial_displacement;
+    }
+    return std::make_unique<Assembly>(std::move(parts));
   } catch (const std::invalid_argument& e) {
     m.rethrow(e);
   }
