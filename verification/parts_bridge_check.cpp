@@ -81,8 +81,9 @@ void check_scene(const std::string& name) {
   {
     ni::MoreauJeanOptions o;
     o.end_time = kEnd;
-    o.step = p.scene.solver.step;
-    o.theta = p.scene.solver.theta;
+    const auto& scene_mj = std::get<ni::MoreauJeanOptions>(p.scene.run);  // [solver] moreau
+    o.step = scene_mj.step;
+    o.theta = scene_mj.theta;
     ni::Recorder rb(bridge, dt), rp(p.parts, dt);
     const auto a = ni::moreau_jean(bridge, o, rb);
     const auto b = ni::moreau_jean(p.parts, o, rp);
@@ -96,7 +97,8 @@ void check_scene(const std::string& name) {
   {
     ni::EventDrivenOptions o;
     o.end_time = kEnd;
-    o.tolerance = q.scene.solver.tolerance;
+    // The scenes set no tolerance: the event-driven method's default.
+    o.tolerance = ni::EventDrivenOptions{}.tolerance;
     ni::Recorder rb(bridge2, dt), rp(q.parts, dt);
     const auto a = ni::event_driven(bridge2, o, rb);
     const auto b = ni::event_driven(q.parts, o, rp);
