@@ -8,6 +8,7 @@
 //
 //   parts_bench [repeats = 5] [csv = parts_bench.csv] [end time = the scene's, 40 s]
 #include "integrators/moreau_jean.hpp"
+#include "io/build_info.hpp"
 #include "models/bridge_parts.hpp"
 #include "models/scene.hpp"
 
@@ -78,7 +79,7 @@ int main(int argc, char** argv) {
   const std::string scene_file = std::string(NSB_SCENES_DIR) + "/bridge-exc7.toml";
   std::printf("parts_bench: Moreau-Jean, bridge-exc7, h = 1e-4, models::Bridge against the "
               "parts assembly, %d repeats (median)\n", repeats);
-  std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, NSB_GIT_REVISION);
+  std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, nsb::io::build_info().revision.c_str());
   std::vector<double> cpu_bridge, cpu_parts, wall_bridge, wall_parts;
   double end_time = 0.0;
   long long steps = 0;
