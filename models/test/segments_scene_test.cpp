@@ -20,11 +20,19 @@ using nsb::models::load_scene;
 
 namespace {
 
+// A scratch folder for the scene files, removed at the end of the test run.
+struct Scratch {
+  fs::path dir = fs::temp_directory_path() / ("nsb-segments-test-" + std::to_string(::getpid()));
+  Scratch() { fs::create_directories(dir); }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
 fs::path write(const std::string& name, const std::string& text) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("nsb-segments-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path p = dir / name;
+  static const Scratch scratch;
+  const fs::path p = scratch.dir / name;
   std::ofstream(p) << text;
   return p;
 }
