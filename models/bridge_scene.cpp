@@ -4,6 +4,7 @@
 #include "models/scene_builders.hpp"
 
 #include "models/bridge.hpp"
+#include "models/bridge_parts.hpp"
 #include "models/ground_motion.hpp"
 #include "models/scene_schema.hpp"
 
@@ -150,14 +151,22 @@ takeda::Parameters bent_spring(const Section& s, const BentSettings& b, const ch
                                       b.design.unloading_exponent);
 }
 
-// [[model.bents]]: the bents and the wave-passage delay of each [s].
-std::vector<double> read_bents(const Section& m, Bridge::Parameters& p) {
+// [[model.bents]]: the bents, the segment each carries and their wave-passage delays [s].
+// lengths: the length of each segment ({deck length} with [model.deck]).
+struct BentsRead {
   std::vector<double> delays;
+  std::vector<int> segments;
+};
+
+BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridge::Parameters& p) {
+  BentsRead out;
+  const bool one = !m.has("segments");
   const auto* bents = m.array_of_tables("bents");
-  if (bents == nullptr || bents->size() < 2) {
+  if (one && (bents == nullptr || bents->size() < 2)) {
     m.fail(bents == nullptr ? "kind" : "bents",
            "a bridge needs at least 2 [[model.bents]] (torsional stiffness)");
   }
+  if (bents == nullptr) m.fail_table("missing [[model.bents]] (two per segment at least)");
   for (std::size_t j = 0; j < bents->size(); ++j) {
     Section s(m.context(), *(*bents)[j].as_table(),
               m.key_path("bents") + "[" + std::to_string(j) + "]");
@@ -167,16 +176,26 @@ std::vector<double> read_bents(const Section& m, Bridge::Parameters& p) {
     if (!s.has("position")) {
       s.fail_table("missing key position (bent position along the deck axis [m])");
     }
-    if (std::abs(b.position) > 0.5 * p.deck.length) {
-      s.fail("position", "must lie on the deck, |position| <= length / 2 = " +
-                             config::format_value(0.5 * p.deck.length) + " m (got " +
+    if (static_cast<std::size_t>(b.segment) >= lengths.size()) {
+      s.fail("segment", one ? "must be 0: [model.deck] is one segment"
+                            : "must name one of the " + std::to_string(lengths.size()) +
+                                  " [[model.segments]], 0 .. " +
+                                  std::to_string(lengths.size() - 1) + " (0-based)");
+    }
+    const double half = 0.5 * lengths[static_cast<std::size_t>(b.segment)];
+    if (std::abs(b.position) > half) {
+      s.fail("position", (one ? std::string("must lie on the deck, |position| <= length / 2 = ")
+                              : "must lie on segment " + std::to_string(b.segment) +
+                                    ", |position| <= its length / 2 = ") +
+                             config::format_value(half) + " m (got " +
                              config::format_value(b.position) + ")");
     }
     p.bents.push_back({b.position, bent_spring(s, b, "longitudinal"),
                        bent_spring(s, b, "transverse")});
-    delays.push_back(b.delay);
+    out.delays.push_back(b.delay);
+    out.segments.push_back(b.segment);
   }
-  return delays;
+  return out;
 }
 
 // [model.seats]: the seats' motion.
@@ -292,20 +311,70 @@ Bridge::Excitation support_motions(const ExcitationRecords& e, const SeatMotions
   return exc;
 }
 
+// [[model.segments]] and [[model.hinges]] with [model] skew_deg; or the one segment of
+// [model.deck], which must not be given with them.
+SegmentedDeck read_segments(const Section& m, Bridge::Parameters& p) {
+  if (m.has("deck")) {
+    m.fail("deck", "give either [model.deck] (one segment) or [[model.segments]], not both");
+  }
+  LayoutSettings layout;
+  m.read_all(LayoutSettings::fields(), layout);
+  p.deck.skew_deg = layout.skew_deg;
+  SegmentedDeck d;
+  d.segments = read_bodies(m, "segments");
+  d.hinges = read_joints(m, "hinges", d.segments.size() - 1,
+                         "one between each two neighbouring segments");
+  return d;
+}
+
+// The bridge of [[model.segments]]: an assembly of parts (models/bridge_parts.hpp).
+std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::Parameters& p,
+                                                      SegmentedDeck& d, const BentsRead& bents,
+                                                      Bridge::Excitation exc) {
+  d.bent_segment = bents.segments;
+  for (std::size_t i = 0; i < d.segments.size(); ++i) {
+    if (!torsionally_restrained(p.bents, d.bent_segment, static_cast<int>(i))) {
+      m.fail("bents", "segment " + std::to_string(i) + " " + kTwoBents);
+    }
+  }
+  try {
+    return std::make_unique<Assembly>(bridge_parts(p, d, exc));
+  } catch (const std::invalid_argument& e) {
+    m.rethrow(e);
+  }
+}
+
 }  // namespace
 
 BridgeScene build_bridge(Section& m) {
-  m.only({"kind", "deck", "gaps", "damping", "bents", "seats", "excitation"});
+  m.only({"kind", "skew_deg", "deck", "segments", "hinges", "gaps", "damping", "bents", "seats",
+          "excitation"});
+  const bool segmented = m.has("segments");
+  if (!segmented) {
+    for (const char* key : {"skew_deg", "hinges"}) {
+      if (m.has(key)) m.fail(key, "belongs to a bridge in [[model.segments]]");
+    }
+  }
   Bridge::Parameters p = Bridge::Parameters::benchmark();
   p.bents.clear();
-  const auto deck = read_table(m, "deck", bridge_deck_fields(), p);
+  SegmentedDeck segments;
+  if (segmented) segments = read_segments(m, p);
+  const std::optional<Section> deck =
+      segmented ? std::nullopt : read_table(m, "deck", bridge_deck_fields(), p);
+  std::vector<double> lengths;
+  for (const auto& b : segments.segments) lengths.push_back(b.length);
+  if (!segmented) lengths.push_back(p.deck.length);
   read_table(m, "gaps", bridge_gap_fields(), p);
   read_damping(m, p);
-  const std::vector<double> bent_delays = read_bents(m, p);
+  const BentsRead bents = read_bents(m, lengths, p);
   const SeatMotions seats = read_seats(m, p);
   BridgeScene out;
   const ExcitationRecords excitation = read_excitation(m, out.time_scale);
-  Bridge::Excitation exc = support_motions(excitation, seats, bent_delays, out.motion_end);
+  Bridge::Excitation exc = support_motions(excitation, seats, bents.delays, out.motion_end);
+  if (segmented) {
+    out.system = segmented_bridge(m, p, segments, bents, std::move(exc));
+    return out;
+  }
   try {
     out.system = std::make_unique<Bridge>(p, std::move(exc));
   } catch (const std::invalid_argument& e) {

@@ -4,10 +4,14 @@
 
 #include "integrators/run.hpp"
 #include "integrators/system.hpp"
+#include "models/deck_chain.hpp"
+#include "models/parts.hpp"
 #include "models/scene_reader.hpp"
 
 #include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace nsb::models {
 
@@ -33,5 +37,15 @@ struct BridgeScene {
   double time_scale = 1.0;
 };
 BridgeScene build_bridge(Section& m);
+
+// The deck bodies of [[model.<key>]] (models/scene_schema.hpp, segment_fields): at least one,
+// mass, inertia, length and width required, every width equal to the first.
+std::vector<parts::RigidBody> read_bodies(const Section& m, std::string_view key);
+// Exactly `count` [[model.<key>]] joints (joint_fields; gap required); `rule` says why.
+std::vector<DeckChain::Joint> read_joints(const Section& m, std::string_view key,
+                                          std::size_t count, const std::string& rule);
+
+// The deck chain of [model] kind = "deck_chain" (models/deck_chain.hpp).
+std::unique_ptr<integrators::System> build_deck_chain(Section& m);
 
 }  // namespace nsb::models

@@ -8,6 +8,8 @@
 
 #include "config/schema.hpp"
 #include "models/bridge.hpp"
+#include "models/deck_chain.hpp"
+#include "models/parts.hpp"
 #include "models/rigid_deck.hpp"
 #include "models/simple_systems.hpp"
 
@@ -47,6 +49,7 @@ struct BentSettings {
   double stiffness_transverse = 0.0;
   double yield_force_transverse = 0.0;
   double delay = 0.0;                     // [s]
+  int segment = 0;                        // 0-based [[model.segments]] index it carries
   static std::span<const config::Field<BentSettings>> fields();
 };
 
@@ -86,6 +89,21 @@ std::span<const config::Field<Bridge::Parameters>> bridge_deck_fields();     // 
 std::span<const config::Field<Bridge::Parameters>> bridge_gap_fields();      // [model.gaps]
 std::span<const config::Field<Bridge::Parameters>> bridge_damping_fields();  // [model.damping]
 std::span<const config::Field<Bridge::Parameters>> bridge_seat_fields();     // [model.seats]
+
+// [model] keys of a deck in several bodies (a bridge in [[model.segments]], a deck chain):
+// the skew of every end face.
+struct LayoutSettings {
+  double skew_deg = 0.0;  // alpha [deg], |alpha| < 80
+  static std::span<const config::Field<LayoutSettings>> fields();
+};
+
+// One rigid deck body: an element of [[model.segments]] (bridge) or [[model.decks]] (deck
+// chain); skew_deg comes from LayoutSettings. initial_position is the displacement from the
+// rest layout (docs/bridge.md, "Bridges in parts").
+std::span<const config::Field<parts::RigidBody>> segment_fields();
+// One joint between two deck bodies or a deck and an abutment: an element of
+// [[model.hinges]] (bridge) or [[model.joints]] (deck chain).
+std::span<const config::Field<DeckChain::Joint>> joint_fields();
 
 // The model kinds a scene may name in [model] kind.
 const std::vector<std::string>& scene_kinds();
