@@ -34,7 +34,7 @@ RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
   result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
   digest.warnings.insert(digest.warnings.end(), warnings.begin(), warnings.end());
   return RunRecord{scene.name, scene.kind, std::move(result), std::move(history),
-                   std::move(digest)};
+                   std::move(digest), scene.input};
 }
 
 RunRecord execute(const RunRequest& request) { return run(prepare(request), request.progress); }
