@@ -2,6 +2,15 @@
 // to a common PSA at one period (the bridge's first natural period by default), their mean,
 // and the ASCE 7-16 design spectrum (§11.4.6) they are compared with (docs/spectra.md,
 // "Workflow: a suite against a design spectrum").
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "app/commands.hpp"
 #include "integrators/system.hpp"
 #include "io/csv.hpp"
@@ -12,15 +21,6 @@
 #include "models/response_spectrum.hpp"
 #include "models/scene.hpp"
 #include "sweep/suites.hpp"
-
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <iostream>
-#include <memory>
-#include <sstream>
-#include <string>
-#include <vector>
 
 namespace nsb::app {
 namespace {
@@ -123,9 +123,9 @@ void run_suite_spectra(const SuiteSpectraArgs& a) {
   const fs::path dir(a.out);
   fs::create_directories(dir);
   io::write_file_atomically(dir / "suite-spectra.csv", csv);
-  const std::string failed = io::draw_gnuplot(
-      "gnuplot", plot_script("suite-spectra.csv", suite.size(), period, sa, a),
-      dir / "suite-spectra.png");
+  const std::string failed =
+      io::draw_gnuplot("gnuplot", plot_script("suite-spectra.csv", suite.size(), period, sa, a),
+                       dir / "suite-spectra.png");
   if (!failed.empty()) {
     std::cerr << "nsbridge: suite-spectra: " << failed << "\n";
     exit_code() = 1;
@@ -144,7 +144,8 @@ void add_suite_spectra_command(CLI::App& app) {
       "suite-spectra",
       "PSA spectra of a record suite scaled to a common PSA at one period, their mean and the "
       "ASCE 7-16 design spectrum (docs/spectra.md)");
-  cmd->add_option("suite", args->suite, "suite CSV (e.g. data/ground-motions/asce7-suite/records.csv)")
+  cmd->add_option("suite", args->suite,
+                  "suite CSV (e.g. data/ground-motions/asce7-suite/records.csv)")
       ->required();
   cmd->add_option("--component", args->component, "the suite's column of record files (file_1)");
   cmd->add_option("--scene", args->scene, "scale at the first natural period of this scene");

@@ -1,10 +1,10 @@
 #include "models/excitation_scaling.hpp"
 
-#include "models/response_spectrum.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <utility>
+
+#include "models/response_spectrum.hpp"
 
 namespace nsb::models {
 

@@ -6,9 +6,9 @@
 // Units: m, s; accelerations in g = kSpectrumGravity.
 #pragma once
 
-#include "models/ground_motion.hpp"
-
 #include <optional>
+
+#include "models/ground_motion.hpp"
 
 namespace nsb::models {
 

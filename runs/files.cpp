@@ -199,7 +199,7 @@ std::string summary_json(const RunRecord& record) {
   JsonText j;
   j.text("scene", record.scene_name);
   write_result(j, record.result, record.history.rows());
-  write_input(j, record.input);
+  write_input(j, record.digest.input);
   write_energy(j, record.digest.energy);
   write_events(j, record.digest);
   write_peaks(j, record.digest);

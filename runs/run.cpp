@@ -29,12 +29,13 @@ RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
   integrators::RunResult result =
       integrators::integrate(*scene.system, scene.run, history, progress);
   Digest digest = make_digest(history, result);
+  digest.input = scene.input;
   std::vector<std::string> warnings = std::move(prepared.warnings);
   for (auto& w : result_warnings(history, digest, result)) warnings.push_back(std::move(w));
   result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
   digest.warnings.insert(digest.warnings.end(), warnings.begin(), warnings.end());
   return RunRecord{scene.name, scene.kind, std::move(result), std::move(history),
-                   std::move(digest), scene.input};
+                   std::move(digest)};
 }
 
 RunRecord execute(const RunRequest& request) { return run(prepare(request), request.progress); }

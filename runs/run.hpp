@@ -34,7 +34,6 @@ struct RunRecord {
   integrators::RunResult result;  // status and statistics; result.warnings holds every warning
   integrators::Recorder history;  // the sampled history and the events
   Digest digest;                  // peaks, event counts, energy and warnings, computed once
-  models::InputMotion input;      // the scene's excitation as scaled (summary.json "input")
 };
 
 // A scene loaded and checked, ready to integrate.

@@ -1,11 +1,11 @@
 #include "sweep/suites.hpp"
 
-#include "sweep/csv.hpp"
-
 #include <algorithm>
 #include <cctype>
 #include <set>
 #include <stdexcept>
+
+#include "sweep/csv.hpp"
 
 namespace nsb::sweep {
 
@@ -27,7 +27,8 @@ std::vector<SuiteRecord> read_suite(const fs::path& csv, const std::vector<std::
   for (const auto& c : columns) {
     const std::size_t k = find_column(t, c);
     if (k == t.header.size()) {
-      throw std::invalid_argument(csv.string() + ": no column \"" + c + "\" (components name "
+      throw std::invalid_argument(csv.string() + ": no column \"" + c +
+                                  "\" (components name "
                                   "the columns that hold the record files)");
     }
     index.push_back(k);

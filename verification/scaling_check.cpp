@@ -5,11 +5,6 @@
 //     at sa_period, has exactly target_sa (and the longitudinal one its longitudinal_sa);
 // (b) the benchmark bridge's first natural period, the default sa_period, against the
 //     closed-form roots of its 3-DOF eigenproblem assembled by hand from the bent design.
-#include "integrators/system.hpp"
-#include "models/ground_motion.hpp"
-#include "models/response_spectrum.hpp"
-#include "models/scene.hpp"
-
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -17,6 +12,11 @@
 #include <numbers>
 #include <string>
 #include <vector>
+
+#include "integrators/system.hpp"
+#include "models/ground_motion.hpp"
+#include "models/response_spectrum.hpp"
+#include "models/scene.hpp"
 
 namespace {
 
@@ -60,7 +60,9 @@ TEST_CASE("(a) a record scaled to target_sa has that PSA at sa_period, recompute
       {{"model.excitation.target_sa=1.2", "model.excitation.sa_period=1.0",
         "model.excitation.sa_damping=0.02", "model.excitation.time_scale=0.5",
         "model.excitation.longitudinal_pga=0", "model.excitation.longitudinal_sa=0.8"},
-       1.2, 0.8, 0.5},
+       1.2,
+       0.8,
+       0.5},
   };
   for (const auto& c : cases) {
     std::vector<std::string> set = c.set;
@@ -110,7 +112,8 @@ TEST_CASE("(b) the benchmark bridge's first natural period against the hand 3-DO
   const double t1 = 2 * pi / std::sqrt(std::min(w2_low, w2_x));
   CHECK(t1 == doctest::Approx(0.35433).epsilon(1e-4));  // the value in the comment above
 
-  auto scene = load_scene(kScene, {"model.excitation.scale_to=sa", "model.excitation.target_sa=0.5"});
+  auto scene =
+      load_scene(kScene, {"model.excitation.scale_to=sa", "model.excitation.target_sa=0.5"});
   const std::vector<double> periods = nsb::integrators::natural_periods(*scene.system);
   REQUIRE(periods.size() == 3);
   CHECK(std::abs(periods.front() - t1) <= kPeriodTolerance * t1);

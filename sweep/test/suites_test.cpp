@@ -4,11 +4,6 @@
 // last sample times read from the .AT2 files), not from the sweep.
 #include "sweep/suites.hpp"
 
-#include "models/ground_motion.hpp"
-#include "sweep/csv.hpp"
-#include "sweep/design.hpp"
-#include "sweep/runner.hpp"
-
 #include <doctest/doctest.h>
 #include <unistd.h>
 
@@ -17,6 +12,11 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "models/ground_motion.hpp"
+#include "sweep/csv.hpp"
+#include "sweep/design.hpp"
+#include "sweep/runner.hpp"
 
 namespace fs = std::filesystem;
 using namespace nsb::sweep;
@@ -86,14 +86,16 @@ TEST_CASE("folder: its .AT2 files sorted by name, each a transverse record") {
   CHECK(r[0].name == "RSN249_MAMMOTH.L_L-FIS000");
   CHECK(r[1].name == "RSN435_BORAH.MS_ANLCEAS");
   CHECK(r[2].name == "b");
-  CHECK(r[0].files == std::vector<std::string>{(records / "RSN249_MAMMOTH.L_L-FIS000.AT2").string()});
+  CHECK(r[0].files ==
+        std::vector<std::string>{(records / "RSN249_MAMMOTH.L_L-FIS000.AT2").string()});
 }
 
 TEST_CASE("suite and folder errors name the design, the line, the key and the file") {
   const fs::path dir = scratch("errors");
   std::ofstream(dir / "s.csv") << "rsn,file_1\n1,missing.AT2\n";
-  std::ofstream(dir / "dup.csv") << "name,file_1\nx," << (kSuite / "RSN97_PTMUGU_PHN180.AT2").string()
-                                 << "\nx," << (kSuite / "RSN97_PTMUGU_PHN270.AT2").string() << "\n";
+  std::ofstream(dir / "dup.csv") << "name,file_1\nx,"
+                                 << (kSuite / "RSN97_PTMUGU_PHN180.AT2").string() << "\nx,"
+                                 << (kSuite / "RSN97_PTMUGU_PHN270.AT2").string() << "\n";
   struct Case {
     std::string body, expected;
   };
@@ -101,16 +103,19 @@ TEST_CASE("suite and folder errors name the design, the line, the key and the fi
       {"suite = \"s.csv\"\ncomponents = [\"file_9\"]\n",
        ":4:9: factor[0].suite: " + (dir / "s.csv").string() + ": no column \"file_9\""},
       {"suite = \"s.csv\"\ncomponents = [\"file_1\"]\n", "row 1: column file_1: no such file"},
-      {"suite = \"dup.csv\"\ncomponents = [\"file_1\"]\n", "record name \"x\" is empty or appears twice"},
+      {"suite = \"dup.csv\"\ncomponents = [\"file_1\"]\n",
+       "record name \"x\" is empty or appears twice"},
       {"folder = \".\"\ncomponents = [\"file_1\"]\n", "factor[0].components: only with suite"},
-      {"folder = \"nowhere\"\n", "factor[0].folder: " + (dir / "nowhere").string() + ": not a folder"},
+      {"folder = \"nowhere\"\n",
+       "factor[0].folder: " + (dir / "nowhere").string() + ": not a folder"},
       {"suite = \"s.csv\"\ncomponents = [\"a\", \"b\", \"c\"]\n", "at most 2 columns"},
       {"suite = \"s.csv\"\nvalues = [1]\n", "give exactly one of"},
   };
   for (const auto& c : cases) {
     const fs::path file = dir / "d.toml";
     std::ofstream(file) << "scene = \"" << kScenes << "/bridge-exc5.toml\"\n[[factor]]\nkey = "
-                        << "\"record\"\n" << c.body;
+                        << "\"record\"\n"
+                        << c.body;
     const std::string message = error_of([&] { (void)load_design(file); });
     INFO(c.body);
     CHECK(message.find(file.string()) == 0);
@@ -131,11 +136,16 @@ TEST_CASE("a sweep over 3 suite records: rows name the records, each run ends wi
       << "435," << (kSuite / "RSN435_BORAH.MS_ANLCEAS.AT2").string() << ","
       << (kSuite / "RSN435_BORAH.MS_ANLCSOU.AT2").string() << "\n";
   // The benchmark scene without its fixed end_time: a bridge then runs to the end of its
-  // longest support motion (docs/scenes.md), which each record must set.
+  // longest support motion (docs/scenes.md), which each record must set. Its own records are
+  // named by absolute path, so that the copy loads from any working folder.
   std::ifstream in(kScenes + "/bridge-exc5.toml");
   std::ostringstream scene;
   for (std::string line; std::getline(in, line);) {
-    if (line.rfind("end_time", 0) != 0) scene << line << "\n";
+    if (line.rfind("end_time", 0) == 0) continue;
+    if (const auto at = line.find("\"ground-motions/"); at != std::string::npos) {
+      line.insert(at + 1, std::string(NSB_DATA_DIR) + "/");
+    }
+    scene << line << "\n";
   }
   std::ofstream(dir / "bridge.toml") << scene.str();
   std::ofstream(dir / "d.toml") << "scene = \"bridge.toml\"\n"
