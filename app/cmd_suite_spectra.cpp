@@ -1,7 +1,7 @@
 // nsbridge suite-spectra: the pseudo-acceleration spectra of a record suite, each record scaled
 // to a common PSA at one period (the bridge's first natural period by default), their mean,
 // and the ASCE 7-16 design spectrum (§11.4.6) they are compared with (docs/spectra.md,
-// "Workflow: a suite against a design spectrum").
+// "Workflow: spectra").
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
