@@ -5,6 +5,7 @@
 
 #include "models/bridge.hpp"
 #include "models/bridge_parts.hpp"
+#include "models/excitation_scaling.hpp"
 #include "models/ground_motion.hpp"
 #include "models/scene_schema.hpp"
 
@@ -12,6 +13,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <optional>
 
@@ -235,6 +237,10 @@ struct ExcitationRecords {
   std::optional<Record> longitudinal, transverse;
   double longitudinal_factor = 1.0, transverse_factor = 1.0;  // amplitude factors
   GroundMotionOptions options;                                // time scale, baseline
+  ScaleTo scale_to = ScaleTo::kPga;
+  double sa_period = 0.0;    // [s] of the reported (and, for "sa", the target) PSA; 0: the
+                             //   bridge's first natural period, found once the bridge is built
+  double sa_damping = 0.05;  // zeta of the reported PSA
 };
 
 // The factor that scales record r to target [g]; fails at key when the record is all zeros.
@@ -261,7 +267,82 @@ void scale_to_targets(const Section& s, const ExcitationSettings& e, ExcitationR
   }
 }
 
-ExcitationRecords read_excitation(const Section& m, double& time_scale) {
+// The first (longest) natural period [s] of a bridge, built on demand: scale_to = "sa" needs
+// it before the bridge with its support motions exists.
+using FirstPeriod = std::function<double()>;
+
+// The factor that scales record r to a PSA of target [g] at out.sa_period; fails at key when
+// the record's PSA there is zero.
+double factor_to_sa(const Section& s, const std::string& key, const Record& r, double target,
+                    const ExcitationRecords& out) {
+  const double sa = spectral_acceleration_g(time_scaled(r, out.options.time_scale), out.sa_period,
+                                            out.sa_damping);
+  if (!(sa > 0)) {
+    s.fail(key, "the record's spectral acceleration at sa_period = " +
+                    config::format_value(out.sa_period) + " s is zero: cannot scale it");
+  }
+  return target / sa;
+}
+
+// scale_to = "sa": target_sa scales the transverse component (or the longitudinal one when it
+// is alone) to PSA(sa_period, sa_damping), in place of target_pga; the other component takes
+// the same factor unless longitudinal_pga or longitudinal_sa gives it its own target
+// (docs/bridge.md, "Target spectral accelerations").
+void scale_to_spectra(const Section& s, const ExcitationSettings& e,
+                      const FirstPeriod& first_period, ExcitationRecords& out) {
+  const Record* ref = out.transverse ? &*out.transverse
+                                     : (out.longitudinal ? &*out.longitudinal : nullptr);
+  if (ref == nullptr) s.fail("scale_to", "\"sa\" needs a transverse_record or longitudinal_record");
+  if (e.longitudinal_pga > 0 && e.longitudinal_sa > 0) {
+    s.fail("longitudinal_sa", "give longitudinal_pga or longitudinal_sa, not both");
+  }
+  out.sa_period = s.has("sa_period") ? e.sa_period : first_period();
+  if (!(std::isfinite(out.sa_period) && out.sa_period > 0)) {
+    s.fail("sa_period", "the bridge has no finite first natural period; give sa_period (> 0 s)");
+  }
+  double common = 1.0;
+  if (e.target_sa > 0) common = factor_to_sa(s, "target_sa", *ref, e.target_sa, out);
+  out.transverse_factor = e.scale * common;
+  out.longitudinal_factor = e.scale * common;
+  if (e.longitudinal_pga > 0) {
+    if (!out.longitudinal) s.fail("longitudinal_pga", "needs a longitudinal_record to scale");
+    out.longitudinal_factor =
+        e.scale * factor_to(s, "longitudinal_pga", *out.longitudinal, e.longitudinal_pga);
+  }
+  if (e.longitudinal_sa > 0) {
+    if (!out.longitudinal) s.fail("longitudinal_sa", "needs a longitudinal_record to scale");
+    out.longitudinal_factor =
+        e.scale * factor_to_sa(s, "longitudinal_sa", *out.longitudinal, e.longitudinal_sa, out);
+  }
+}
+
+// The scaling of each component as summary.json reports it, at out.sa_period or else the
+// built bridge's first natural period.
+InputMotion describe_excitation(const ExcitationRecords& e, integrators::System& bridge) {
+  double period = e.sa_period;
+  if (period == 0.0) {
+    const std::vector<double> periods = integrators::natural_periods(bridge);
+    period = periods.empty() ? NAN : periods.front();
+  }
+  const auto describe = [&](const Record& r, double factor) {
+    if (!(std::isfinite(period) && period > 0)) {
+      InputComponent c;
+      c.pga_g = std::abs(factor) * peak_acceleration_g(r);
+      c.sa_g = c.sa_period = NAN;
+      c.sa_damping = e.sa_damping;
+      c.scale_factor = factor;
+      return c;
+    }
+    return describe_input(time_scaled(r, e.options.time_scale), factor, period, e.sa_damping);
+  };
+  InputMotion in;
+  if (e.transverse) in.transverse = describe(*e.transverse, e.transverse_factor);
+  if (e.longitudinal) in.longitudinal = describe(*e.longitudinal, e.longitudinal_factor);
+  return in;
+}
+
+ExcitationRecords read_excitation(const Section& m, const FirstPeriod& first_period,
+                                  double& time_scale) {
   ExcitationRecords out;
   ExcitationSettings e;
   const auto s = read_table(m, "excitation", ExcitationSettings::fields(), e);
@@ -275,7 +356,17 @@ ExcitationRecords read_excitation(const Section& m, double& time_scale) {
   }
   out.options.time_scale = e.time_scale;
   out.options.baseline_correction = e.baseline_correction;
-  scale_to_targets(*s, e, out);
+  out.scale_to = e.scale_to;
+  out.sa_damping = e.sa_damping;
+  if (e.scale_to == ScaleTo::kSa) {
+    scale_to_spectra(*s, e, first_period, out);
+  } else {
+    if (s->has("target_sa") || s->has("longitudinal_sa")) {
+      s->fail(s->has("target_sa") ? "target_sa" : "longitudinal_sa", "needs scale_to = \"sa\"");
+    }
+    if (s->has("sa_period")) out.sa_period = e.sa_period;
+    scale_to_targets(*s, e, out);
+  }
   out.options.target_pga = 0.0;
   return out;
 }
@@ -369,18 +460,23 @@ BridgeScene build_bridge(Section& m) {
   const BentsRead bents = read_bents(m, lengths, p);
   const SeatMotions seats = read_seats(m, p);
   BridgeScene out;
-  const ExcitationRecords excitation = read_excitation(m, out.time_scale);
-  Bridge::Excitation exc = support_motions(excitation, seats, bents.delays, out.motion_end);
-  if (segmented) {
-    out.system = segmented_bridge(m, p, segments, bents, std::move(exc));
-    return out;
-  }
-  try {
-    out.system = std::make_unique<Bridge>(p, std::move(exc));
-  } catch (const std::invalid_argument& e) {
-    if (deck && std::string(e.what()).rfind("initial_position", 0) == 0) deck->rethrow(e);
-    m.rethrow(e);
-  }
+  // The system for a set of support motions: the one-deck bridge, or the segmented one.
+  const auto make = [&](Bridge::Excitation exc) -> std::unique_ptr<integrators::System> {
+    if (segmented) return segmented_bridge(m, p, segments, bents, std::move(exc));
+    try {
+      return std::make_unique<Bridge>(p, std::move(exc));
+    } catch (const std::invalid_argument& e) {
+      if (deck && std::string(e.what()).rfind("initial_position", 0) == 0) deck->rethrow(e);
+      m.rethrow(e);
+    }
+  };
+  const FirstPeriod first_period = [&] {
+    const std::vector<double> periods = integrators::natural_periods(*make({}));
+    return periods.empty() ? NAN : periods.front();
+  };
+  const ExcitationRecords excitation = read_excitation(m, first_period, out.time_scale);
+  out.system = make(support_motions(excitation, seats, bents.delays, out.motion_end));
+  out.input = describe_excitation(excitation, *out.system);
   return out;
 }
 

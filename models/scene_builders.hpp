@@ -6,6 +6,7 @@
 #include "integrators/system.hpp"
 #include "models/deck_chain.hpp"
 #include "models/parts.hpp"
+#include "models/excitation_scaling.hpp"
 #include "models/scene_reader.hpp"
 
 #include <memory>
@@ -30,9 +31,10 @@ void check_solver(const Section& s, const integrators::RunConfig& config);
 std::unique_ptr<integrators::System> build_simple_system(const std::string& kind, Section& m);
 
 // The bridge of [model] kind = "bridge", the end of its longest bent support motion [s] (0
-// without an excitation) and the time scale of its records.
+// without an excitation), the time scale of its records and their scaling.
 struct BridgeScene {
   std::unique_ptr<integrators::System> system;
+  InputMotion input;  // the scaling of each excitation component
   double motion_end = 0.0;
   double time_scale = 1.0;
 };

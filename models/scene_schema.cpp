@@ -281,6 +281,22 @@ std::span<const c::Field<ExcitationSettings>> ExcitationSettings::fields() {
                                 "t → time_scale · t (0.5 for the 1/4-scale similitude)"),
       c::boolean<&S::baseline_correction>("baseline_correction",
                                           "remove the drift of velocity and displacement"),
+      c::choice<&kScaleToNames, &S::scale_to>(
+          "scale_to", "what target_pga / target_sa set: \"pga\" the peak ground acceleration, "
+                      "\"sa\" the pseudo-spectral acceleration PSA(sa_period, sa_damping)"),
+      c::number<&S::target_sa>("target_sa", "g", c::non_negative(),
+                               "scale_to = \"sa\": PSA of the transverse record (or of the "
+                               "longitudinal one when it is alone); without longitudinal_pga "
+                               "or longitudinal_sa the other component takes the same factor; "
+                               "0 keeps the recorded amplitude"),
+      c::number<&S::longitudinal_sa>("longitudinal_sa", "g", c::non_negative(),
+                                     "scale_to = \"sa\": PSA of the longitudinal record on its "
+                                     "own (needs longitudinal_record); 0: the common factor"),
+      c::number<&S::sa_period>("sa_period", "s", c::positive(),
+                               "oscillator period of target_sa and of the reported Sa; "
+                               "absent: the bridge's first natural period (K₀ φ = ω² M φ)"),
+      c::number<&S::sa_damping>("sa_damping", "-", c::closed_open(0, 1),
+                                "oscillator damping ratio ζ of target_sa and the reported Sa"),
   };
   return f;
 }

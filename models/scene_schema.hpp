@@ -13,6 +13,7 @@
 #include "models/rigid_deck.hpp"
 #include "models/simple_systems.hpp"
 
+#include <array>
 #include <span>
 #include <string>
 
@@ -65,6 +66,13 @@ struct SeatMotionSettings {
   static std::span<const config::Field<SeatMotionSettings>> fields();
 };
 
+// How [model.excitation] scales its records: to a peak ground acceleration, or to a 5 %-damped
+// (sa_damping) pseudo-spectral acceleration at a period (docs/bridge.md, "Target spectral
+// accelerations").
+enum class ScaleTo { kPga, kSa };
+inline constexpr std::array<config::Name<ScaleTo>, 2> kScaleToNames{
+    {{"pga", ScaleTo::kPga}, {"sa", ScaleTo::kSa}}};
+
 // [model.excitation]: the two records, their scaling and the shared options.
 struct ExcitationSettings {
   std::string longitudinal_record;  // record file of the x component ("" none)
@@ -75,6 +83,11 @@ struct ExcitationSettings {
   double scale = 1.0;
   double time_scale = 1.0;
   bool baseline_correction = true;
+  ScaleTo scale_to = ScaleTo::kPga;
+  double target_sa = 0.0;           // [g], scale_to = "sa": PSA of the transverse record
+  double longitudinal_sa = 0.0;     // [g], scale_to = "sa": of the longitudinal one; 0: same factor
+  double sa_period = 0.0;           // [s], > 0; absent: the bridge's first (longest) period
+  double sa_damping = 0.05;         // zeta of the oscillator, in [0, 1)
   static std::span<const config::Field<ExcitationSettings>> fields();
 };
 

@@ -29,6 +29,7 @@ RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
   integrators::RunResult result =
       integrators::integrate(*scene.system, scene.run, history, progress);
   Digest digest = make_digest(history, result);
+  digest.input = scene.input;
   std::vector<std::string> warnings = std::move(prepared.warnings);
   for (auto& w : result_warnings(history, digest, result)) warnings.push_back(std::move(w));
   result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
