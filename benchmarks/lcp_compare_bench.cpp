@@ -373,11 +373,13 @@ void report_profile(std::ofstream& csv, const benchmarks::PerformanceProfile& pr
   std::printf("\n");
   const double top = std::max(10.0, 2.0 * pr.max_ratio());
   constexpr int kPoints = 120;
-  for (int i = 0; i <= kPoints; ++i) {
-    const double tau = std::pow(top, static_cast<double>(i) / kPoints);
-    for (int s = 0; s < pr.solvers(); ++s)
+  // One solver's points on consecutive lines: gnuplot joins only those.
+  for (int s = 0; s < pr.solvers(); ++s) {
+    for (int i = 0; i <= kPoints; ++i) {
+      const double tau = std::pow(top, static_cast<double>(i) / kPoints);
       csv << group << ',' << measure << ',' << tol << ',' << names[static_cast<std::size_t>(s)]
           << ',' << io::csv_number(tau) << ',' << io::csv_number(pr.rho(s, tau)) << '\n';
+    }
   }
 }
 
