@@ -18,7 +18,7 @@ set xlabel "tau (ratio to the best solver on the problem)"
 set ylabel "rho(tau): share of the problems"
 set yrange [-0.02:1.02]
 set grid
-set key bottom right noenhanced
+set key center right noenhanced
 set multiplot layout 2,2 title "performance profiles, ".group." collection"
 do for [m in "time residual"] {
   do for [tol in "1e-08 1e-12"] {
