@@ -134,7 +134,6 @@ check "--out \"\" writes nothing" test ! -e "$tmp/out"
 limit=5
 expect 2 "^nsbridge: --out $tmp/a-file/sub: cannot create the directory '$tmp/a-file/sub': Not a directory" \
   -- run "$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/a-file/sub"
-limit=5
 # --dump-lcp: a folder that cannot be made is refused before the run, as --out is; "" too.
 expect 2 "^nsbridge: dump_lcp $tmp/a-file/sub: cannot create the directory" \
   -- run "$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/d" --dump-lcp "$tmp/a-file/sub"

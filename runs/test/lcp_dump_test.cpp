@@ -2,6 +2,7 @@
 // is one file that reads back, whose LCP Lemke solves with the status the run recorded, and
 // the manifest has one row per solve of summary.json's lcp_solves; dumping changes nothing in
 // the run; a folder that cannot be made is refused before any integration.
+#include "runs/files.hpp"
 #include "runs/lcp_dump.hpp"
 #include "runs/run.hpp"
 
@@ -63,6 +64,8 @@ TEST_CASE("a bridge run's dump: one file per solve, each read back and solved as
   const auto rows = read_manifest(dir);
   REQUIRE(r.result.lcp_solves > 100);
   CHECK(static_cast<std::int64_t>(rows.size()) == r.result.lcp_solves);
+  const std::string solves = "\"lcp_solves\": " + std::to_string(rows.size()) + ",";
+  CHECK(summary_json(r).find(solves) != std::string::npos);
   int two_contacts = 0;
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const auto& row = rows[k];
