@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <new>
@@ -183,6 +184,26 @@ Problem read_siconos_lcp(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in || ec) throw FormatError(file.string(), 0, "cannot open the file for reading");
   return parse_siconos_lcp(in, file.string(), size);
+}
+
+void write_siconos_lcp(std::ostream& out, const Problem& p, const std::string& comment) {
+  p.validate();
+  const Eigen::Index n = p.size();
+  out << n << "\n0\n" << n << '\n' << n << '\n' << n << ' ' << n << '\n';
+  // %.17g: 17 significant digits identify every double (IEEE 754-2008, §5.12.2).
+  char buf[32];
+  const auto number = [&](double v) {
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+  };
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (Eigen::Index i = 0; i < n; ++i) out << (i > 0 ? " " : "") << number(p.M(i, j));
+    out << '\n';
+  }
+  for (Eigen::Index i = 0; i < n; ++i) out << (i > 0 ? " " : "") << number(p.q(i));
+  if (n > 0) out << '\n';
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) out << "# " << line << '\n';
 }
 
 }  // namespace nsb::lcp

@@ -103,6 +103,15 @@ check "--out \"\" writes nothing" test ! -e "$tmp/out"
 limit=5
 expect 2 "^nsbridge: --out $tmp/a-file/sub: cannot create the directory '$tmp/a-file/sub': Not a directory" \
   -- run "$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/a-file/sub"
+# --dump-lcp: a folder that cannot be made is refused before the run, as --out is; "" too.
+expect 2 "^nsbridge: dump_lcp $tmp/a-file/sub: cannot create the directory" \
+  -- run "$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/d" --dump-lcp "$tmp/a-file/sub"
+expect 2 '^nsbridge: --dump-lcp: empty path' -- run "$root/scenes/bouncing-ball.toml" --out "$tmp/d" --dump-lcp ""
+# One .dat file per contact problem, listed in manifest.csv; `nsbridge lcp` reads each.
+expect 0 'impact-oscillator' -- run "$root/scenes/impact-oscillator.toml" --out "$tmp/io" \
+  --method event_driven --dump-lcp "$tmp/io-lcp"
+check "the manifest lists the 4 impacts" test "$(grep -c ',impact,' "$tmp/io-lcp/manifest.csv")" = 4
+expect 0 'status: +solved' -- lcp "$tmp/io-lcp/lcp-000001.dat"
 limit=20
 # Outputs are replaced as a set: a directory that held an older set holds the new one, and
 # nothing else is left beside it; a directory with the user's own files keeps them.
