@@ -1,4 +1,4 @@
-// Timing helpers of the LCP benchmark: the thread's CPU clock, the median time of one call
+// Timing of the LCP benchmark: the thread's CPU clock, the median time of one call
 // over batches, and the silencing of a library that prints on stdout and stderr.
 #pragma once
 

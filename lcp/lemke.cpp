@@ -246,8 +246,8 @@ Status Lemke::run_n(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Ve
 
 // Tableau B^-1 [I, -M, -d, q] with B = I, written column by column; the basis is {w}.
 template <int N>
-void Lemke::load_tableau(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
-                         const LemkeOptions& options) {
+inline void Lemke::load_tableau(const Eigen::Ref<const Matrix>& M,
+                                const Eigen::Ref<const Vector>& q, const LemkeOptions& options) {
   const Eigen::Index n = fixed::size<N>(q.size());
   double* T = tableau_.data();
   std::fill(T, T + n * n, 0.0);
@@ -268,7 +268,7 @@ void Lemke::load_tableau(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<con
 // one that left enter, until z0 leaves (kSolved), no row blocks (kRayTermination, entering
 // is then the unblocked variable) or the pivot limit is reached (kMaxIterations).
 template <int N>
-Status Lemke::complementary_pivots(int limit, Eigen::Index& entering) {
+inline Status Lemke::complementary_pivots(int limit, Eigen::Index& entering) {
   const Eigen::Index n = fixed::size<N>(n_);
   const Eigen::Index z0 = 2 * n;
   bool initial = true;
@@ -288,9 +288,9 @@ Status Lemke::complementary_pivots(int limit, Eigen::Index& entering) {
 // z from the final basis (basic z_j = (B^-1 q)_r, clipped at 0), its residual, and the final
 // status: a ray is confirmed on the original data, a solution refined when round-off shows.
 template <int N>
-Status Lemke::read_solution(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
-                            const LemkeOptions& options, Status status, Eigen::Index entering,
-                            Eigen::Ref<Vector> z) {
+inline Status Lemke::read_solution(const Eigen::Ref<const Matrix>& M,
+                                   const Eigen::Ref<const Vector>& q, const LemkeOptions& options,
+                                   Status status, Eigen::Index entering, Eigen::Ref<Vector> z) {
   const Eigen::Index n = fixed::size<N>(q.size());
   const double* qcol = tableau_.data() + (2 * n + 1) * n;
   for (Eigen::Index j = 0; j < n; ++j) {
