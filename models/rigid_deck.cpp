@@ -1,5 +1,7 @@
 #include "models/rigid_deck.hpp"
 
+#include "models/scene_schema.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -8,25 +10,9 @@
 
 namespace nsb::models {
 
-namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
-
-bool finite3(const Eigen::Vector3d& v) { return v.allFinite(); }
-
-}  // namespace
-
 void RigidDeck::Parameters::validate() const {
-  require(std::isfinite(mass) && mass > 0, "mass", "must be > 0 [t]");
-  require(std::isfinite(inertia) && inertia > 0, "inertia", "must be > 0 [t m^2]");
-  deck.validate();
-  require(std::isfinite(restitution) && restitution >= 0 && restitution <= 1, "restitution",
-          "must be in [0, 1]");
-  require(std::isfinite(friction) && friction >= 0, "friction", "must be >= 0");
-  require(finite3(initial_position), "initial_position", "must be finite [m, m, rad]");
-  require(finite3(initial_velocity), "initial_velocity", "must be finite [m/s, m/s, rad/s]");
+  // Every field's range, as the scene schema declares it; then what no single field says.
+  config::validate_fields<Parameters>(*this, rigid_deck_fields());
   const auto corners = deck.corner_faces();
   const auto faces = deck.face_points();
   for (int i = 0; i < 4; ++i) {

@@ -6,6 +6,8 @@
 // gravity once.
 #include "models/simple_systems.hpp"
 
+#include "models/scene_schema.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -25,9 +27,6 @@ void require(bool ok, const std::string& field, const std::string& allowed, doub
     throw std::invalid_argument(field + ": " + allowed + " (got " + std::to_string(value) + ")");
   }
 }
-void require_finite(const std::string& field, double value) {
-  require(std::isfinite(value), field, "must be finite", value);
-}
 
 // Harmonic forcing F0 sin(2 pi f t); f = 0 gives sin(0) = 0, i.e. no force.
 double harmonic(double amplitude, double frequency_hz, double t) {
@@ -40,13 +39,7 @@ double harmonic(double amplitude, double frequency_hz, double t) {
 // BouncingBall: m y'' = -m g + Lambda_N, g_N = y.
 
 void BouncingBall::Parameters::validate() const {
-  require(std::isfinite(mass) && mass > 0.0, "mass", "must be > 0 [t]", mass);
-  require(std::isfinite(height) && height >= 0.0, "height",
-          "must be >= 0 [m] (the initial gap; negative is an initial penetration)", height);
-  require_finite("velocity", velocity);
-  require(restitution >= 0.0 && restitution <= 1.0, "restitution", "must be in [0, 1]",
-          restitution);
-  require(std::isfinite(gravity) && gravity >= 0.0, "gravity", "must be >= 0 [m/s^2]", gravity);
+  config::validate_fields<Parameters>(*this, bouncing_ball_fields());
 }
 
 BouncingBall::BouncingBall(const Parameters& p) : SystemBase({"y"}, {"vy"}), p_(p) {
@@ -76,22 +69,10 @@ EnergyState BouncingBall::energy(double, const Vector& q) const {
 // ImpactOscillator: m x'' + c x' + k x = F0 sin(2 pi f t) - Lambda_N, g_N = gap - x.
 
 void ImpactOscillator::Parameters::validate() const {
-  require(std::isfinite(mass) && mass > 0.0, "mass", "must be > 0 [t]", mass);
-  require(std::isfinite(stiffness) && stiffness >= 0.0, "stiffness", "must be >= 0 [kN/m]",
-          stiffness);
-  require(std::isfinite(damping_ratio) && damping_ratio >= 0.0, "damping_ratio",
-          "must be >= 0", damping_ratio);
-  require_finite("gap", gap);
-  require(restitution >= 0.0 && restitution <= 1.0, "restitution", "must be in [0, 1]",
-          restitution);
-  require_finite("initial_position", initial_position);
+  config::validate_fields<Parameters>(*this, impact_oscillator_fields());
   require(initial_position <= gap, "initial_position",
           "must be <= gap (an initial position beyond the stop is a penetration)",
           initial_position);
-  require_finite("initial_velocity", initial_velocity);
-  require_finite("force_amplitude", force_amplitude);
-  require(std::isfinite(force_frequency) && force_frequency >= 0.0, "force_frequency",
-          "must be >= 0 [Hz]", force_frequency);
 }
 
 ImpactOscillator::ImpactOscillator(const Parameters& p) : SystemBase({"x"}, {"vx"}), p_(p) {
@@ -139,16 +120,7 @@ EnergyState ImpactOscillator::energy(double, const Vector& q) const {
 // SlidingBlock: m x'' = F(t) + m g_x + Lambda_T, m y'' = m g_y + Lambda_N, g_N = y.
 
 void SlidingBlock::Parameters::validate() const {
-  require(std::isfinite(mass) && mass > 0.0, "mass", "must be > 0 [t]", mass);
-  require(std::isfinite(friction) && friction >= 0.0, "friction", "must be >= 0", friction);
-  require(std::isfinite(gravity) && gravity >= 0.0, "gravity", "must be >= 0 [m/s^2]", gravity);
-  require_finite("initial_velocity", initial_velocity);
-  require_finite("force", force);
-  require_finite("force_amplitude", force_amplitude);
-  require(std::isfinite(force_frequency) && force_frequency >= 0.0, "force_frequency",
-          "must be >= 0 [Hz]", force_frequency);
-  require(std::isfinite(incline_deg) && std::abs(incline_deg) < 90.0, "incline_deg",
-          "must be in (-90, 90) [deg]", incline_deg);
+  config::validate_fields<Parameters>(*this, sliding_block_fields());
 }
 
 SlidingBlock::SlidingBlock(const Parameters& p)
