@@ -131,10 +131,8 @@ void write_history(const std::filesystem::path& file, const History& h) {
   for (std::size_t i = 0; i < h.t.size(); ++i) out << h.t[i] << ',' << h.theta[i] << '\n';
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"compliance method on the bridge: cost and error against the stiffness"};
+// The command line's settings.
+struct Settings {
   std::string scene = std::string(NSB_SCENES_DIR) + "/bridge-exc5.toml";
   std::string law_name = "hertzdamp";
   double restitution = 0.0;  // e_set of the contacts (the paper's eps_N = 0)
@@ -146,75 +144,66 @@ int main(int argc, char** argv) {
   bool event_driven = false;
   std::string csv = "compliance_bench.csv";
   std::string history_dir;
-  app.add_option("--scene", scene, "bridge scene file");
-  app.add_option("--law", law_name, "damping law")
+};
+
+void add_options(CLI::App& app, Settings& s) {
+  app.add_option("--scene", s.scene, "bridge scene file");
+  app.add_option("--law", s.law_name, "damping law")
       ->check(CLI::IsMember(nsb::integrators::damping_law_names()));
-  app.add_option("--restitution", restitution, "e_set of the gap elements")
+  app.add_option("--restitution", s.restitution, "e_set of the gap elements")
       ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--end-time", end_time, "simulated time [s]; 0 keeps the scene's");
-  app.add_option("--tolerance", tolerance, "compliance error tolerance; 0 keeps the scene's");
-  app.add_option("--factors", factors, "stiffness factors k / k0")->delimiter(',');
-  app.add_option("--repeat", repeat, "runs per configuration (median wall time)")
+  app.add_option("--end-time", s.end_time, "simulated time [s]; 0 keeps the scene's");
+  app.add_option("--tolerance", s.tolerance, "compliance error tolerance; 0 keeps the scene's");
+  app.add_option("--factors", s.factors, "stiffness factors k / k0")->delimiter(',');
+  app.add_option("--repeat", s.repeat, "runs per configuration (median wall time)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--reference-step", reference_step, "Moreau–Jean step of the reference [s]");
-  app.add_flag("--event-driven", event_driven, "also time the event-driven method");
-  app.add_option("--csv", csv, "output CSV");
-  app.add_option("--history-dir", history_dir, "write theta(t) of every run here");
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--reference-step", s.reference_step, "Moreau–Jean step of the reference [s]");
+  app.add_flag("--event-driven", s.event_driven, "also time the event-driven method");
+  app.add_option("--csv", s.csv, "output CSV");
+  app.add_option("--history-dir", s.history_dir, "write theta(t) of every run here");
+}
 
-  const auto law = nsb::integrators::parse_damping_law(law_name);
-  const double e_eff = nsb::integrators::hunt_crossley_restitution(
-      nsb::integrators::damping_factor(law, restitution));
-  std::printf("compliance_bench: build %s, revision %s\n", NSB_BUILD_TYPE,
-              nsb::io::build_info().revision.c_str());
-  std::printf("scene %s, law %s, e_set %.3f, e_effective %.6f\n", scene.c_str(),
-              law_name.c_str(), restitution, e_eff);
-  if (!history_dir.empty()) std::filesystem::create_directories(history_dir);
-
-  std::vector<std::string> base{"model.seats.restitution=" + number(restitution)};
-  std::vector<std::string> reference_overrides{"model.seats.restitution=" + number(e_eff)};
-  if (end_time > 0.0) {
-    base.push_back("solver.end_time=" + number(end_time));
-    reference_overrides.push_back("solver.end_time=" + number(end_time));
+// One benchmark: the settings, the law, the scene overrides of each method and the CSV.
+class Bench {
+ public:
+  explicit Bench(const Settings& s)
+      : s_(s),
+        law_(nsb::integrators::parse_damping_law(s.law_name)),
+        e_eff_(nsb::integrators::hunt_crossley_restitution(
+            nsb::integrators::damping_factor(law_, s.restitution))),
+        out_(s.csv) {
+    std::vector<std::string> base{"model.seats.restitution=" + number(s.restitution)};
+    std::vector<std::string> reference{"model.seats.restitution=" + number(e_eff_)};
+    if (s.end_time > 0.0) {
+      base.push_back("solver.end_time=" + number(s.end_time));
+      reference.push_back("solver.end_time=" + number(s.end_time));
+    }
+    reference_overrides_ = reference;
+    // The scene's [solver] settings as read for each method.
+    moreau_overrides_ = with_method(reference, "moreau");
+    event_overrides_ = with_method(reference, "event_driven");
+    compliance_overrides_ = with_method(base, "compliance");
+    out_ << "method,law,e_set,e_effective,factor,stiffness,wall_time_median,cpu_time_median,"
+            "steps,rejected_steps,completed,theta_rms_error,theta_max_error,peak_theta,"
+            "peak_theta_error,first_contact,first_close,first_duration,first_penetration,"
+            "first_peak_force\n";
   }
-  // The scene's [solver] settings as read for each method.
-  const auto with_method = [](std::vector<std::string> o, const std::string& method) {
-    o.push_back("solver.method=" + method);
-    return o;
-  };
-  const auto moreau_overrides = with_method(reference_overrides, "moreau");
-  const auto event_overrides = with_method(reference_overrides, "event_driven");
-  const auto compliance_overrides = with_method(base, "compliance");
 
-  std::ofstream out(csv);
-  out << "method,law,e_set,e_effective,factor,stiffness,wall_time_median,cpu_time_median,steps,rejected_steps,"
-         "completed,theta_rms_error,theta_max_error,peak_theta,peak_theta_error,"
-         "first_contact,first_close,first_duration,first_penetration,first_peak_force\n";
-  const auto row = [&](const std::string& method, double factor, double k,
-                       const std::vector<double>& walls, const std::vector<double>& cpus,
-                       const RunResult& st,
-                       const ThetaError& err, double peak, const Pounding& p) {
-    out << method << ',' << law_name << ',' << restitution << ',' << e_eff << ',' << factor
-        << ',' << k << ',' << median(walls) << ',' << median(cpus) << ',' << st.steps << ',' << st.rejected_steps
-        << ',' << (st.completed ? 1 : 0) << ',' << err.rms << ',' << err.max << ',' << peak
-        << ',' << err.peak << ',' << p.contact << ',' << p.t_close << ',' << p.duration << ','
-        << p.penetration << ',' << p.peak_force << '\n';
-    out.flush();
-  };
+  void print_header() const {
+    std::printf("compliance_bench: build %s, revision %s\n", NSB_BUILD_TYPE,
+                nsb::io::build_info().revision.c_str());
+    std::printf("scene %s, law %s, e_set %.3f, e_effective %.6f\n", s_.scene.c_str(),
+                s_.law_name.c_str(), s_.restitution, e_eff_);
+  }
 
   // The nonsmooth reference: Moreau–Jean with eps = e_effective.
-  History ref;
-  {
+  void run_reference() {
     std::vector<double> walls, cpus;
     RunResult st;
-    Recorder keep(*nsb::models::load_scene(scene, reference_overrides).system, 0.0);
-    for (int r = 0; r < repeat; ++r) {
-      auto sc = nsb::models::load_scene(scene, moreau_overrides);
-      const auto& read = std::get<nsb::integrators::MoreauJeanOptions>(sc.run);
-      nsb::integrators::MoreauJeanOptions o;
-      o.end_time = read.end_time;
-      o.step = reference_step;
-      o.theta = read.theta;
+    Recorder keep(*nsb::models::load_scene(s_.scene, reference_overrides_).system, 0.0);
+    for (int r = 0; r < s_.repeat; ++r) {
+      auto sc = nsb::models::load_scene(s_.scene, moreau_overrides_);
+      const auto o = moreau_options(sc, s_.reference_step);
       Recorder rec(*sc.system, sc.output.sample_dt);
       const double c0 = cpu_seconds();
       st = nsb::integrators::moreau_jean(*sc.system, o, rec);
@@ -222,36 +211,34 @@ int main(int argc, char** argv) {
       walls.push_back(st.wall_time);
       if (r == 0) keep = rec;
     }
-    ref = history(keep);
+    ref_ = history(keep);
     const Pounding p = first_pounding(keep);
     std::printf("%-14s h = %.1e: wall %.3f s, cpu %.3f s (medians of %d), steps %lld, peak "
                 "|theta| %.4e rad, first contact %d at %.4f s\n",
-                "moreau", reference_step, median(walls), median(cpus), repeat,
-                static_cast<long long>(st.steps), peak_abs(ref), p.contact, p.t_close);
-    row("moreau", 0.0, 0.0, walls, cpus, st, ThetaError{}, peak_abs(ref), p);
-    if (!history_dir.empty()) write_history(history_dir + "/moreau.csv", ref);
+                "moreau", s_.reference_step, median(walls), median(cpus), s_.repeat,
+                static_cast<long long>(st.steps), peak_abs(ref_), p.contact, p.t_close);
+    row("moreau", 0.0, 0.0, walls, cpus, st, ThetaError{}, peak_abs(ref_), p);
+    if (!s_.history_dir.empty()) write_history(s_.history_dir + "/moreau.csv", ref_);
   }
-  // Coarser Moreau–Jean runs, for the work-precision comparison.
-  for (double h : {1e-3, 3e-4}) {
-    auto sc = nsb::models::load_scene(scene, moreau_overrides);
-    const auto& read = std::get<nsb::integrators::MoreauJeanOptions>(sc.run);
-    nsb::integrators::MoreauJeanOptions o;
-    o.end_time = read.end_time;
-    o.step = h;
-    o.theta = read.theta;
+
+  // A coarser Moreau–Jean run, for the work-precision comparison.
+  void run_moreau(double h) {
+    auto sc = nsb::models::load_scene(s_.scene, moreau_overrides_);
+    const auto o = moreau_options(sc, h);
     Recorder rec(*sc.system, sc.output.sample_dt);
     const double c0 = cpu_seconds();
     const RunResult st = nsb::integrators::moreau_jean(*sc.system, o, rec);
     const double cpu = cpu_seconds() - c0;
     const History hh = history(rec);
-    const ThetaError err = theta_error(hh, ref);
+    const ThetaError err = theta_error(hh, ref_);
     std::printf("%-14s h = %.1e: wall %.3f s, cpu %.3f s, steps %lld, theta rms error %.3e\n",
                 "moreau", h, st.wall_time, cpu, static_cast<long long>(st.steps), err.rms);
     row("moreau_h" + number(h), 0.0, 0.0, {st.wall_time}, {cpu}, st, err, peak_abs(hh),
         first_pounding(rec));
   }
-  if (event_driven) {
-    auto sc = nsb::models::load_scene(scene, event_overrides);
+
+  void run_event_driven() {
+    auto sc = nsb::models::load_scene(s_.scene, event_overrides_);
     const auto& read = std::get<nsb::integrators::EventDrivenOptions>(sc.run);
     nsb::integrators::EventDrivenOptions o;
     o.end_time = read.end_time;
@@ -261,7 +248,7 @@ int main(int argc, char** argv) {
     const RunResult st = nsb::integrators::event_driven(*sc.system, o, rec);
     const double cpu = cpu_seconds() - c0;
     const History hh = history(rec);
-    const ThetaError err = theta_error(hh, ref);
+    const ThetaError err = theta_error(hh, ref_);
     std::printf("%-14s: wall %.3f s, cpu %.3f s, steps %lld, completed %d, theta rms error "
                 "%.3e %s\n",
                 "event_driven", st.wall_time, cpu, static_cast<long long>(st.steps),
@@ -270,21 +257,22 @@ int main(int argc, char** argv) {
         first_pounding(rec));
   }
 
-  for (double factor : factors) {
+  // The compliance method at stiffness factor * k0, s_.repeat times.
+  void run_compliance(double factor) {
     std::vector<double> walls, cpus;
     RunResult st;
     History hh;
     Pounding p;
     double k = 0.0;
-    for (int r = 0; r < repeat; ++r) {
-      auto sc = nsb::models::load_scene(scene, compliance_overrides);
+    for (int r = 0; r < s_.repeat; ++r) {
+      auto sc = nsb::models::load_scene(s_.scene, compliance_overrides_);
       const auto& read = std::get<nsb::integrators::ComplianceOptions>(sc.run);
       nsb::integrators::ComplianceOptions o;
       o.end_time = read.end_time;
-      o.tolerance = tolerance > 0.0 ? tolerance : read.tolerance;
+      o.tolerance = s_.tolerance > 0.0 ? s_.tolerance : read.tolerance;
       o.stiffness = k = read.stiffness * factor;
       o.stick_slip_velocity = read.stick_slip_velocity;
-      o.law = law;
+      o.law = law_;
       Recorder rec(*sc.system, 0.0);
       const double c0 = cpu_seconds();
       st = nsb::integrators::compliance(*sc.system, o, rec);
@@ -295,18 +283,69 @@ int main(int argc, char** argv) {
         p = first_pounding(rec);
       }
     }
-    const ThetaError err = theta_error(hh, ref);
-    std::printf("compliance %6.0e k0: wall %7.3f s, cpu %7.3f s, steps %8lld (+%lld rejected), theta rms "
-                "error %.3e, peak error %+.3e, first pounding: contact %d at %.4f s, "
+    const ThetaError err = theta_error(hh, ref_);
+    std::printf("compliance %6.0e k0: wall %7.3f s, cpu %7.3f s, steps %8lld (+%lld rejected), "
+                "theta rms error %.3e, peak error %+.3e, first pounding: contact %d at %.4f s, "
                 "penetration %.3e m, duration %.4e s%s\n",
                 factor, median(walls), median(cpus), static_cast<long long>(st.steps),
                 static_cast<long long>(st.rejected_steps), err.rms, err.peak, p.contact,
                 p.t_close, p.penetration, p.duration, st.completed ? "" : " (NOT COMPLETED)");
     row("compliance", factor, k, walls, cpus, st, err, peak_abs(hh), p);
-    if (!history_dir.empty()) {
-      write_history(history_dir + "/compliance_" + number(factor) + ".csv", hh);
+    if (!s_.history_dir.empty()) {
+      write_history(s_.history_dir + "/compliance_" + number(factor) + ".csv", hh);
     }
   }
-  std::printf("wrote %s\n", csv.c_str());
+
+ private:
+  static std::vector<std::string> with_method(std::vector<std::string> o,
+                                              const std::string& method) {
+    o.push_back("solver.method=" + method);
+    return o;
+  }
+  // The scene's Moreau–Jean options at step h.
+  static nsb::integrators::MoreauJeanOptions moreau_options(const nsb::models::Scene& sc,
+                                                           double h) {
+    const auto& read = std::get<nsb::integrators::MoreauJeanOptions>(sc.run);
+    nsb::integrators::MoreauJeanOptions o;
+    o.end_time = read.end_time;
+    o.step = h;
+    o.theta = read.theta;
+    return o;
+  }
+  void row(const std::string& method, double factor, double k, const std::vector<double>& walls,
+           const std::vector<double>& cpus, const RunResult& st, const ThetaError& err,
+           double peak, const Pounding& p) {
+    out_ << method << ',' << s_.law_name << ',' << s_.restitution << ',' << e_eff_ << ','
+         << factor << ',' << k << ',' << median(walls) << ',' << median(cpus) << ',' << st.steps
+         << ',' << st.rejected_steps << ',' << (st.completed ? 1 : 0) << ',' << err.rms << ','
+         << err.max << ',' << peak << ',' << err.peak << ',' << p.contact << ',' << p.t_close
+         << ',' << p.duration << ',' << p.penetration << ',' << p.peak_force << '\n';
+    out_.flush();
+  }
+
+  Settings s_;
+  nsb::integrators::DampingLaw law_;
+  double e_eff_;
+  std::ofstream out_;
+  std::vector<std::string> reference_overrides_, moreau_overrides_, event_overrides_,
+      compliance_overrides_;
+  History ref_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"compliance method on the bridge: cost and error against the stiffness"};
+  Settings s;
+  add_options(app, s);
+  CLI11_PARSE(app, argc, argv);
+  if (!s.history_dir.empty()) std::filesystem::create_directories(s.history_dir);
+  Bench bench(s);
+  bench.print_header();
+  bench.run_reference();
+  for (double h : {1e-3, 3e-4}) bench.run_moreau(h);
+  if (s.event_driven) bench.run_event_driven();
+  for (double factor : s.factors) bench.run_compliance(factor);
+  std::printf("wrote %s\n", s.csv.c_str());
   return 0;
 }
