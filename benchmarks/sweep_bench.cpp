@@ -11,6 +11,8 @@
 #include "io/build_info.hpp"
 #include "sweep/runner.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -54,7 +56,10 @@ int main(int argc, char** argv) {
   std::printf("build %s, revision %s, load average before %.2f\n", NSB_BUILD_TYPE,
               nsb::io::build_info().revision.c_str(),
               load_average());
-  const fs::path scratch = fs::temp_directory_path() / "nsb_sweep_bench";
+  // One folder per process: two benchmarks running at once (a CTest smoke run beside a timed
+  // one) must not write into each other's runs.
+  const fs::path scratch = fs::temp_directory_path() /
+                           ("nsb_sweep_bench-" + std::to_string(static_cast<long>(::getpid())));
   std::ofstream csv(csv_path);
   csv << "workers,repeat,wall_s,cpu_s,runs,runs_per_s\n";
   std::vector<double> medians, cpu_medians;
