@@ -1,5 +1,6 @@
 // nsbridge.lcp and nsbridge.criterion: the LCP solvers and the rotation criterion of eq. (1).
 #include "lcp/frictional.hpp"
+#include "lcp/siconos_format.hpp"
 #include "lcp/solve.hpp"
 #include "models/analytic.hpp"
 #include "python/bindings.hpp"
@@ -107,6 +108,11 @@ void bind_lcp(py::module_& m) {
   l.def("frictional_problem", &frictional_problem, py::arg("delassus"), py::arg("gdot_free"),
         py::arg("gdot_n_minus"), py::arg("restitution"), py::arg("friction"),
         "The LCP (M, q) of eq. (6) for a frictional impact or contact problem (docs/lcp.md)");
+  l.def("read_dat", [](const std::string& path) {
+        const lcp::Problem p = lcp::read_siconos_lcp(path);
+        return py::make_tuple(p.M, p.q);
+      }, py::arg("path"),
+        "(M, q) of an LCP in Siconos's .dat format (the format `nsbridge lcp` reads)");
   m.def("criterion", &criterion, py::arg("skew_deg"), py::arg("width"), py::arg("length"),
         py::arg("friction"),
         "The rotation criterion eta of eq. (1), derived (docs/criterion.md): the keys of "
