@@ -1,7 +1,7 @@
 // nsbridge criterion: the rotation criterion eta of eq. (1), in the form derived from the
 // impact law (eqs. 3-7; docs/criterion.md), with the formula as printed for comparison.
 #include "app/commands.hpp"
-#include "app/format.hpp"
+#include "io/csv.hpp"
 #include "models/analytic.hpp"
 
 #include <cmath>
@@ -22,7 +22,7 @@ struct CriterionArgs {
   bool json = false;
 };
 
-std::string number(double x) { return shortest(x); }
+std::string number(double x) { return io::shortest(x); }
 
 // Six significant digits for people to read.
 std::string short_number(double x) {
@@ -75,12 +75,14 @@ void run_criterion(const CriterionArgs& a) {
   }
   std::cout << "rotation criterion eta (eq. 1, derived from the impact law, eqs. 3-7)\n"
             << "  skew " << short_number(a.skew) << " deg, W = " << short_number(a.width)
-            << " m, L = " << short_number(a.length) << " m, W/L = " << short_number(a.width / a.length)
+            << " m, L = " << short_number(a.length)
+            << " m, W/L = " << short_number(a.width / a.length)
             << ", mu = " << short_number(a.friction) << "\n"
             << "  eta+ = sin(2a)/(2W/L) + mu cos^2(a)/(W/L) = " << short_number(c.eta_plus) << "\n"
             << "  eta- = sin(2a)/(2W/L) - mu cos^2(a)/(W/L) = " << short_number(c.eta_minus) << "\n"
             << "  rotation predicted (max |eta+-| > 1): " << yes_no[c.rotation] << "\n"
-            << "  eq. (1) as printed (2 mu in place of mu): eta+ = " << short_number(c.printed_eta_plus)
+            << "  eq. (1) as printed (2 mu in place of mu): eta+ = "
+            << short_number(c.printed_eta_plus)
             << ", eta- = " << short_number(c.printed_eta_minus)
             << ", rotation: " << yes_no[c.printed_rotation] << "\n";
 }

@@ -1,7 +1,8 @@
 // nsbridge lcp: solve one LCP read from a file in Siconos's .dat format (lcp/siconos_format.hpp)
 // and print z, w, the status, the iterations, both residuals and the time.
 #include "app/commands.hpp"
-#include "app/format.hpp"
+#include "io/csv.hpp"
+#include "io/json.hpp"
 #include "lcp/siconos_format.hpp"
 #include "lcp/solve.hpp"
 
@@ -23,7 +24,9 @@ struct LcpArgs {
   bool json = false;
 };
 
-std::string number(double x, bool json) { return json ? json_number(x) : shortest(x); }
+std::string number(double x, bool json) {
+  return json ? io::json_number(x) : io::shortest(x);
+}
 
 std::string vector_text(const lcp::Vector& v, bool json) {
   std::string s = json ? "[" : "";
@@ -56,14 +59,14 @@ void run_lcp(const LcpArgs& a) {
   // unless it is complete.
   std::ostringstream out;
   if (a.json) {
-    out << "{\"file\": " << json_string(a.file) << ", \"n\": " << problem.size()
+    out << "{\"file\": " << io::json_string(a.file) << ", \"n\": " << problem.size()
           << ", \"solver\": \"" << lcp::to_string(*solver) << "\", \"status\": \""
           << lcp::to_string(r.status) << "\", \"iterations\": " << r.iterations
           << ", \"residual\": " << number(r.residual, true)
           << ", \"siconos_error\": " << number(r.siconos_error, true)
           << ", \"wall_time\": " << number(r.wall_time, true)
           << ", \"tolerance\": " << number(a.tolerance, true)
-          << ", \"message\": " << json_string(r.message)
+          << ", \"message\": " << io::json_string(r.message)
           << ", \"z\": " << vector_text(r.z, true) << ", \"w\": " << vector_text(r.w, true)
           << "}\n";
   } else {

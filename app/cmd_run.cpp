@@ -1,19 +1,19 @@
 // nsbridge run SCENE.toml [--out DIR] [--method moreau|event_driven|compliance]
 //                         [--set key=value ...] [--quiet] [--strict]
 //
-// Loads a scene (with overrides), checks the output directory and the initial state, then
-// integrates the scene with the chosen method, and writes history.csv, events.csv and
-// summary.json (docs/outputs.md) into DIR, by default out/<scene name>/, as one set
-// (integrators::write_file_set). Exit code 1 when the run stopped early or a contact problem
-// stayed unsolved (the files are still written, and say so), or with --strict when a warning
-// says the run is not to be trusted (docs/cli.md).
+// Loads a scene (with overrides) and checks its initial state (runs::prepare), checks the
+// output directory, then integrates the scene with the chosen method (runs::run), and writes
+// history.csv, events.csv and summary.json (docs/outputs.md) into DIR, by default
+// out/<scene name>/, as one set (runs::write_record). Exit code 1 when the run stopped early
+// or a contact problem stayed unsolved (the files are still written, and say so), or with
+// --strict when a warning says the run is not to be trusted (docs/cli.md).
 #include "app/commands.hpp"
-#include "app/format.hpp"
-#include "app/trust.hpp"
 
-#include "integrators/output.hpp"
 #include "integrators/run.hpp"
-#include "models/scene.hpp"
+#include "io/csv.hpp"
+#include "io/files.hpp"
+#include "runs/files.hpp"
+#include "runs/run.hpp"
 
 #include <unistd.h>
 
@@ -92,10 +92,12 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
-void print_summary(const models::Scene& scene, const integrators::Recorder& recorder,
-                   const integrators::RunResult& stats, const std::filesystem::path& out) {
-  std::cout << "scene      " << scene.name << " (" << scene.kind << "), method " << stats.method
-            << '\n';
+void print_summary(const runs::RunRecord& record, const std::filesystem::path& out) {
+  const integrators::RunResult& stats = record.result;
+  const runs::Digest& d = record.digest;
+  auto events = [&d](integrators::EventKind k) { return d.count(k); };
+  std::cout << "scene      " << record.scene_name << " (" << record.kind << "), method "
+            << stats.method << '\n';
   std::cout << "status     " << integrators::to_string(stats.status);
   if (!integrators::succeeded(stats.status)) {
     std::cout << " at t = " << stats.failure_time << " s (" << stats.lcp_unsolved
@@ -108,29 +110,23 @@ void print_summary(const models::Scene& scene, const integrators::Recorder& reco
             << stats.lcp_solves << " solves, " << stats.lcp_fallbacks << " fallbacks;";
   for (const auto& [status, count] : stats.lcp_status) std::cout << ' ' << status << ' ' << count;
   std::cout << '\n';
-  std::cout << "events     " << recorder.count(integrators::EventKind::kImpact) << " impacts, "
-            << recorder.count(integrators::EventKind::kSlip) << " slips, "
-            << recorder.count(integrators::EventKind::kStick) << " sticks, "
-            << recorder.count(integrators::EventKind::kWarning) << " warning events\n";
-  // Peak of every generalized coordinate.
-  const std::size_t ncoord = static_cast<std::size_t>(scene.system->dofs());
+  std::cout << "events     " << events(integrators::EventKind::kImpact) << " impacts, "
+            << events(integrators::EventKind::kSlip) << " slips, "
+            << events(integrators::EventKind::kStick) << " sticks, "
+            << events(integrators::EventKind::kWarning) << " warning events\n";
   std::cout << "peaks     ";
-  for (std::size_t c = 1; c <= ncoord && c < recorder.columns().size(); ++c) {
-    double peak = 0.0;
-    for (std::size_t r = 0; r < recorder.rows(); ++r) {
-      peak = std::max(peak, std::abs(recorder.at(r, c)));
-    }
-    std::cout << " |" << recorder.columns()[c] << "| "
-              << (std::isfinite(peak) ? shortest(peak) : std::string("not finite"));
+  for (const runs::CoordinatePeak& c : d.coordinates) {
+    std::cout << " |" << c.name << "| "
+              << (std::isfinite(c.peak) ? io::shortest(c.peak) : std::string("not finite"));
   }
   std::cout << '\n';
   // A diverged run's balance is not a number: say so rather than print "nan".
   std::cout << "energy     balance error "
-            << (std::isfinite(stats.energy.error) ? shortest(stats.energy.error)
-                                                  : std::string("not finite (the run diverged)"))
+            << (std::isfinite(d.energy.error) ? io::shortest(d.energy.error)
+                                              : std::string("not finite (the run diverged)"))
             << '\n';
-  std::cout << "warnings   " << stats.warnings.size()
-            << (stats.warnings.empty() ? "" : " (on standard error and in summary.json)") << '\n';
+  std::cout << "warnings   " << d.warnings.size()
+            << (d.warnings.empty() ? "" : " (on standard error and in summary.json)") << '\n';
   std::cout << "wall time  " << stats.wall_time << " s ("
             << (stats.wall_time > 0.0 ? stats.end_time / stats.wall_time : 0.0)
             << " x real time)\n";
@@ -138,44 +134,40 @@ void print_summary(const models::Scene& scene, const integrators::Recorder& reco
 }
 
 void run(const RunArgs& args) {
-  std::vector<std::string> overrides = args.overrides;
-  if (!args.method.empty()) overrides.push_back("solver.method=" + args.method);
-  models::Scene scene = models::load_scene(args.scene, overrides);
-  if (!scene.system) throw InputError(args.scene + ": the scene built no system");
-
   // Everything a user can get wrong is found before the integration starts.
+  runs::PreparedRun prepared;
+  try {
+    prepared = runs::prepare({args.scene, args.overrides, args.method, {}});
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
   if (args.out_given && args.out.empty())
     throw InputError("--out: empty path; expected a directory (default out/<scene name>)");
-  const std::filesystem::path out =
-      args.out_given ? std::filesystem::path(args.out) : std::filesystem::path("out") / scene.name;
+  const std::filesystem::path out = args.out_given ? std::filesystem::path(args.out)
+                                                   : std::filesystem::path("out") /
+                                                         prepared.scene.name;
   try {
-    integrators::prepare_output_dir(out);
+    io::prepare_output_dir(out);
   } catch (const std::invalid_argument& e) {
     throw InputError("--out " + out.string() + ": " + e.what());
   }
-  try {
-    check_initial_state(*scene.system);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(args.scene + ": " + e.what());
-  }
-  std::vector<std::string> warnings =
-      step_warnings(*scene.system, scene.run, scene.record_step);
 
-  integrators::Recorder recorder(*scene.system, scene.output.sample_dt);
-  ProgressBar bar(scene.system->initial_time(), integrators::end_time(scene.run), !args.quiet);
-  integrators::RunResult stats = integrators::integrate(
-      *scene.system, scene.run, recorder, [&bar](double t) { bar.update(t); });
+  ProgressBar bar(prepared.scene.system->initial_time(),
+                  integrators::end_time(prepared.scene.run), !args.quiet);
+  const runs::RunRecord record =
+      runs::run(std::move(prepared), [&bar](double t) { bar.update(t); });
   bar.finish();
-
-  for (auto& w : result_warnings(recorder, stats)) warnings.push_back(std::move(w));
-  stats.warnings.insert(stats.warnings.end(), warnings.begin(), warnings.end());
   try {
-    integrators::write_outputs(out, scene.name, recorder, stats);
+    runs::write_record(out, record);
   } catch (const std::runtime_error& e) {
     throw InputError(std::string("--out: ") + e.what());  // an unwritable place is bad input
   }
-  print_summary(scene, recorder, stats, out);
-  for (const auto& w : warnings) std::cerr << "nsbridge: warning: " << w << '\n';
+  print_summary(record, out);
+  const integrators::RunResult& stats = record.result;
+  // The trust checks' warnings; the integrator's own are in summary.json and events.csv.
+  const auto& warnings = record.digest.warnings;
+  for (std::size_t i = record.digest.integrator_warnings; i < warnings.size(); ++i)
+    std::cerr << "nsbridge: warning: " << warnings[i] << '\n';
   if (!integrators::succeeded(stats.status)) {
     exit_code() = 1;
   } else if (args.strict && !stats.warnings.empty()) {

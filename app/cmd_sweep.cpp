@@ -1,6 +1,6 @@
-// nsbridge sweep DESIGN.toml --out DIR [--jobs N] [--set key=value ...] [--restart] [--plot
-// [--pga-key KEY]
-//                            [--response COLUMN] [--limit VALUE]] [--plot-only]
+// nsbridge sweep DESIGN.toml --out DIR [--jobs N] [--set key=value ...] [--restart]
+//                            [--plot [--pga-key KEY] [--response COLUMN] [--limit VALUE]
+//                                    [--gnuplot PATH]] [--plot-only]
 //
 // Expands a design file (docs/sweep.md) into runs of one scene, runs them on --jobs threads
 // (or, started by mpirun, on every rank), writes each run's outputs to DIR/runs/<id>/ and one
@@ -86,6 +86,8 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--response", args->plots.response, "results.csv column to plot")
       ->capture_default_str();
   cmd->add_option("--limit", args->plots.limit, "Exceedance limit of the response [rad]")
+      ->capture_default_str();
+  cmd->add_option("--gnuplot", args->plots.gnuplot, "gnuplot executable (on PATH or a path)")
       ->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

@@ -11,6 +11,7 @@
 #include "integrators/compliance.hpp"
 #include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
+#include "io/build_info.hpp"
 #include "models/scene.hpp"
 
 #include <CLI/CLI.hpp>
@@ -23,6 +24,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace {
@@ -163,7 +165,8 @@ int main(int argc, char** argv) {
   const auto law = nsb::integrators::parse_damping_law(law_name);
   const double e_eff = nsb::integrators::hunt_crossley_restitution(
       nsb::integrators::damping_factor(law, restitution));
-  std::printf("compliance_bench: build %s, revision %s\n", NSB_BUILD_TYPE, NSB_GIT_REVISION);
+  std::printf("compliance_bench: build %s, revision %s\n", NSB_BUILD_TYPE,
+              nsb::io::build_info().revision.c_str());
   std::printf("scene %s, law %s, e_set %.3f, e_effective %.6f\n", scene.c_str(),
               law_name.c_str(), restitution, e_eff);
   if (!history_dir.empty()) std::filesystem::create_directories(history_dir);
@@ -174,6 +177,14 @@ int main(int argc, char** argv) {
     base.push_back("solver.end_time=" + number(end_time));
     reference_overrides.push_back("solver.end_time=" + number(end_time));
   }
+  // The scene's [solver] settings as read for each method.
+  const auto with_method = [](std::vector<std::string> o, const std::string& method) {
+    o.push_back("solver.method=" + method);
+    return o;
+  };
+  const auto moreau_overrides = with_method(reference_overrides, "moreau");
+  const auto event_overrides = with_method(reference_overrides, "event_driven");
+  const auto compliance_overrides = with_method(base, "compliance");
 
   std::ofstream out(csv);
   out << "method,law,e_set,e_effective,factor,stiffness,wall_time_median,cpu_time_median,steps,rejected_steps,"
@@ -198,11 +209,12 @@ int main(int argc, char** argv) {
     RunResult st;
     Recorder keep(*nsb::models::load_scene(scene, reference_overrides).system, 0.0);
     for (int r = 0; r < repeat; ++r) {
-      auto sc = nsb::models::load_scene(scene, reference_overrides);
+      auto sc = nsb::models::load_scene(scene, moreau_overrides);
+      const auto& read = std::get<nsb::integrators::MoreauJeanOptions>(sc.run);
       nsb::integrators::MoreauJeanOptions o;
-      o.end_time = sc.solver.end_time;
+      o.end_time = read.end_time;
       o.step = reference_step;
-      o.theta = sc.solver.theta;
+      o.theta = read.theta;
       Recorder rec(*sc.system, sc.output.sample_dt);
       const double c0 = cpu_seconds();
       st = nsb::integrators::moreau_jean(*sc.system, o, rec);
@@ -221,11 +233,12 @@ int main(int argc, char** argv) {
   }
   // Coarser Moreau–Jean runs, for the work-precision comparison.
   for (double h : {1e-3, 3e-4}) {
-    auto sc = nsb::models::load_scene(scene, reference_overrides);
+    auto sc = nsb::models::load_scene(scene, moreau_overrides);
+    const auto& read = std::get<nsb::integrators::MoreauJeanOptions>(sc.run);
     nsb::integrators::MoreauJeanOptions o;
-    o.end_time = sc.solver.end_time;
+    o.end_time = read.end_time;
     o.step = h;
-    o.theta = sc.solver.theta;
+    o.theta = read.theta;
     Recorder rec(*sc.system, sc.output.sample_dt);
     const double c0 = cpu_seconds();
     const RunResult st = nsb::integrators::moreau_jean(*sc.system, o, rec);
@@ -238,10 +251,11 @@ int main(int argc, char** argv) {
         first_pounding(rec));
   }
   if (event_driven) {
-    auto sc = nsb::models::load_scene(scene, reference_overrides);
+    auto sc = nsb::models::load_scene(scene, event_overrides);
+    const auto& read = std::get<nsb::integrators::EventDrivenOptions>(sc.run);
     nsb::integrators::EventDrivenOptions o;
-    o.end_time = sc.solver.end_time;
-    o.tolerance = sc.solver.tolerance;
+    o.end_time = read.end_time;
+    o.tolerance = read.tolerance;
     Recorder rec(*sc.system, sc.output.sample_dt);
     const double c0 = cpu_seconds();
     const RunResult st = nsb::integrators::event_driven(*sc.system, o, rec);
@@ -263,12 +277,13 @@ int main(int argc, char** argv) {
     Pounding p;
     double k = 0.0;
     for (int r = 0; r < repeat; ++r) {
-      auto sc = nsb::models::load_scene(scene, base);
+      auto sc = nsb::models::load_scene(scene, compliance_overrides);
+      const auto& read = std::get<nsb::integrators::ComplianceOptions>(sc.run);
       nsb::integrators::ComplianceOptions o;
-      o.end_time = sc.solver.end_time;
-      o.tolerance = tolerance > 0.0 ? tolerance : sc.solver.tolerance;
-      o.stiffness = k = sc.solver.contact_stiffness * factor;
-      o.stick_slip_velocity = sc.solver.stick_slip_velocity;
+      o.end_time = read.end_time;
+      o.tolerance = tolerance > 0.0 ? tolerance : read.tolerance;
+      o.stiffness = k = read.stiffness * factor;
+      o.stick_slip_velocity = read.stick_slip_velocity;
       o.law = law;
       Recorder rec(*sc.system, 0.0);
       const double c0 = cpu_seconds();

@@ -7,6 +7,7 @@
 //
 // Usage: event_alloc_bench [SCENE.toml [T]]     default: scenes/bridge-exc7.toml, T = 20 s
 #include "integrators/run.hpp"
+#include "io/build_info.hpp"
 #include "models/scene.hpp"
 
 #include <atomic>
@@ -97,7 +98,7 @@ int main(int argc, char** argv) {
   }
   std::printf("event_alloc_bench: %s, event-driven, windows %g s and %g s\n",
               scene.string().c_str(), t, 2.0 * t);
-  std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, NSB_GIT_REVISION);
+  std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, nsb::io::build_info().revision.c_str());
   const Count a = run(scene, t), b = run(scene, 2.0 * t);
   std::printf("window %6.2f s: %6zu events, %8ld allocations\n", t, a.events, a.allocations);
   std::printf("window %6.2f s: %6zu events, %8ld allocations\n", 2.0 * t, b.events,

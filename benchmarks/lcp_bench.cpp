@@ -7,6 +7,7 @@
 // problems with the same tolerance, and the ratio ours / theirs of the median times is printed.
 //
 // Usage: lcp_bench [--quick] [--csv FILE]   (CSV default: lcp_bench.csv in the working dir)
+#include "io/build_info.hpp"
 #include "lcp/frictional.hpp"
 #include "lcp/lemke.hpp"
 #include "lcp/newton_fb.hpp"
@@ -414,7 +415,7 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("lcp_bench: build type %s, git revision %s, tolerance %g, Siconos %s\n",
-              NSB_BUILD_TYPE, NSB_GIT_REVISION, kTolerance,
+              NSB_BUILD_TYPE, nsb::io::build_info().revision.c_str(), kTolerance,
 #ifdef NSB_HAVE_SICONOS
               "linked"
 #else

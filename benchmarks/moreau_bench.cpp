@@ -7,6 +7,7 @@
 //   moreau_bench [repeats = 3] [csv = moreau_bench.csv] [excitation = all (1..7)]
 //                [step = both (1e-4 and 1e-3)]
 #include "integrators/moreau_jean.hpp"
+#include "io/build_info.hpp"
 #include "models/scene.hpp"
 
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include <ctime>
 #include <fstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 int main(int argc, char** argv) {
@@ -38,7 +40,7 @@ int main(int argc, char** argv) {
   const std::vector<double> steps =
       only_step > 0.0 ? std::vector<double>{only_step} : std::vector<double>{1e-4, 1e-3};
   std::printf("moreau_bench: Moreau-Jean on the benchmark bridge, %d repeats (median)\n", repeats);
-  std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, NSB_GIT_REVISION);
+  std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, nsb::io::build_info().revision.c_str());
   std::ofstream csv(csv_path);
   csv << "excitation,step,duration,steps,steps_with_lcp,lcp_share,wall_median,wall_min,"
          "wall_per_simulated_second,speedup,cpu_median,cpu_speedup,peak_rotation,energy_error\n";
@@ -55,12 +57,13 @@ int main(int argc, char** argv) {
       double peak_rotation = 0.0;
       double duration = 0.0;
       for (int r = 0; r < repeats; ++r) {
-        models::Scene scene = models::load_scene(scene_file);
+        models::Scene scene = models::load_scene(scene_file, {"solver.method=moreau"});
         integrators::Recorder rec(*scene.system, scene.output.sample_dt);
+        const auto& read = std::get<integrators::MoreauJeanOptions>(scene.run);
         integrators::MoreauJeanOptions o;
-        o.end_time = scene.solver.end_time;
+        o.end_time = read.end_time;
         o.step = h;
-        o.theta = scene.solver.theta;
+        o.theta = read.theta;
         duration = o.end_time - scene.system->initial_time();
         const auto start = std::chrono::steady_clock::now();
         const std::clock_t cpu_start = std::clock();

@@ -8,6 +8,7 @@
 // The MPI counterpart is benchmarks/sweep_mpi_bench.sh.
 //
 //   sweep_bench [repeats = 3] [csv = sweep_bench.csv] [end_time = scene's] [workers = all cores]
+#include "io/build_info.hpp"
 #include "sweep/runner.hpp"
 
 #include <algorithm>
@@ -50,7 +51,8 @@ int main(int argc, char** argv) {
   std::printf("sweep_bench: %s, 1 and %d workers (%d cores), %d repeats (median)%s%s\n",
               design.c_str(), workers, cores, repeats, end_time.empty() ? "" : ", end_time ",
               end_time.c_str());
-  std::printf("build %s, revision %s, load average before %.2f\n", NSB_BUILD_TYPE, NSB_GIT_REVISION,
+  std::printf("build %s, revision %s, load average before %.2f\n", NSB_BUILD_TYPE,
+              nsb::io::build_info().revision.c_str(),
               load_average());
   const fs::path scratch = fs::temp_directory_path() / "nsb_sweep_bench";
   std::ofstream csv(csv_path);

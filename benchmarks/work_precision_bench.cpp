@@ -9,6 +9,7 @@
 #include "integrators/event_driven.hpp"
 #include "integrators/compliance.hpp"
 #include "integrators/moreau_jean.hpp"
+#include "io/build_info.hpp"
 #include "models/scene.hpp"
 #include "models/simple_systems.hpp"
 
@@ -148,7 +149,8 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  std::printf("work_precision_bench: build %s, revision %s\n", NSB_BUILD_TYPE, NSB_GIT_REVISION);
+  std::printf("work_precision_bench: build %s, revision %s\n", NSB_BUILD_TYPE,
+              nsb::io::build_info().revision.c_str());
   std::filesystem::create_directories(out);
 
   std::vector<double> tolerances{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};

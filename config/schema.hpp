@@ -4,7 +4,7 @@
 //   - validate() checks every field's range and names the key when it fails,
 //   - the scene reader (models/scene_reader.hpp) reads and checks every key with its file, line
 //     and column,
-//   - the tables of docs/scenes.md are generated (config/docs.hpp),
+//   - the tables of docs/scenes.md are generated (models/scene_docs.hpp),
 // so a key, its unit and its range are written in exactly one place.
 //
 //   struct MoreauJeanOptions {

@@ -1,14 +1,9 @@
 #include "integrators/compliance.hpp"
 
-// Only the coefficient table of Odeint's rosenbrock4 (Hairer & Wanner's RODAS 4(3)) is
-// used: its stepper is built on uBLAS, whose storage in Boost 1.74 calls
-// std::allocator::construct, removed in C++20, so it cannot be instantiated here. The
-// stepper and controller below are the same algorithm on Eigen vectors.
-#include <boost/numeric/odeint/stepper/rosenbrock4.hpp>
+#include "integrators/rosenbrock.hpp"
+#include "integrators/run_bookkeeping.hpp"
 
 #include <algorithm>
-#include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -69,7 +64,6 @@ class Core {
     damping_part_ = Vector::Zero(m_);
     chi_ = Vector::Zero(m_);
     v_minus_ = Vector::Constant(m_, opt_.min_impact_velocity);
-    dxdt_plus_ = State::Zero(2 * n_);
   }
 
   int dofs() const { return n_; }
@@ -189,107 +183,6 @@ class Core {
   std::vector<ContactData> contacts_;
   Vector lambda_n_, lambda_t_, damping_part_;
   Vector chi_, v_minus_;
-  State dxdt_plus_;
-};
-
-// One RODAS 4(3) step (Hairer & Wanner 1996, "Solving ODEs II", §IV.7; the coefficients of
-// Odeint's rosenbrock4): six stages with one LU of (I / (gamma h) - J) per step, an embedded
-// third-order solution for the error estimate, and Odeint's controller (the error norm is
-// the RMS of err_i / (atol + rtol max(|x_old,i|, |x_new,i|)); step factor in [1/5, 6]
-// with safety 0.9 and Gustafsson's predictive control).
-class Rodas {
- public:
-  Rodas(Core& core, double atol, double rtol, double max_dt)
-      : core_(core), atol_(atol), rtol_(rtol), max_dt_(max_dt) {
-    const Eigen::Index n = 2 * core.dofs();
-    for (State* v : {&dxdt_, &dfdt_, &g1_, &g2_, &g3_, &g4_, &g5_, &xtmp_, &dxdtnew_, &xerr_}) {
-      *v = State::Zero(n);
-    }
-    jac_ = JacobianMatrix::Zero(n, n);
-    lu_ = Eigen::PartialPivLU<JacobianMatrix>(n);
-  }
-
-  // Tries a step of size dt from (t, x). On success writes xout, advances t and proposes the
-  // next dt; on failure proposes a smaller dt. Mirrors odeint::rosenbrock4_controller.
-  bool try_step(const State& x, double& t, State& xout, double& dt) {
-    do_step(x, t, xout, dt);
-    double err = 0.0;
-    for (Eigen::Index i = 0; i < x.size(); ++i) {
-      const double sk = atol_ + rtol_ * std::max(std::abs(x[i]), std::abs(xout[i]));
-      err += xerr_[i] * xerr_[i] / (sk * sk);
-    }
-    err = std::sqrt(err / static_cast<double>(x.size()));
-    if (!std::isfinite(err)) {
-      dt *= kMinFactor;
-      last_rejected_ = true;
-      return false;
-    }
-    constexpr double safe = 0.9, fac1 = 5.0, fac2 = 1.0 / 6.0;
-    double fac = std::max(fac2, std::min(fac1, std::pow(err, 0.25) / safe));
-    double dt_new = dt / fac;
-    if (err <= 1.0) {
-      if (!first_step_) {
-        double fac_pred = (dt_old_ / dt) * std::pow(err * err / err_old_, 0.25) / safe;
-        fac_pred = std::max(fac2, std::min(fac1, fac_pred));
-        fac = std::max(fac, fac_pred);
-        dt_new = dt / fac;
-      }
-      first_step_ = false;
-      dt_old_ = dt;
-      err_old_ = std::max(0.01, err);
-      if (last_rejected_) dt_new = std::min(dt_new, dt);
-      t += dt;
-      dt = std::min(max_dt_, dt_new);
-      last_rejected_ = false;
-      return true;
-    }
-    dt = dt_new;
-    last_rejected_ = true;
-    return false;
-  }
-
- private:
-  static constexpr double kMinFactor = 0.25;  // step cut after a non-finite error estimate
-
-  void do_step(const State& x, double t, State& xout, double dt) {
-    const auto& c = coef_;
-    core_.rhs_and_jacobian(x, t, dxdt_, jac_, dfdt_);
-    jac_ *= -1.0;
-    jac_.diagonal().array() += 1.0 / (c.gamma * dt);
-    lu_.compute(jac_);
-    g1_ = dxdt_ + dt * c.d1 * dfdt_;
-    g1_ = lu_.solve(g1_);
-    xtmp_ = x + c.a21 * g1_;
-    core_.rhs(xtmp_, dxdtnew_, t + c.c2 * dt);
-    g2_ = dxdtnew_ + dt * c.d2 * dfdt_ + c.c21 * g1_ / dt;
-    g2_ = lu_.solve(g2_);
-    xtmp_ = x + c.a31 * g1_ + c.a32 * g2_;
-    core_.rhs(xtmp_, dxdtnew_, t + c.c3 * dt);
-    g3_ = dxdtnew_ + dt * c.d3 * dfdt_ + (c.c31 * g1_ + c.c32 * g2_) / dt;
-    g3_ = lu_.solve(g3_);
-    xtmp_ = x + c.a41 * g1_ + c.a42 * g2_ + c.a43 * g3_;
-    core_.rhs(xtmp_, dxdtnew_, t + c.c4 * dt);
-    g4_ = dxdtnew_ + dt * c.d4 * dfdt_ + (c.c41 * g1_ + c.c42 * g2_ + c.c43 * g3_) / dt;
-    g4_ = lu_.solve(g4_);
-    xtmp_ = x + c.a51 * g1_ + c.a52 * g2_ + c.a53 * g3_ + c.a54 * g4_;
-    core_.rhs(xtmp_, dxdtnew_, t + dt);
-    g5_ = dxdtnew_ + (c.c51 * g1_ + c.c52 * g2_ + c.c53 * g3_ + c.c54 * g4_) / dt;
-    g5_ = lu_.solve(g5_);
-    xtmp_ += g5_;
-    core_.rhs(xtmp_, dxdtnew_, t + dt);
-    xerr_ = dxdtnew_ + (c.c61 * g1_ + c.c62 * g2_ + c.c63 * g3_ + c.c64 * g4_ + c.c65 * g5_) / dt;
-    xerr_ = lu_.solve(xerr_);
-    xout = xtmp_ + xerr_;
-  }
-
-  Core& core_;
-  const boost::numeric::odeint::default_rosenbrock_coefficients<double> coef_;
-  double atol_, rtol_, max_dt_;
-  bool first_step_ = true, last_rejected_ = false;
-  double err_old_ = 0.0, dt_old_ = 0.0;
-  State dxdt_, dfdt_, g1_, g2_, g3_, g4_, g5_, xtmp_, dxdtnew_, xerr_;
-  JacobianMatrix jac_;
-  Eigen::PartialPivLU<JacobianMatrix> lu_;
 };
 
 bool finite(const State& x) { return x.allFinite(); }
@@ -307,37 +200,37 @@ class ComplianceRun {
  public:
   ComplianceRun(System& system, const ComplianceOptions& options, Recorder& recorder,
                 const Progress& progress)
-      : system_(system), options_(options), recorder_(recorder), progress_(progress),
+      : system_(system), options_(options), recorder_(recorder),
+        book_(ComplianceOptions::kMethod, progress, kProgressInterval),
         core_(system, options),
         n_(core_.dofs()), m_(core_.contacts()),
         closed_(static_cast<std::size_t>(m_), 0), pending_(static_cast<std::size_t>(m_), 0),
-        stepper_(core_, options.tolerance, options.tolerance, options.max_step) {}
+        stepper_(core_, 2 * core_.dofs(), options.tolerance, options.tolerance, options.max_step) {}
 
   RunResult integrate() {
-    const auto wall_start = std::chrono::steady_clock::now();
-    stats_.method = "compliance";
+    RunResult& stats = book_.result();
     start();
     double dt = std::min(options_.initial_step, options_.max_step);
     const double time_scale = std::max(1.0, std::abs(options_.end_time));
     while (t_ < options_.end_time) {
-      if (stats_.steps + stats_.rejected_steps >= options_.max_steps) {
-        stats_.message = "max_steps reached";
+      if (stats.steps + stats.rejected_steps >= options_.max_steps) {
+        stats.message = "max_steps reached";
         break;
       }
       dt = std::min({dt, options_.end_time - t_, target_ - t_});
       if (dt < kMinRelativeStep * std::max(1.0, std::abs(t_))) {
         std::ostringstream os;
         os << "step size underflow at t = " << t_;
-        stats_.message = os.str();
+        stats.message = os.str();
         break;
       }
       const double dt_try = dt;
       double t_new = t_;
-      ++stats_.factorizations;
+      ++stats.factorizations;
       const bool ok = stepper_.try_step(x_, t_new, xnew_, dt);
       if (!ok || !finite(xnew_)) {
         if (ok) dt = 0.5 * dt_try;  // a finite error estimate but a non-finite state: halve
-        ++stats_.rejected_steps;
+        ++stats.rejected_steps;
         continue;
       }
       // Landing exactly on the end time or the closure target must not be missed by
@@ -351,27 +244,20 @@ class ComplianceRun {
         // Retake the step so that it ends at the closure: contact onset is a step boundary.
         target_ = closure.time;
         dt = closure.time - t_;
-        ++stats_.rejected_steps;
+        ++stats.rejected_steps;
         continue;
       }
       accept_step(t_new, landed, closure.at_start);
-      if (progress_ && stats_.steps % kProgressInterval == 0) progress_(t_);
+      book_.progress_at_interval(t_);
     }
-    if (progress_) progress_(t_);
-    stats_.completed = (t_ >= options_.end_time);
-    stats_.end_time = t_;
-    stats_.energy = energy_;
+    const bool completed = t_ >= options_.end_time;
     recorder_.sample_now(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_,
                          core_.lambda_t_, energy_.error);
-    if (!stats_.completed && stats_.message.empty()) stats_.message = "stopped before end_time";
+    if (!completed && stats.message.empty()) stats.message = "stopped before end_time";
     // A non-finite state is never accepted (the step is halved), so a run that cannot advance
     // past one ends in a step underflow: stalled, like max_steps. A non-finite energy balance
     // is divergence.
-    finish_status(stats_, !std::isfinite(energy_.error), !stats_.completed);
-    if (!succeeded(stats_.status)) stats_.failure_time = t_;
-    stats_.wall_time =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    return stats_;
+    return book_.finish(t_, completed, energy_, nullptr);
   }
 
  private:
@@ -520,7 +406,7 @@ class ComplianceRun {
     const double h = t_new - t_;
     x_ = xnew_;
     t_ = t_new;
-    ++stats_.steps;
+    book_.count_step();
     core_.evaluate(t_, x_, false);
     system_.commit();
     const bool closed_now = record_closures(landed, close_at_start);
@@ -586,13 +472,12 @@ class ComplianceRun {
   System& system_;
   const ComplianceOptions& options_;
   Recorder& recorder_;
-  const Progress& progress_;
+  RunBookkeeping book_;
   Core core_;
   int n_, m_;
   // Per-contact state of the gap elements: closed, and located to close at the target time.
   std::vector<char> closed_, pending_;
-  Rodas stepper_;
-  RunResult stats_;
+  Rosenbrock4<Core> stepper_;
   EnergyBalance energy_;
   Powers p_old_;
   double t_ = 0.0;
@@ -601,95 +486,6 @@ class ComplianceRun {
 };
 
 }  // namespace
-
-std::string_view to_string(DampingLaw law) {
-  for (const auto& n : kDampingLawNames) {
-    if (n.value == law) return n.name;
-  }
-  return "unknown";
-}
-
-const std::vector<std::string>& damping_law_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> v;
-    for (const auto& n : kDampingLawNames) v.emplace_back(n.name);
-    return v;
-  }();
-  return names;
-}
-
-DampingLaw parse_damping_law(std::string_view name) {
-  for (const auto& n : kDampingLawNames) {
-    if (n.name == name) return n.value;
-  }
-  throw std::invalid_argument("damping_law: '" + std::string(name) +
-                              "' is not one of hertzdamp, flores, hunt_crossley_exact");
-}
-
-double hunt_crossley_restitution(double chi) {
-  if (!(chi >= 0.0) || !std::isfinite(chi)) {
-    throw std::invalid_argument("hunt_crossley_restitution: chi must be finite and >= 0");
-  }
-  if (chi == 0.0) return 1.0;
-  // psi(e) = 1 - chi e - (1 + chi) exp(-chi (1 + e)) is > 0 at e = 0 and < 0 at
-  // e = min(1, 1/chi) (docs/compliance.md); its root there is the restitution.
-  const auto psi = [chi](double e) { return 1.0 - chi * e - (1.0 + chi) * std::exp(-chi * (1.0 + e)); };
-  double lo = 0.0, hi = std::min(1.0, 1.0 / chi);
-  for (int it = 0; it < 200 && hi - lo > 1e-16; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (psi(mid) > 0.0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
-double damping_factor(DampingLaw law, double restitution) {
-  if (!(restitution >= 0.0 && restitution <= 1.0)) {
-    throw std::invalid_argument("damping_factor: restitution must be in [0, 1]");
-  }
-  const double e = std::max(restitution, kMinLawRestitution);
-  switch (law) {
-    case DampingLaw::kHertzDamp: return 0.75 * (1.0 - restitution * restitution);
-    case DampingLaw::kFlores: return 8.0 * (1.0 - e) / (5.0 * e);
-    case DampingLaw::kHuntCrossleyExact: {
-      if (e >= 1.0) return 0.0;
-      // Invert hunt_crossley_restitution: e(chi) decreases from 1 (chi = 0) towards 0, and
-      // e(chi) < 1/chi, so the root lies in (0, 1/e]. Bisection in log(chi) (the range
-      // spans decades).
-      double lo = 1e-12, hi = 1.0 / e;
-      for (int it = 0; it < 200 && hi / lo - 1.0 > 1e-15; ++it) {
-        const double mid = std::sqrt(lo * hi);
-        (hunt_crossley_restitution(mid) > e ? lo : hi) = mid;
-      }
-      return std::sqrt(lo * hi);
-    }
-  }
-  return 0.0;
-}
-
-NormalForce hertz_damp_force(double k, double chi, double v_minus, double delta,
-                             double delta_rate) {
-  NormalForce r;
-  if (!(delta > 0.0)) return r;
-  const double root = std::sqrt(delta);
-  const double spring = k * delta * root;             // k delta^1.5
-  const double factor = 1.0 + chi * delta_rate / v_minus;
-  const double force = spring * factor;
-  if (force <= 0.0) return r;  // no adhesion: the dashpot cannot pull
-  r.force = force;
-  r.d_penetration = 1.5 * k * root * factor;
-  r.d_rate = spring * chi / v_minus;
-  return r;
-}
-
-TangentForce regularized_coulomb(double mu, double lambda_n, double slip_rate, double eps_v) {
-  TangentForce r;
-  const double x = slip_rate / eps_v;
-  const double sat = std::clamp(x, -1.0, 1.0);
-  r.force = -mu * lambda_n * sat;
-  r.d_normal = -mu * sat;
-  r.d_slip = (std::abs(x) < 1.0) ? -mu * lambda_n / eps_v : 0.0;
-  return r;
-}
 
 RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder,
                      const Progress& progress) {

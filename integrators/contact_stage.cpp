@@ -7,16 +7,6 @@
 
 namespace nsb::integrators {
 
-std::string_view to_string(ContactStatus s) {
-  switch (s) {
-    case ContactStatus::kSolved: return "solved";
-    case ContactStatus::kSolvedByFallback: return "solved_by_fallback";
-    case ContactStatus::kUnsolved: return "unsolved";
-    case ContactStatus::kNonFiniteInput: return "non_finite_input";
-  }
-  return "unknown";
-}
-
 void ContactStageOptions::validate() const {
   if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
     throw std::invalid_argument("ContactStageOptions.tolerance must be a finite number > 0");

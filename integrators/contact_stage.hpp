@@ -26,7 +26,6 @@
 
 #include <cstdint>
 #include <limits>
-#include <string_view>
 #include <vector>
 
 namespace nsb::integrators {
@@ -72,7 +71,6 @@ enum class ContactStatus {
                       //   the impulses are the last finite answer, or zero
   kNonFiniteInput,    // the problem's data were not finite; nothing was solved, impulses zero
 };
-std::string_view to_string(ContactStatus s);
 
 struct ContactStageOptions {
   lcp::Solver solver = lcp::Solver::kLemke;  // the configured solver, first in the chain
@@ -119,10 +117,8 @@ class ContactStage {
   void apply(Vector& v) const { kinematics_.apply(impulses(), v); }
 
   const lcp::FrictionalResult& result() const { return *result_; }
-  const lcp::FrictionalProblem& problem() const { return *problem_; }
   const ContactKinematics& kinematics() const { return kinematics_; }
   const ContactStageCounts& counts() const { return counts_; }
-  const ContactStageOptions& options() const { return options_; }
 
  private:
   bool accept(const lcp::FrictionalResult& r) const;

@@ -1,12 +1,11 @@
 #include "integrators/moreau_jean.hpp"
 
 #include "integrators/contact_stage.hpp"
+#include "integrators/run_bookkeeping.hpp"
 
 #include <Eigen/LU>
 
-#include <chrono>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -23,8 +22,6 @@ constexpr double kMaxSteps = 1e10;
 // Unsolved contact problems reported one by one (events and RunResult::warnings); more are
 // only counted, so a persistently failing solver cannot flood the outputs.
 constexpr std::int64_t kMaxWarnings = 100;
-// Number of lcp::Status values (kNotRun .. kTooLarge), for allocation-free counting.
-constexpr int kStatusCount = static_cast<int>(lcp::Status::kTooLarge) + 1;
 // Accepted steps between two calls of the progress callback.
 constexpr std::int64_t kProgressInterval = 4096;
 
@@ -86,6 +83,10 @@ class MoreauJean {
  private:
   void factorize(double h);
   bool step(double h, double t1);  // false when the step failed (non-finite state)
+  void free_velocity(double h);
+  void select_index_set(double h);
+  void accumulate_impulse_work();
+  bool accept(double h, double t1);  // false for a non-finite force or energy
   bool solve_contacts(double t1);   // false for a non-finite contact problem
   bool diverge(double t1, const std::string& what);
   void update_events(double t1);
@@ -96,7 +97,6 @@ class MoreauJean {
   System& system_;
   const MoreauJeanOptions& options_;
   Recorder& recorder_;
-  const Progress& progress_;
   const Matrix& mass_;
   int n_ = 0;  // degrees of freedom
   int m_ = 0;  // potential contacts
@@ -130,9 +130,7 @@ class MoreauJean {
   EnergyBalance energy_;
   PowerTerms power_k_;
 
-  RunResult stats_;
-  bool diverged_ = false;
-  double first_failure_ = std::numeric_limits<double>::quiet_NaN();  // [s]
+  RunBookkeeping book_;
   double last_sample_t_ = -1e300;
 };
 
@@ -141,11 +139,11 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
     : system_(system),
       options_(options),
       recorder_(recorder),
-      progress_(progress),
       mass_(system.mass()),
       n_(system.dofs()),
       m_(system.contacts()),
-      theta_(options.theta) {
+      theta_(options.theta),
+      book_(MoreauJeanOptions::kMethod, progress, kProgressInterval) {
   options.validate();
   checked_inverse_mass(system, "moreau_jean");
   t_ = system.initial_time();
@@ -202,7 +200,6 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   const EnergyState e0 = system_.energy(t_, q_);
   mu_tmp_.noalias() = mass_ * u_;
   energy_.initial = 0.5 * u_.dot(mu_tmp_) + e0.stored;
-  stats_.method = "moreau";
 }
 
 // A = M + h theta C + h^2 theta^2 K (Acary & Brogliato 2008, ch. 10), and its inverse,
@@ -217,104 +214,59 @@ void MoreauJean::factorize(double h) {
   has_stiffness_ = !K_.isZero(0.0);
   h_factored_ = h;
   refactor_ = false;
-  ++stats_.factorizations;
+  ++book_.result().factorizations;
 }
 
 RunResult MoreauJean::run() {
-  const auto start = std::chrono::steady_clock::now();
   const double t0 = t_;
   const double h = options_.step;
   const double duration = options_.end_time - t0;
   const auto steps = static_cast<std::int64_t>(std::ceil(duration / h - kTimeSlack));
 
   sample(true);
-  stats_.completed = true;
+  bool completed = true;
   for (std::int64_t k = 0; k < steps; ++k) {
     const bool last = (k + 1 == steps);
     const double t1 = last ? options_.end_time : t0 + static_cast<double>(k + 1) * h;
     // Keep the nominal h (and its factorization) unless the last step is really shorter.
     const double hk = (last && std::abs((t1 - t_) - h) > kTimeSlack * h) ? t1 - t_ : h;
     if (!step(hk, t1)) {
-      stats_.completed = false;
+      completed = false;
       break;
     }
     sample(last);
-    if (progress_ && (stats_.steps % kProgressInterval == 0)) progress_(t_);
+    book_.progress_at_interval(t_);
   }
-  if (progress_) progress_(t_);
-  if (stats_.completed) {
-    stats_.message = "reached end_time";
+  if (completed) {
+    book_.result().message = "reached end_time";
   } else if (last_sample_t_ != t_) {
     sample(true);
   }
-
   // The final energy balance.
-  mu_tmp_.noalias() = mass_ * u_;
-  const EnergyState e = system_.energy(t_, q_);
-  energy_.kinetic = 0.5 * u_.dot(mu_tmp_);
-  energy_.stored = e.stored;
-  energy_.hysteretic = e.hysteretic;
-  energy_.close();
-  stats_.energy = energy_;
-  stats_.end_time = t_;
-  const ContactStageCounts& counts = stage_.counts();
-  stats_.lcp_solves = counts.solves;
-  stats_.lcp_fallbacks = counts.fallbacks;
-  stats_.lcp_unsolved = counts.unsolved;
-  for (int s = 0; s < kStatusCount; ++s) {
-    if (counts.by_status[s] > 0) {
-      stats_.lcp_status[std::string(lcp::to_string(static_cast<lcp::Status>(s)))] =
-          counts.by_status[s];
-    }
-  }
-  if (!diverged_ && !std::isfinite(energy_.error)) {
+  const double error = energy_error();
+  if (!book_.diverged() && !std::isfinite(error)) {
     diverge(t_, "non-finite energy balance");
   }
-  finish_status(stats_, diverged_, false);
-  if (!succeeded(stats_.status)) stats_.failure_time = first_failure_;
-  stats_.wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return stats_;
+  return book_.finish(t_, completed, energy_, &stage_.counts());
 }
 
 bool MoreauJean::diverge(double t1, const std::string& what) {
   system_.revert();
-  diverged_ = true;
-  if (std::isnan(first_failure_)) first_failure_ = t1;
-  stats_.message = what + " at t = " + format_number(t1) +
-                   " s (the step or the model's forces are unstable)";
-  recorder_.event(t1, 0, EventKind::kWarning, stats_.message);
-  stats_.warnings.push_back(stats_.message);
+  book_.diverge(t1);
+  RunResult& r = book_.result();
+  r.message = what + " at t = " + format_number(t1) +
+              " s (the step or the model's forces are unstable)";
+  recorder_.event(t1, 0, EventKind::kWarning, r.message);
+  r.warnings.push_back(r.message);
   return false;
 }
 
 bool MoreauJean::step(double h, double t1) {
   if (refactor_ || h != h_factored_) factorize(h);
-
-  // Free velocity: the theta-method with the smooth force linearised about (q_k, u_k),
-  //   A (u_free - u_k) = h [(1-theta) f_k + theta f(t_k+1, q_k, u_k)] - h^2 theta K u_k.
   system_.forces(t1, q_, u_, f_pred_);
   if (!all_finite(f_pred_)) return diverge(t1, "non-finite smooth force");
-  combine(h * (1.0 - theta_), f_k_, h * theta_, f_pred_, rhs_);
-  if (has_stiffness_) add_product(-(h * h * theta_), K_, u_, rhs_);
-  copy(u_, u_free_);
-  add_product(1.0, A_inv_, rhs_, u_free_);
-
-  // Index set: contacts closed or closing within the step, g_N + (h/2) gdot_N <= 0, with
-  // g_N and gdot_N at t_k (Acary & Brogliato 2008, ch. 10; Siconos uses the same rule). The
-  // comparison allows the round-off of g_N (ContactTolerances::gap), so that a resting
-  // contact whose gap came out at +1e-17 m is not dropped for one step.
-  const double gap_slack = ContactTolerances::gap(q_);
-  active_.clear();
-  for (int i = 0; i < m_; ++i) {
-    const ContactData& c = contacts_[static_cast<std::size_t>(i)];
-    in_index_set_[static_cast<std::size_t>(i)] = 0;
-    if (c.far) continue;
-    if (c.gap_normal + 0.5 * h * gap_rate(c, u_) <= gap_slack) {
-      in_index_set_[static_cast<std::size_t>(i)] = 1;
-      active_.push_back(i);
-    }
-  }
+  free_velocity(h);
+  select_index_set(h);
   copy(u_free_, u_new_);
   // The impulses of the previous step, if it had any, are cleared.
   if (had_impulses_) {
@@ -329,10 +281,43 @@ bool MoreauJean::step(double h, double t1) {
 
   combine(q_, h * (1.0 - theta_), u_, h * theta_, u_new_, q_new_);
   if (!all_finite(q_new_) || !all_finite(u_new_)) return diverge(t1, "non-finite state");
+  accumulate_impulse_work();
+  update_events(t1);
+  return accept(h, t1);
+}
 
-  // Work of the contact impulses on the system over the step: Lambda . W^T (u_k + u_k+1)/2,
-  // the exact change of kinetic energy they cause (Acary & Brogliato 2008, ch. 10), with the
-  // columns W the impulses acted along (those of t_k+1).
+// Free velocity: the theta-method with the smooth force linearised about (q_k, u_k),
+//   A (u_free - u_k) = h [(1-theta) f_k + theta f(t_k+1, q_k, u_k)] - h^2 theta K u_k,
+// with f(t_k+1, q_k, u_k) in f_pred_.
+void MoreauJean::free_velocity(double h) {
+  combine(h * (1.0 - theta_), f_k_, h * theta_, f_pred_, rhs_);
+  if (has_stiffness_) add_product(-(h * h * theta_), K_, u_, rhs_);
+  copy(u_, u_free_);
+  add_product(1.0, A_inv_, rhs_, u_free_);
+}
+
+// Index set: contacts closed or closing within the step, g_N + (h/2) gdot_N <= 0, with
+// g_N and gdot_N at t_k (Acary & Brogliato 2008, ch. 10; Siconos uses the same rule). The
+// comparison allows the round-off of g_N (ContactTolerances::gap), so that a resting
+// contact whose gap came out at +1e-17 m is not dropped for one step.
+void MoreauJean::select_index_set(double h) {
+  const double gap_slack = ContactTolerances::gap(q_);
+  active_.clear();
+  for (int i = 0; i < m_; ++i) {
+    const ContactData& c = contacts_[static_cast<std::size_t>(i)];
+    in_index_set_[static_cast<std::size_t>(i)] = 0;
+    if (c.far) continue;
+    if (c.gap_normal + 0.5 * h * gap_rate(c, u_) <= gap_slack) {
+      in_index_set_[static_cast<std::size_t>(i)] = 1;
+      active_.push_back(i);
+    }
+  }
+}
+
+// Work of the contact impulses on the system over the step: Lambda . W^T (u_k + u_k+1)/2,
+// the exact change of kinetic energy they cause (Acary & Brogliato 2008, ch. 10), with the
+// columns W the impulses acted along (those of t_k+1).
+void MoreauJean::accumulate_impulse_work() {
   for (int i : active_) {
     const ContactData& c = contacts_next_[static_cast<std::size_t>(i)];
     const double ln = lambda_n_[i];
@@ -340,9 +325,11 @@ bool MoreauJean::step(double h, double t1) {
     if (ln != 0.0) energy_.impacts += ln * 0.5 * (c.w_normal.dot(u_) + c.w_normal.dot(u_new_));
     if (lt != 0.0) energy_.friction += lt * 0.5 * (c.w_tangent.dot(u_) + c.w_tangent.dot(u_new_));
   }
-  update_events(t1);
+}
 
-  // Accept the step: evaluate the end state, keep its tangent if it changed, commit once.
+// Accepts the step: evaluates the end state, keeps its tangent if it changed, commits once,
+// then the contact data, the works of the smooth forces and the forces for the history.
+bool MoreauJean::accept(double h, double t1) {
   system_.forces(t1, q_new_, u_new_, f_k_);
   if (!all_finite(f_k_)) return diverge(t1, "non-finite smooth force");
   if (system_.tangent_changed()) {
@@ -353,7 +340,7 @@ bool MoreauJean::step(double h, double t1) {
   std::swap(q_, q_new_);
   std::swap(u_, u_new_);
   t_ = t1;
-  ++stats_.steps;
+  book_.count_step();
   // Only the normal part: the index set of the next step, Newton's law's gdot_N- and the
   // events read nothing else at t_k (the contact problem uses the full data of t_k+1).
   system_.contact_normals(t_, q_, u_, contacts_);
@@ -379,7 +366,7 @@ bool MoreauJean::step(double h, double t1) {
 // with W and what of the moving seats at t_k+1 (evaluated at q_k: the seats' motion is
 // prescribed, so this costs one contact_data call on steps that have an index set).
 bool MoreauJean::solve_contacts(double t1) {
-  ++stats_.steps_with_lcp;
+  ++book_.result().steps_with_lcp;
   system_.contact_data(t1, q_, u_, contacts_next_);
   active_friction_ = false;
   for (int i : active_) {
@@ -395,7 +382,7 @@ bool MoreauJean::solve_contacts(double t1) {
   const ContactStatus status = stage_.solve();
   if (status == ContactStatus::kNonFiniteInput) return false;
   if (status == ContactStatus::kUnsolved) {
-    if (std::isnan(first_failure_)) first_failure_ = t1;
+    book_.note_unsolved(t1);
     // The best finite answer of the chain is kept and flagged: a failed contact problem
     // never passes silently. Reported in full up to kMaxWarnings times, then only counted.
     if (stage_.counts().unsolved <= kMaxWarnings) {
@@ -405,7 +392,7 @@ bool MoreauJean::solve_contacts(double t1) {
                                std::string(lcp::to_string(r.status)) + ", residual " +
                                format_number(r.residual) + ")";
       recorder_.event(t1, 0, EventKind::kWarning, note);
-      stats_.warnings.push_back(note);
+      book_.result().warnings.push_back(note);
     }
   }
   stage_.apply(u_new_);

@@ -114,9 +114,6 @@ class Bridge final : public integrators::SystemBase {
   PlanarMotion seat_motion(int seat, double t) const;
   // us_dot(t): velocity of the quasi-static deck displacement (see the header comment).
   Eigen::Vector3d quasi_static_velocity(double t) const;
-  // Trial spring forces of bent j (0-based) from the last forces() call [kN].
-  double bent_force_longitudinal(int j) const { return springs_x_[static_cast<std::size_t>(j)].force(); }
-  double bent_force_transverse(int j) const { return springs_y_[static_cast<std::size_t>(j)].force(); }
 
   void forces(double t, const integrators::Vector& q, const integrators::Vector& u,
               integrators::Vector& f) override;

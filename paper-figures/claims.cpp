@@ -41,33 +41,6 @@ std::string short_number(double v) {
 
 }  // namespace
 
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream s;
-  s << std::setprecision(17) << v;
-  return s.str();
-}
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (char ch : text) {
-    switch (ch) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      default:
-        out += ch;
-    }
-  }
-  return out + "\"";
-}
-
 std::string Claim::reason() const {
   if (!failure.empty()) return "not evaluated: " + failure;
   if (checks.empty()) return "no checks";
@@ -209,6 +182,75 @@ Claim claim_c3(const std::vector<Peaks>& peaks) {
                       "factor 2 as C1)"});
   c.checks.push_back({"impacts_without_pounding", double(free_impacts), "<", 0.5,
                       "the runs without pounding must have no impact at all (gaps of 1 m)"});
+  return c;
+}
+
+namespace {
+
+std::string factor_name(double f) {
+  std::ostringstream s;
+  s << f;
+  return s.str();
+}
+
+}  // namespace
+
+Claim claim_c4(double ref, double window_end, const std::vector<CompliancePeak>& runs) {
+  Claim c{"C4",
+          "the compliance method with a large k tracks the nonsmooth result, and with "
+          "1e-4 ... 1e-2 k it underestimates the rotation"};
+  c.measured.push_back({"peak_theta_nonsmooth", ref});
+  c.measured.push_back({"window_end_s", window_end});
+  for (const auto& r : runs) {
+    const std::string f = factor_name(r.factor);
+    c.measured.push_back({"peak_theta_k" + f, r.peak});
+    if (r.factor >= 1e2) {
+      c.checks.push_back({"abs_peak_ratio_minus_1_k" + f, std::abs(r.peak / ref - 1.0), "<", 0.1,
+                          "\"tracks\": the peak within 10 %, the agreement the paper "
+                          "accepts between its analysis and the test (Fig. 6)"});
+      c.checks.push_back({"normalized_rms_difference_k" + f, r.rms_difference, "<", 0.5,
+                          "\"tracks\": the history differs by less than half its own RMS"});
+    }
+    if (r.factor <= 1e-2) {
+      c.checks.push_back(
+          {"peak_ratio_k" + f, r.peak / ref, "<", 0.9,
+           "\"underestimates\": at least 10 % below, outside the band of \"tracks\""});
+    }
+  }
+  return c;
+}
+
+FirstPounding measure_first_pounding(double factor, const std::vector<double>& ts,
+                                     const std::vector<double>& g, double t0) {
+  FirstPounding fp{factor};
+  std::size_t i = 0;
+  while (i < ts.size() && (ts[i] < t0 || g[i] >= 0)) ++i;
+  if (i == ts.size()) return fp;
+  const double start = ts[i];
+  double pen = 0.0;
+  for (; i < ts.size() && g[i] < 0; ++i) pen = std::max(pen, -g[i]);
+  if (i == ts.size()) return fp;
+  fp.penetration = pen;
+  fp.duration = ts[i] - start;
+  return fp;
+}
+
+Claim claim_c5(const std::vector<FirstPounding>& fps) {
+  Claim c{"C5", "a lower k gives deeper penetration and longer contact at the first pounding"};
+  double pen = std::numeric_limits<double>::infinity(), dur = pen;
+  for (std::size_t i = 0; i < fps.size(); ++i) {
+    c.measured.push_back({"penetration_k" + factor_name(fps[i].factor), fps[i].penetration});
+    c.measured.push_back({"duration_k" + factor_name(fps[i].factor), fps[i].duration});
+    if (i + 1 < fps.size()) {  // fps ascending in k: ratio lower-k / higher-k
+      pen = std::min(pen, fps[i].penetration / fps[i + 1].penetration);
+      dur = std::min(dur, fps[i].duration / fps[i + 1].duration);
+    }
+  }
+  if (fps.size() < 2) pen = dur = std::numeric_limits<double>::quiet_NaN();
+  c.checks.push_back({"smallest_penetration_ratio_lower_to_higher_k", pen, ">", 1.0,
+                      "every lower stiffness must penetrate strictly deeper"});
+  c.checks.push_back({"smallest_duration_ratio_lower_to_higher_k", dur, ">", 1.0,
+                      "every lower stiffness must stay in contact strictly longer"});
   return c;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "integrators/recorder.hpp"
+#include "io/json.hpp"
 
 namespace nsb::paper_figures {
 
@@ -43,10 +44,11 @@ struct Claim {
 // Throws std::invalid_argument for an unknown op.
 bool compare(double value, const std::string& op, double threshold);
 
-// JSON text of a number (17 significant digits; null when not finite) and of a string
-// (quoted, with ", \ and newlines escaped). Shared by claims.json and uncertainty.json.
-std::string json_number(double v);
-std::string json_string(const std::string& text);
+// JSON text of a number (shortest round-trip; null when not finite) and of a string (every
+// control character escaped): io's, as in summary.json. Used by claims.json and
+// uncertainty.json.
+using io::json_number;
+using io::json_string;
 
 // claims.json: {"claims": [{"id", "statement", "holds", "reason", "measured": {...},
 // "checks": [{"quantity", "value", "op", "threshold", "why"}], "runs": [...]}]}.
@@ -84,6 +86,30 @@ Claim claim_c2(const std::vector<Peaks>& peaks);
 // C3: largest peak ratio without / with pounding over the runs that pound < 0.5, and no impact
 // in the runs without pounding.
 Claim claim_c3(const std::vector<Peaks>& peaks);
+
+// One compliance run of C4 against the nonsmooth (Moreau-Jean) run, over the window of C4.
+struct CompliancePeak {
+  double factor = 0.0;          // contact stiffness c of c k
+  double peak = 0.0;            // peak |theta| [rad]
+  double rms_difference = 0.0;  // RMS of the difference from the nonsmooth theta / its RMS
+};
+// C4: for c >= 1e2 the peak within 10 % of the nonsmooth one and the normalized RMS difference
+// below 0.5; for c <= 1e-2 the peak at least 10 % below. window_end [s]: end of the window.
+Claim claim_c4(double peak_nonsmooth, double window_end, const std::vector<CompliancePeak>& runs);
+
+// The first pounding of a compliance run: the deepest penetration and the time in contact.
+struct FirstPounding {
+  double factor = 0.0;                                            // c of c k
+  double penetration = std::numeric_limits<double>::quiet_NaN();  // max -g_N [m]
+  double duration = std::numeric_limits<double>::quiet_NaN();     // [s]
+};
+// The first closing of the gap g after t0 (t ascending, g of the first pounding's contact);
+// NaN penetration and duration when the gap does not close and open again in the history.
+FirstPounding measure_first_pounding(double factor, const std::vector<double>& t,
+                                     const std::vector<double>& g, double t0);
+// C5: for factors in ascending order, each lower stiffness penetrates strictly deeper and
+// stays in contact strictly longer than the next higher one.
+Claim claim_c5(const std::vector<FirstPounding>& fps);
 
 // A sliding contact of a Moreau-Jean run: from a slip event to the next change of state of the
 // same contact (open, stick, or slip in the other direction).

@@ -2,6 +2,7 @@
 
 #include "models/scene.hpp"
 #include "sweep/csv.hpp"
+#include "sweep/expand.hpp"
 
 #include <toml++/toml.h>
 
@@ -9,7 +10,8 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
-#include <random>
+#include <map>
+#include <mutex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -32,12 +34,7 @@ std::string_view to_string(Mode m) {
   return "grid";
 }
 
-std::string format_number(double v) {
-  if (!std::isfinite(v)) return {};
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
+std::string format_number(double v) { return io::csv_number(v); }
 
 namespace {
 
@@ -154,6 +151,47 @@ const std::vector<std::pair<std::string, std::string>>& record_components() {
   return c;
 }
 
+// A level of `records`: {name, transverse, longitudinal}, each component a record file that
+// becomes its scene key's override; the label is the name, else the first file's stem.
+Level record_level(const Context& c, const toml::node& r, const std::string& rw,
+                   const fs::path& dir) {
+  const auto* rt = r.as_table();
+  if (rt == nullptr) c.fail(&r, rw, "each record must be a table {name, transverse, longitudinal}");
+  check_keys(c, *rt, rw, {"name", "transverse", "longitudinal"});
+  Level level;
+  for (const auto& [component, scene_key] : record_components()) {
+    if (const auto* p = rt->get(component)) {
+      if (!p->is_string()) c.fail(p, rw + "." + component, "must be a file name");
+      const std::string file = *p->value<std::string>();
+      level.overrides.push_back(scene_key + "=" + toml_string(record_path(dir, file)));
+      if (level.label.empty()) level.label = fs::path(file).stem().string();
+    }
+  }
+  if (level.overrides.empty()) c.fail(&r, rw, "a record needs transverse and/or longitudinal");
+  if (const auto* name = rt->get("name")) {
+    if (!name->is_string()) c.fail(name, rw + ".name", "must be a string");
+    level.label = *name->value<std::string>();
+  }
+  return level;
+}
+
+// A level of `levels`: {name, set}, a named list of overrides.
+Level named_level(const Context& c, const toml::node& l, const std::string& lw) {
+  const auto* lt = l.as_table();
+  if (lt == nullptr) c.fail(&l, lw, "each level must be a table {name, set}");
+  check_keys(c, *lt, lw, {"name", "set"});
+  const auto* name = lt->get("name");
+  const auto* set = lt->get("set");
+  if (name == nullptr || !name->is_string()) c.fail(&l, lw + ".name", "required string");
+  if (set == nullptr) c.fail(&l, lw + ".set", "required: an array of \"key=value\"");
+  Level level{*name->value<std::string>(), {}};
+  for (const auto& s : array_of(c, *set, lw + ".set")) {
+    if (!s.is_string()) c.fail(&s, lw + ".set", "must hold strings \"key=value\"");
+    level.overrides.push_back(*s.value<std::string>());
+  }
+  return level;
+}
+
 Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, std::size_t index,
                    Mode mode) {
   const std::string where = "factor[" + std::to_string(index) + "]";
@@ -196,44 +234,12 @@ Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, 
   }
   if (const auto* n = t.get("records")) {
     for (const auto& r : array_of(c, *n, where + ".records")) {
-      const auto* rt = r.as_table();
-      const std::string rw = where + ".records";
-      if (rt == nullptr)
-        c.fail(&r, rw, "each record must be a table {name, transverse, longitudinal}");
-      check_keys(c, *rt, rw, {"name", "transverse", "longitudinal"});
-      Level level;
-      for (const auto& [component, scene_key] : record_components()) {
-        if (const auto* p = rt->get(component)) {
-          if (!p->is_string()) c.fail(p, rw + "." + component, "must be a file name");
-          const std::string file = *p->value<std::string>();
-          level.overrides.push_back(scene_key + "=" + toml_string(record_path(dir, file)));
-          if (level.label.empty()) level.label = fs::path(file).stem().string();
-        }
-      }
-      if (level.overrides.empty()) c.fail(&r, rw, "a record needs transverse and/or longitudinal");
-      if (const auto* name = rt->get("name")) {
-        if (!name->is_string()) c.fail(name, rw + ".name", "must be a string");
-        level.label = *name->value<std::string>();
-      }
-      f.levels.push_back(std::move(level));
+      f.levels.push_back(record_level(c, r, where + ".records", dir));
     }
   }
   if (const auto* n = t.get("levels")) {
     for (const auto& l : array_of(c, *n, where + ".levels")) {
-      const auto* lt = l.as_table();
-      const std::string lw = where + ".levels";
-      if (lt == nullptr) c.fail(&l, lw, "each level must be a table {name, set}");
-      check_keys(c, *lt, lw, {"name", "set"});
-      const auto* name = lt->get("name");
-      const auto* set = lt->get("set");
-      if (name == nullptr || !name->is_string()) c.fail(&l, lw + ".name", "required string");
-      if (set == nullptr) c.fail(&l, lw + ".set", "required: an array of \"key=value\"");
-      Level level{*name->value<std::string>(), {}};
-      for (const auto& s : array_of(c, *set, lw + ".set")) {
-        if (!s.is_string()) c.fail(&s, lw + ".set", "must hold strings \"key=value\"");
-        level.overrides.push_back(*s.value<std::string>());
-      }
-      f.levels.push_back(std::move(level));
+      f.levels.push_back(named_level(c, l, where + ".levels"));
     }
   }
   std::set<std::string> labels;
@@ -311,98 +317,6 @@ void expand_list(const Context& c, const toml::node& runs_node, const fs::path& 
   if (d.runs.empty()) c.fail(&runs_node, "runs", csv.string() + " holds no run");
 }
 
-void expand_grid(Design& d) {
-  std::vector<std::size_t> at(d.factors.size(), 0);
-  for (;;) {
-    Run run;
-    run.overrides = d.set;
-    for (std::size_t k = 0; k < d.factors.size(); ++k) {
-      const Level& l = d.factors[k].levels[at[k]];
-      run.labels.push_back(l.label);
-      run.overrides.insert(run.overrides.end(), l.overrides.begin(), l.overrides.end());
-    }
-    d.runs.push_back(std::move(run));
-    // Odometer with the last factor fastest.
-    std::size_t k = d.factors.size();
-    while (k > 0) {
-      --k;
-      if (++at[k] < d.factors[k].levels.size()) break;
-      at[k] = 0;
-      if (k == 0) return;
-    }
-    if (d.factors.empty()) return;
-  }
-}
-
-void expand_oat(Design& d) {
-  Run base;
-  base.labels.assign(d.factors.size(), std::string());
-  base.overrides = d.set;
-  d.runs.push_back(base);
-  for (std::size_t k = 0; k < d.factors.size(); ++k) {
-    for (const Level& l : d.factors[k].levels) {
-      Run run = base;
-      run.labels[k] = l.label;
-      run.overrides.insert(run.overrides.end(), l.overrides.begin(), l.overrides.end());
-      d.runs.push_back(std::move(run));
-    }
-  }
-}
-
-// A uniform double in [0, 1) from the top 53 bits: the same on every platform, unlike
-// std::uniform_real_distribution, whose algorithm the standard leaves open.
-double unit(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
-
-}  // namespace
-
-std::vector<std::vector<double>> latin_hypercube(std::size_t samples, std::size_t factors,
-                                                 std::uint64_t seed) {
-  std::mt19937_64 g(seed);
-  std::vector<std::vector<double>> draw(factors, std::vector<double>(samples));
-  for (std::size_t k = 0; k < factors; ++k) {
-    std::vector<std::size_t> perm(samples);
-    for (std::size_t i = 0; i < samples; ++i) perm[i] = i;
-    for (std::size_t i = samples; i > 1; --i) {  // Fisher–Yates
-      const auto j = static_cast<std::size_t>(unit(g) * static_cast<double>(i));
-      std::swap(perm[i - 1], perm[std::min(j, i - 1)]);
-    }
-    for (std::size_t i = 0; i < samples; ++i) {
-      draw[k][i] = (static_cast<double>(perm[i]) + unit(g)) / static_cast<double>(samples);
-    }
-  }
-  return draw;
-}
-
-namespace {
-
-// Latin hypercube (McKay, Beckman & Conover 1979), drawn by latin_hypercube; continuous factors
-// map the draw linearly onto their range, discrete factors take the level whose share of
-// [0, 1) holds the draw.
-void expand_latin(Design& d) {
-  const auto n = static_cast<std::size_t>(d.samples);
-  const auto draw = latin_hypercube(n, d.factors.size(), d.seed);
-  for (std::size_t i = 0; i < n; ++i) {
-    Run run;
-    run.overrides = d.set;
-    for (std::size_t k = 0; k < d.factors.size(); ++k) {
-      const Factor& f = d.factors[k];
-      if (f.range) {
-        const double v = (*f.range)[0] + draw[k][i] * ((*f.range)[1] - (*f.range)[0]);
-        const std::string s = format_number(v);
-        run.labels.push_back(s);
-        run.overrides.push_back(f.key + "=" + s);
-      } else {
-        const auto m = f.levels.size();
-        const Level& l = f.levels[std::min(
-            m - 1, static_cast<std::size_t>(draw[k][i] * static_cast<double>(m)))];
-        run.labels.push_back(l.label);
-        run.overrides.insert(run.overrides.end(), l.overrides.begin(), l.overrides.end());
-      }
-    }
-    d.runs.push_back(std::move(run));
-  }
-}
-
 // FNV-1a, 64 bit: a fingerprint of the expanded design, not a security measure.
 std::string fingerprint(const std::string& text) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
@@ -449,21 +363,22 @@ std::string design_hash(const Design& d) {
 
 }  // namespace
 
-Design load_design(const fs::path& file, const std::vector<std::string>& extra_set) {
-  Context c{file.string()};
-  toml::table root;
+namespace {
+
+toml::table parse_design(const fs::path& file) {
   try {
-    root = toml::parse_file(file.string());
+    return toml::parse_file(file.string());
   } catch (const toml::parse_error& e) {
     std::ostringstream s;
     s << file.string() << ':' << e.source().begin.line << ':' << e.source().begin.column << ": "
       << e.description();
     throw std::invalid_argument(s.str());
   }
-  check_keys(c, root, "",
-             {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor"});
-  Design d;
-  d.file = fs::absolute(file).lexically_normal();
+}
+
+// `scene` (resolved against the design's folder) and `set`, then the command line's --set.
+void read_scene(const Context& c, const toml::table& root,
+                const std::vector<std::string>& extra_set, Design& d) {
   const fs::path dir = d.file.parent_path();
   const auto* scene = root.get("scene");
   if (scene == nullptr || !scene->is_string())
@@ -485,6 +400,10 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
       throw std::invalid_argument("--set " + s + ": must be key=value");
     d.set.push_back(s);
   }
+}
+
+// `mode`, and the keys that only one mode takes: `samples` and `seed` (latin), `runs` (list).
+void read_mode(const Context& c, const toml::table& root, Design& d) {
   if (const auto* mode = root.get("mode")) {
     const std::string m = mode->value<std::string>().value_or("");
     if (m == "grid")
@@ -520,19 +439,25 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
   if (d.mode == Mode::kList && runs == nullptr)
     c.fail(&root, "runs", "list: required CSV file of runs");
   if (d.mode != Mode::kList && runs != nullptr) c.fail(runs, "runs", "only for mode = \"list\"");
-  if (const auto* factors = root.get("factor")) {
-    const auto* a = factors->as_array();
-    if (a == nullptr || !a->is_array_of_tables())
-      c.fail(factors, "factor", "must be [[factor]] tables");
-    std::set<std::string> keys;
-    for (std::size_t k = 0; k < a->size(); ++k) {
-      Factor f = read_factor(c, *(*a)[k].as_table(), dir, k, d.mode);
-      if (!keys.insert(f.key).second)
-        c.fail(&(*a)[k], "factor[" + std::to_string(k) + "].key",
-               "\"" + f.key + "\" appears twice");
-      d.factors.push_back(std::move(f));
-    }
+}
+
+void read_factors(const Context& c, const toml::table& root, Design& d) {
+  const auto* factors = root.get("factor");
+  if (factors == nullptr) return;
+  const auto* a = factors->as_array();
+  if (a == nullptr || !a->is_array_of_tables())
+    c.fail(factors, "factor", "must be [[factor]] tables");
+  std::set<std::string> keys;
+  for (std::size_t k = 0; k < a->size(); ++k) {
+    Factor f = read_factor(c, *(*a)[k].as_table(), d.file.parent_path(), k, d.mode);
+    if (!keys.insert(f.key).second)
+      c.fail(&(*a)[k], "factor[" + std::to_string(k) + "].key", "\"" + f.key + "\" appears twice");
+    d.factors.push_back(std::move(f));
   }
+}
+
+// The runs of the mode, each with its id: its index, zero-padded to at least four digits.
+void expand(const Context& c, const toml::table& root, Design& d) {
   switch (d.mode) {
     case Mode::kGrid:
       if (d.factors.empty()) c.fail(&root, "factor", "grid: at least one [[factor]]");
@@ -547,7 +472,7 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
       expand_latin(d);
       break;
     case Mode::kList:
-      expand_list(c, *runs, dir, d);
+      expand_list(c, *root.get("runs"), d.file.parent_path(), d);
       break;
   }
   const std::size_t width = std::max<std::size_t>(4, std::to_string(d.runs.size() - 1).size());
@@ -555,6 +480,21 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
     std::string id = std::to_string(i);
     d.runs[i].id = std::string(width - id.size(), '0') + id;
   }
+}
+
+}  // namespace
+
+Design load_design(const fs::path& file, const std::vector<std::string>& extra_set) {
+  const Context c{file.string()};
+  const toml::table root = parse_design(file);
+  check_keys(c, root, "",
+             {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor"});
+  Design d;
+  d.file = fs::absolute(file).lexically_normal();
+  read_scene(c, root, extra_set, d);
+  read_mode(c, root, d);
+  read_factors(c, root, d);
+  expand(c, root, d);
   d.hash = design_hash(d);
   return d;
 }
@@ -582,6 +522,21 @@ void validate_design(const Design& d) {
                 at + ": factor " + f.key + " = " + format_number(v));
       }
     }
+  }
+}
+
+const std::vector<std::string>& base_coordinates(const Design& d) {
+  static std::mutex mutex;
+  static std::map<std::vector<std::string>, std::vector<std::string>> known;
+  std::vector<std::string> key = d.set;
+  key.push_back(d.scene.string());
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (const auto it = known.find(key); it != known.end()) return it->second;
+  try {
+    const models::Scene scene = models::load_scene(d.scene, d.set);
+    return known[key] = scene.system->coordinate_names();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(d.file.string() + ": scene: " + e.what());
   }
 }
 

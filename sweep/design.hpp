@@ -72,6 +72,12 @@ Design load_design(const std::filesystem::path& file,
 // the factor's line and key, and the scene's own message.
 void validate_design(const Design& design);
 
+// The generalized coordinates of the design's base scene (with its `set`), as its system names
+// them ({"x", "y", "theta"} for the bridge): results.csv has a peak column for each. The scene
+// is loaded once per scene and `set` in a process, whichever thread asks first. Throws
+// std::invalid_argument as validate_design does.
+const std::vector<std::string>& base_coordinates(const Design& design);
+
 // The unit draws of a Latin hypercube (McKay, Beckman & Conover 1979), as `mode = "latin"`
 // uses them: draw[k][i] in [0, 1) for factor k and sample i. Each factor's [0, 1) is cut into
 // `samples` equal strata; a Fisher–Yates permutation (std::mt19937_64 seeded with `seed`, whose
@@ -80,8 +86,9 @@ void validate_design(const Design& design);
 std::vector<std::vector<double>> latin_hypercube(std::size_t samples, std::size_t factors,
                                                  std::uint64_t seed);
 
-// The shortest text that reads back to the same double ("0.1", "1e-05"): labels and
-// results.csv use it so that they do not depend on the platform's printf.
+// The shortest text that reads back to the same double ("0.1", "1e-05"), empty when not
+// finite (io::csv_number): labels and results.csv use it so that they do not depend on the
+// platform's printf.
 std::string format_number(double v);
 
 }  // namespace nsb::sweep

@@ -72,15 +72,11 @@ void remote_worker(const Design& d, const SweepOptions& options, int thread) {
   }
 }
 
-}  // namespace
-
-SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& options) {
-  Session mpi;
+// Every rank reads the design; rank 0 alone validates it and prepares DIR. A failure anywhere
+// stops every rank before any run: rank 0 throws it, the others return false.
+bool load_everywhere(const Session& mpi, const fs::path& design_file, const SweepOptions& options,
+                     Design& d, Plan& plan) {
   const bool primary = mpi.rank() == 0;
-  // Every rank reads the design; rank 0 alone validates it and prepares DIR. A failure
-  // anywhere stops every rank before any run.
-  Design d;
-  Plan plan;
   std::exception_ptr error;
   int code = 0;
   try {
@@ -95,14 +91,123 @@ SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& opti
   }
   int any = 0;
   MPI_Allreduce(&code, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (any == 0) return true;
+  if (!primary) return false;
+  if (error) std::rethrow_exception(error);
+  throw std::invalid_argument(design_file.string() + ": another MPI rank could not read it");
+}
+
+// Rank 0 while the runs go on: the pending indices handed out one at a time to its own
+// workers and to the other ranks', the rows gathered, the first error kept.
+struct Dispatch {
+  explicit Dispatch(Plan& p) : plan(p) {}
+  Plan& plan;
+  std::atomic<std::size_t> next{0}, done{0}, failed{0};
+  std::atomic<int> local_exited{0};
+  std::atomic<bool> stop{false};
+  std::mutex error_mutex;
+  std::exception_ptr error;   // of a run on rank 0
+  std::string remote_error;   // of a run on another rank
+  std::size_t ran_elsewhere = 0;
+
+  // The next pending run index, or -1 when none is left or a run threw.
+  long long take() {
+    if (stop.load()) return -1;
+    const std::size_t k = next.fetch_add(1);
+    return k < plan.pending.size() ? static_cast<long long>(plan.pending[k]) : -1;
+  }
+};
+
+// A worker thread of rank 0: takes indices from the same counter as the other ranks.
+void local_worker(Dispatch& work, const Design& d, const SweepOptions& options) {
+  for (long long index = work.take(); index >= 0; index = work.take()) {
+    try {
+      RunOutcome o = run_one(d, static_cast<std::size_t>(index), options.out);
+      work.plan.rows[static_cast<std::size_t>(index)] = std::move(o.row);
+      if (!o.succeeded) work.failed.fetch_add(1);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(work.error_mutex);
+      if (!work.error) work.error = std::current_exception();
+      work.stop.store(true);
+    }
+    work.done.fetch_add(1);
+  }
+  work.local_exited.fetch_add(1);
+}
+
+// Answers one request of a remote worker (status: its probe): records the row of the run it
+// reports, and replies with the next index (-1: stop, and the worker counts as gone).
+void serve(Dispatch& work, const MPI_Status& status, int& remote_active) {
+  int size = 0;
+  MPI_Get_count(&status, MPI_CHAR, &size);
+  std::string in(static_cast<std::size_t>(size), '\0');
+  MPI_Recv(in.data(), size, MPI_CHAR, status.MPI_SOURCE, kRequestTag, MPI_COMM_WORLD,
+           MPI_STATUS_IGNORE);
+  std::istringstream head(in.substr(0, in.find('\n')));
+  int thread = 0, report = 0;
+  long long index = -1;
+  head >> thread >> index >> report;
+  const std::string text = in.substr(in.find('\n') + 1);
+  if (index >= 0) {
+    if (static_cast<Report>(report) == Report::kError) {
+      const std::lock_guard<std::mutex> lock(work.error_mutex);
+      if (work.remote_error.empty())
+        work.remote_error = "rank " + std::to_string(status.MPI_SOURCE) + ": " + text;
+      work.stop.store(true);
+    } else {
+      work.plan.rows[static_cast<std::size_t>(index)] = text;
+      ++work.ran_elsewhere;
+      if (static_cast<Report>(report) == Report::kFailed) work.failed.fetch_add(1);
+    }
+    work.done.fetch_add(1);
+  }
+  long long reply = work.take();
+  if (reply < 0) --remote_active;
+  MPI_Send(&reply, 1, MPI_LONG_LONG, status.MPI_SOURCE, kReplyTagBase + thread, MPI_COMM_WORLD);
+}
+
+// Rank 0: its own workers run while this thread serves the other ranks, until every worker
+// is done. Rethrows the first error of a run.
+void dispatch(Dispatch& work, const Design& d, const SweepOptions& options, int jobs,
+              int remote_workers, SweepSummary& s) {
+  ProgressBar bar(options.progress, s.already_done);
+  {
+    // Only this thread calls MPI.
+    std::vector<std::jthread> pool;
+    for (int t = 0; t < jobs; ++t) pool.emplace_back([&] { local_worker(work, d, options); });
+    int remote_active = remote_workers;
+    while (remote_active > 0 || work.local_exited.load() < jobs) {
+      int flag = 0;
+      MPI_Status status;
+      if (remote_active > 0)
+        MPI_Iprobe(MPI_ANY_SOURCE, kRequestTag, MPI_COMM_WORLD, &flag, &status);
+      if (flag == 0) {
+        bar.update(s.already_done + work.done.load(), work.failed.load(), s.runs);
+        // Poll, rather than block in MPI_Recv, whose busy wait would take a core from the
+        // workers of this rank.
+        std::this_thread::sleep_for(std::chrono::microseconds(remote_active > 0 ? 500 : 20000));
+        continue;
+      }
+      serve(work, status, remote_active);
+    }
+    bar.update(s.already_done + work.done.load(), work.failed.load(), s.runs);
+  }
+  s.ran_elsewhere = work.ran_elsewhere;
+  if (work.error) std::rethrow_exception(work.error);
+  if (!work.remote_error.empty()) throw std::runtime_error(work.remote_error);
+}
+
+}  // namespace
+
+SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& options) {
+  Session mpi;
+  const bool primary = mpi.rank() == 0;
+  Design d;
+  Plan plan;
   SweepSummary s;
   s.primary = primary;
   s.ranks = mpi.size();
-  if (any != 0) {
-    if (!primary) return s;
-    if (error) std::rethrow_exception(error);
-    throw std::invalid_argument(design_file.string() + ": another MPI rank could not read it");
-  }
+  if (!load_everywhere(mpi, design_file, options, d, plan)) return s;
   int jobs = options.jobs > 0 ? options.jobs : default_jobs(launcher_local_size());
   // Without MPI_THREAD_MULTIPLE only one thread of a worker rank may talk to rank 0.
   if (!primary && !mpi.multiple()) jobs = 1;
@@ -118,90 +223,15 @@ SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& opti
     }
     return s;
   }
-
   s.runs = d.runs.size();
   s.already_done = s.runs - plan.pending.size();
   s.ran = plan.pending.size();
   s.workers = jobs + remote_workers;
   s.notes = plan.notes;
-  const std::size_t total = s.runs;
-  std::atomic<std::size_t> next{0}, done{0}, failed{0};
-  std::atomic<int> local_exited{0};
-  std::atomic<bool> stop{false};
-  std::mutex error_mutex;
-  std::string remote_error;
-  const auto take = [&]() -> long long {
-    if (stop.load()) return -1;
-    const std::size_t k = next.fetch_add(1);
-    return k < plan.pending.size() ? static_cast<long long>(plan.pending[k]) : -1;
-  };
-  ProgressBar bar(options.progress, s.already_done);
-  {
-    // Rank 0's own workers take indices from the same counter; only this thread calls MPI.
-    std::vector<std::jthread> pool;
-    for (int t = 0; t < jobs; ++t) {
-      pool.emplace_back([&] {
-        for (long long index = take(); index >= 0; index = take()) {
-          try {
-            RunOutcome o = run_one(d, static_cast<std::size_t>(index), options.out);
-            plan.rows[static_cast<std::size_t>(index)] = std::move(o.row);
-            if (!o.succeeded) failed.fetch_add(1);
-          } catch (...) {
-            const std::lock_guard<std::mutex> lock(error_mutex);
-            if (!error) error = std::current_exception();
-            stop.store(true);
-          }
-          done.fetch_add(1);
-        }
-        local_exited.fetch_add(1);
-      });
-    }
-    int remote_active = remote_workers;
-    while (remote_active > 0 || local_exited.load() < jobs) {
-      int flag = 0;
-      MPI_Status status;
-      if (remote_active > 0)
-        MPI_Iprobe(MPI_ANY_SOURCE, kRequestTag, MPI_COMM_WORLD, &flag, &status);
-      if (flag == 0) {
-        bar.update(s.already_done + done.load(), failed.load(), total);
-        // Poll, rather than block in MPI_Recv, whose busy wait would take a core from the
-        // workers of this rank.
-        std::this_thread::sleep_for(std::chrono::microseconds(remote_active > 0 ? 500 : 20000));
-        continue;
-      }
-      int size = 0;
-      MPI_Get_count(&status, MPI_CHAR, &size);
-      std::string in(static_cast<std::size_t>(size), '\0');
-      MPI_Recv(in.data(), size, MPI_CHAR, status.MPI_SOURCE, kRequestTag, MPI_COMM_WORLD,
-               MPI_STATUS_IGNORE);
-      std::istringstream head(in.substr(0, in.find('\n')));
-      int thread = 0, report = 0;
-      long long index = -1;
-      head >> thread >> index >> report;
-      const std::string text = in.substr(in.find('\n') + 1);
-      if (index >= 0) {
-        if (static_cast<Report>(report) == Report::kError) {
-          const std::lock_guard<std::mutex> lock(error_mutex);
-          if (remote_error.empty())
-            remote_error = "rank " + std::to_string(status.MPI_SOURCE) + ": " + text;
-          stop.store(true);
-        } else {
-          plan.rows[static_cast<std::size_t>(index)] = text;
-          ++s.ran_elsewhere;
-          if (static_cast<Report>(report) == Report::kFailed) failed.fetch_add(1);
-        }
-        done.fetch_add(1);
-      }
-      long long reply = take();
-      if (reply < 0) --remote_active;
-      MPI_Send(&reply, 1, MPI_LONG_LONG, status.MPI_SOURCE, kReplyTagBase + thread, MPI_COMM_WORLD);
-    }
-    bar.update(s.already_done + done.load(), failed.load(), total);
-  }
-  if (error) std::rethrow_exception(error);
-  if (!remote_error.empty()) throw std::runtime_error(remote_error);
+  Dispatch work(plan);
+  dispatch(work, d, options, jobs, remote_workers, s);
   write_results(d, options, plan.rows);
-  s.failed = failed_rows(d, plan.rows);
+  s.failed = count_failed(d, plan.rows);
   s.results = options.out / "results.csv";
   return s;
 }

@@ -12,8 +12,6 @@ int launcher_size();
 int launcher_local_size();
 // Worker threads per process when --jobs is 0: the cores shared among the local ranks.
 int default_jobs(int local_ranks);
-// Rows whose status is not a completed one.
-std::size_t failed_rows(const Design& design, const std::vector<std::optional<std::string>>& rows);
 
 #ifdef NSB_HAVE_MPI
 // The sweep over MPI ranks: rank 0 validates and prepares DIR, hands out run indices one at a

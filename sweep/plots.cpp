@@ -1,11 +1,12 @@
 #include "sweep/plots.hpp"
 
+#include "integrators/recorder.hpp"
+#include "io/gnuplot.hpp"
 #include "sweep/design.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -19,6 +20,7 @@ void PlotOptions::validate() const {
   if (pga_key.empty()) throw std::invalid_argument("--pga-key: must name a factor column");
   if (response.empty()) throw std::invalid_argument("--response: must name a results.csv column");
   if (!(limit > 0.0) || !std::isfinite(limit)) throw std::invalid_argument("--limit: must be > 0");
+  if (gnuplot.empty()) throw std::invalid_argument("--gnuplot: must name the executable");
 }
 
 namespace {
@@ -50,7 +52,8 @@ Layout layout(const Table& t, const PlotOptions& o) {
 }
 
 bool completed(const std::vector<std::string>& row, const Layout& l) {
-  return row[l.status] == "completed" || row[l.status] == "completed_with_fallbacks";
+  const auto status = integrators::parse_run_status(row[l.status]);
+  return status && integrators::succeeded(*status);
 }
 
 std::optional<std::size_t> find_column(const Table& t, const std::string& name) {
@@ -155,24 +158,16 @@ std::string gp_string(const std::string& s) {
   return out + '"';
 }
 
-// Runs the script once per terminal: PNG, then SVG. The script sets everything but the
-// terminal and the output.
-void render(const fs::path& dir, const std::string& stem, const std::string& script,
-            std::vector<fs::path>& files) {
+// Writes the script and runs options.gnuplot on it once per terminal: PNG, then SVG
+// (io::render_gnuplot). The script sets everything but the terminal and the output.
+void render(const PlotOptions& o, const fs::path& dir, const std::string& stem,
+            const std::string& script, std::vector<fs::path>& files) {
   write_file_atomically(dir / (stem + ".gp"), script);
   files.push_back(dir / (stem + ".gp"));
-  for (const auto& [terminal, ext] :
-       {std::pair<std::string, std::string>{"pngcairo size 900,600", "png"},
-        {"svg size 900,600", "svg"}}) {
-    const std::string cmd =
-        "cd " + gp_string(dir.string()) + " && gnuplot -e " +
-        gp_string("set terminal " + terminal + "; set output '" + stem + "." + ext + "'") + " " +
-        stem + ".gp 2>/dev/null";
-    if (std::system(cmd.c_str()) != 0) {
-      throw std::runtime_error(dir.string() + ": gnuplot could not draw " + stem + "." + ext);
-    }
-    files.push_back(dir / (stem + "." + ext));
-  }
+  const std::string failure = io::render_gnuplot(o.gnuplot, dir, stem);
+  if (!failure.empty()) throw std::runtime_error(dir.string() + ": " + failure);
+  files.push_back(dir / (stem + ".png"));
+  files.push_back(dir / (stem + ".svg"));
 }
 
 std::string axis_label(const std::string& column) {
@@ -208,7 +203,7 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
       gp += std::string(i == 0 ? "" : ", \\\n     ") + "'ida.csv' skip 1 using 2:(strcol(1) eq " +
             gp_string(curves[i]) + " ? $3 : NaN) with linespoints title " + gp_string(curves[i]);
     }
-    render(dir, "ida", gp + "\n", files);
+    render(o, dir, "ida", gp + "\n", files);
 
     std::string ex = csv_quote(o.pga_key) + ",runs,exceeding,share\n";
     for (const auto& e : exceedance_points(t, o)) {
@@ -217,7 +212,7 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
     }
     write_file_atomically(dir / "exceedance.csv", ex);
     files.push_back(dir / "exceedance.csv");
-    render(dir, "exceedance",
+    render(o, dir, "exceedance",
            "set datafile separator ','\nset termoption noenhanced\nset grid\nset yrange [0:1]\nset "
            "xlabel 'target PGA [g] (" +
                o.pga_key + ")'\nset ylabel 'share of runs'\nset title " +
@@ -237,7 +232,7 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
     files.push_back(dir / "tornado.csv");
     // Largest swing on top: bar i sits at y = n - 1 - i.
     const std::string n = std::to_string(bars.size());
-    render(dir, "tornado",
+    render(o, dir, "tornado",
            "set datafile separator ','\nset termoption noenhanced\nset grid x\nset xlabel " +
                gp_string(axis_label(o.response)) +
                "\nset title 'one factor at a time, about the base run'\nset yrange [-1:" + n +

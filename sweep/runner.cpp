@@ -1,8 +1,9 @@
 #include "sweep/runner.hpp"
 
-#include "integrators/output.hpp"
-#include "integrators/run.hpp"
-#include "models/scene.hpp"
+#include "integrators/recorder.hpp"
+#include "io/build_info.hpp"
+#include "runs/files.hpp"
+#include "runs/run.hpp"
 #include "sweep/csv.hpp"
 #include "sweep/mpi.hpp"
 
@@ -23,10 +24,6 @@
 #include <stdexcept>
 #include <thread>
 
-#ifndef NSB_GIT_REVISION
-#define NSB_GIT_REVISION "unknown"
-#endif
-
 namespace nsb::sweep {
 
 namespace fs = std::filesystem;
@@ -36,7 +33,7 @@ void SweepOptions::validate() const {
   if (jobs < 0) throw std::invalid_argument("--jobs: must be >= 0 (0 = all cores)");
 }
 
-std::string code_revision() { return NSB_GIT_REVISION; }
+std::string code_revision() { return io::build_info().revision; }
 
 bool mpi_built_in() {
 #ifdef NSB_HAVE_MPI
@@ -46,30 +43,30 @@ bool mpi_built_in() {
 #endif
 }
 
-const std::vector<std::string>& result_columns() {
-  static const std::vector<std::string> c = {
-      "status",           // integrators::RunStatus name, or "rejected" (the scene refused the run)
-      "peak_x",           // max |x| over the recorded samples [m]
-      "peak_y",           // max |y| [m]
-      "peak_theta",       // max |theta| [rad]
-      "residual_theta",   // theta at the last sample [rad]
-      "impacts",          // impact events
-      "max_penetration",  // max over samples and contacts of -gN, >= 0 [m]
-      "energy_error",     // relative energy-balance error at the end (summary.json energy.error)
-      "end_time",         // simulated time reached [s]
-      "steps",            // accepted steps
-      "lcp_solves",      "lcp_fallbacks", "lcp_unsolved",
-      "failure_time",  // [s], empty for a completed run
-      "message",       // why the run stopped early or was rejected; empty otherwise
-      "wall_s",        // wall time of the run [s]; the only column that depends on the machine
-  };
+std::vector<std::string> result_columns(const std::vector<std::string>& coordinates) {
+  std::vector<std::string> c = {"status"};  // RunStatus name, or "rejected" (scene refused)
+  for (const auto& q : coordinates) c.push_back("peak_" + q);  // max |q| over the samples
+  if (!coordinates.empty()) c.push_back("residual_" + coordinates.back());  // q at the end
+  for (const char* name : {
+           "impacts",          // impact events
+           "max_penetration",  // max over samples and contacts of -gN, >= 0 [m]
+           "energy_error",     // relative energy-balance error at the end (energy.error)
+           "end_time",         // simulated time reached [s]
+           "steps",            // accepted steps
+           "lcp_solves", "lcp_fallbacks", "lcp_unsolved",
+           "failure_time",     // [s], empty for a completed run
+           "message",          // why the run stopped early or was rejected; empty otherwise
+           "wall_s",           // wall time of the run [s]; the only machine-dependent column
+       }) {
+    c.emplace_back(name);
+  }
   return c;
 }
 
 std::string results_header(const Design& design) {
   std::string h = "run";
   for (const auto& f : design.factors) h.append(",").append(csv_quote(f.key));
-  for (const auto& c : result_columns()) h.append(",").append(c);
+  for (const auto& c : result_columns(base_coordinates(design))) h.append(",").append(c);
   return h;
 }
 
@@ -77,33 +74,6 @@ namespace {
 
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-// Largest |value| of a history column, and its last value; NaN when the column is absent.
-struct ColumnStats {
-  double peak = std::numeric_limits<double>::quiet_NaN();
-  double last = std::numeric_limits<double>::quiet_NaN();
-};
-ColumnStats column_stats(const integrators::Recorder& r, const std::string& name) {
-  ColumnStats s;
-  const auto& cols = r.columns();
-  const auto it = std::find(cols.begin(), cols.end(), name);
-  if (it == cols.end() || r.rows() == 0) return s;
-  const auto c = static_cast<std::size_t>(it - cols.begin());
-  s.peak = 0.0;
-  for (std::size_t i = 0; i < r.rows(); ++i) s.peak = std::max(s.peak, std::abs(r.at(i, c)));
-  s.last = r.at(r.rows() - 1, c);
-  return s;
-}
-
-double max_penetration(const integrators::Recorder& r) {
-  double p = 0.0;
-  const auto& cols = r.columns();
-  for (std::size_t c = 0; c < cols.size(); ++c) {
-    if (cols[c].rfind("gN", 0) != 0) continue;
-    for (std::size_t i = 0; i < r.rows(); ++i) p = std::max(p, -r.at(i, c));
-  }
-  return p;
 }
 
 std::string row_prefix(const Design& d, std::size_t index) {
@@ -117,8 +87,36 @@ std::string rejected_row(const Design& d, std::size_t index, const std::string& 
                          double wall) {
   std::string row = row_prefix(d, index) + ",rejected";
   // Every numeric column stays empty; message and wall_s are the last two.
-  for (std::size_t k = 1; k + 2 < result_columns().size(); ++k) row += ",";
+  for (std::size_t k = 1; k + 2 < result_columns(base_coordinates(d)).size(); ++k) row += ",";
   return row.append(",").append(csv_quote(message)).append(",").append(format_number(wall));
+}
+
+// The results.csv fields of a record after the run's labels: every column of
+// result_columns(base_coordinates(d)) from "status" on.
+std::string record_fields(const Design& d, const runs::RunRecord& record, double wall) {
+  const integrators::RunResult& result = record.result;
+  const runs::Digest& digest = record.digest;
+  const bool succeeded = integrators::succeeded(result.status);
+  std::string f(integrators::to_string(result.status));
+  const auto& coordinates = base_coordinates(d);
+  const runs::CoordinatePeak* last = nullptr;
+  for (const auto& name : coordinates) {
+    last = nullptr;
+    for (const auto& c : digest.coordinates) {
+      if (c.name == name) last = &c;
+    }
+    f.append(",").append(last ? format_number(last->peak) : std::string());
+  }
+  if (!coordinates.empty()) f.append(",").append(last ? format_number(last->residual) : "");
+  f.append(",").append(std::to_string(digest.count(integrators::EventKind::kImpact)));
+  for (const double v : {digest.max_penetration, digest.energy.error, result.end_time})
+    f.append(",").append(format_number(v));
+  for (const std::int64_t n :
+       {result.steps, result.lcp_solves, result.lcp_fallbacks, result.lcp_unsolved})
+    f.append(",").append(std::to_string(n));
+  f.append(",").append(succeeded ? std::string() : format_number(result.failure_time));
+  f.append(",").append(csv_quote(result.completed ? std::string() : result.message));
+  return f.append(",").append(format_number(wall));
 }
 
 }  // namespace
@@ -129,27 +127,10 @@ RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out) {
   const double start = now_s();
   RunOutcome outcome;
   try {
-    models::Scene scene = models::load_scene(d.scene, run.overrides);
-    integrators::Recorder recorder(*scene.system, scene.output.sample_dt);
-    const integrators::RunResult result =
-        integrators::integrate(*scene.system, scene.run, recorder);
-    integrators::write_outputs(dir, scene.name, recorder, result);
-    const auto x = column_stats(recorder, "x");
-    const auto y = column_stats(recorder, "y");
-    const auto theta = column_stats(recorder, "theta");
-    outcome.succeeded = integrators::succeeded(result.status);
-    std::ostringstream row;
-    row << row_prefix(d, index) << ',' << integrators::to_string(result.status) << ','
-        << format_number(x.peak) << ',' << format_number(y.peak) << ',' << format_number(theta.peak)
-        << ',' << format_number(theta.last) << ','
-        << recorder.count(integrators::EventKind::kImpact) << ','
-        << format_number(max_penetration(recorder)) << ',' << format_number(result.energy.error)
-        << ',' << format_number(result.end_time) << ',' << result.steps << ',' << result.lcp_solves
-        << ',' << result.lcp_fallbacks << ',' << result.lcp_unsolved << ','
-        << (outcome.succeeded ? std::string() : format_number(result.failure_time)) << ','
-        << csv_quote(result.completed ? std::string() : result.message) << ','
-        << format_number(now_s() - start);
-    outcome.row = row.str();
+    const runs::RunRecord record = runs::execute({d.scene, run.overrides, {}, {}});
+    runs::write_record(dir, record);
+    outcome.succeeded = integrators::succeeded(record.result.status);
+    outcome.row = row_prefix(d, index) + "," + record_fields(d, record, now_s() - start);
   } catch (const std::invalid_argument& e) {
     // The design was validated factor by factor; a combination of values can still be one the
     // scene rejects (e.g. a step larger than a shortened end_time). That run is a row.
@@ -276,20 +257,21 @@ int env_int(const char* name, int fallback) {
   return v != nullptr && *v != '\0' ? std::atoi(v) : fallback;
 }
 
+}  // namespace
+
 std::size_t count_failed(const Design& d, const std::vector<std::optional<std::string>>& rows) {
   const std::size_t status = 1 + d.factors.size();
   std::size_t failed = 0;
   for (const auto& r : rows) {
     if (!r) continue;
     const auto f = csv_fields(*r);
-    if (f.size() > status && f[status] != "completed" && f[status] != "completed_with_fallbacks") {
-      ++failed;
-    }
+    if (f.size() <= status) continue;
+    // "rejected" is no RunStatus: a run the scene refused did not complete either.
+    const auto s = integrators::parse_run_status(f[status]);
+    if (!s || !integrators::succeeded(*s)) ++failed;
   }
   return failed;
 }
-
-}  // namespace
 
 int launcher_rank() { return env_int("OMPI_COMM_WORLD_RANK", env_int("PMI_RANK", 0)); }
 int launcher_size() { return env_int("OMPI_COMM_WORLD_SIZE", env_int("PMI_SIZE", 1)); }
@@ -341,10 +323,6 @@ SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options)
   s.failed = count_failed(d, plan.rows);
   s.results = options.out / "results.csv";
   return s;
-}
-
-std::size_t failed_rows(const Design& d, const std::vector<std::optional<std::string>>& rows) {
-  return count_failed(d, rows);
 }
 
 ProgressBar::ProgressBar(bool enabled, std::size_t already)

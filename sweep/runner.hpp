@@ -1,7 +1,7 @@
-// Running a sweep: every run of a design is an ordinary integrators::integrate() call with
-// its own outputs under DIR/runs/<id>/, on a pool of threads or on MPI ranks; DIR/results.csv
-// gathers one row per run, sorted by run id, and does not depend on how the runs were
-// distributed (docs/sweep.md).
+// Running a sweep: every run of a design is an ordinary runs::execute() call with its own
+// outputs under DIR/runs/<id>/ (runs::write_record), on a pool of threads or on MPI ranks;
+// DIR/results.csv gathers one row per run, sorted by run id, and does not depend on how the
+// runs were distributed (docs/sweep.md).
 #pragma once
 
 #include "sweep/design.hpp"
@@ -39,15 +39,20 @@ struct SweepSummary {
   std::filesystem::path results;   // DIR/results.csv
 };
 
-// The columns of results.csv after `run` and the factor columns. wall_s is last, so that
-// comparing two results.csv without it is one `cut`.
-const std::vector<std::string>& result_columns();
+// The columns of results.csv after `run` and the factor columns, for a system whose
+// generalized coordinates are `coordinates` (base_coordinates of the design): status,
+// peak_<q> for every coordinate q, residual_<q> for the last (the deck rotation theta of the
+// bridge and the rigid decks: status, peak_x, peak_y, peak_theta, residual_theta, ...), then
+// impacts through wall_s (docs/sweep.md). wall_s is last, so that comparing two results.csv
+// without it is one `cut`.
+std::vector<std::string> result_columns(const std::vector<std::string>& coordinates);
 
 // The header line of results.csv for a design (no newline).
 std::string results_header(const Design& design);
 
-// One run: loads the scene with the run's overrides, integrates, writes its outputs into
-// DIR/runs/<id>/ and its row into DIR/runs/<id>/row.csv (each atomically). A numerical failure
+// One run: runs::execute with the run's overrides, its outputs (runs::write_record, the same
+// files and warnings as `nsbridge run`) into DIR/runs/<id>/ and its row, from the record's
+// digest, into DIR/runs/<id>/row.csv (each atomically). A numerical failure
 // is a row with its status; a scene that rejects the run's combination of values is a row with
 // status "rejected". Throws std::runtime_error only when the outputs cannot be written.
 struct RunOutcome {
@@ -88,8 +93,11 @@ SweepSummary run_sweep(const std::filesystem::path& design_file, const SweepOpti
 // True when nsbridge was built with MPI.
 bool mpi_built_in();
 
-// The code revision recorded in manifest.toml (git revision at configure time).
+// The code revision recorded in manifest.toml: io::build_info().revision, taken at build time.
 std::string code_revision();
+
+// Rows whose status is not a completed one (integrators::succeeded), "rejected" included.
+std::size_t count_failed(const Design& design, const std::vector<std::optional<std::string>>& rows);
 
 // A progress bar on stderr (terminal only): runs done, failed, estimated time left.
 class ProgressBar {

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace {
@@ -94,12 +95,14 @@ void convergence(nsb::integrators::DampingLaw law) {
   for (double factor : factors) {
     auto overrides = common;
     overrides.push_back("model.seats.restitution=" + number(e_set));
+    overrides.push_back("solver.method=compliance");
     auto sc = nsb::models::load_scene(scene_file(), overrides);
+    const auto& read = std::get<nsb::integrators::ComplianceOptions>(sc.run);
     nsb::integrators::ComplianceOptions o;
     o.end_time = kEndTime;
-    o.tolerance = sc.solver.tolerance;
-    o.stiffness = sc.solver.contact_stiffness * factor;
-    o.stick_slip_velocity = sc.solver.stick_slip_velocity;
+    o.tolerance = read.tolerance;
+    o.stiffness = read.stiffness * factor;
+    o.stick_slip_velocity = read.stick_slip_velocity;
     o.law = law;
     Recorder rec(*sc.system, 0.0);
     const auto st = nsb::integrators::compliance(*sc.system, o, rec);

@@ -34,6 +34,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace ni = nsb::integrators;
@@ -45,10 +46,18 @@ namespace {
 // ------------------------------------------------------------------------------------------
 // Scenes
 
+// The solver of one run: the typed configuration of the method, and the scene's Moreau–Jean
+// step h (the step of the bounds).
+struct Solver {
+  ni::RunConfig config;
+  double step = 0.0;
+};
+
 struct SceneCase {
   std::string name;
-  // Builds the system and fills the scene's solver settings (one fresh system per run).
-  std::function<std::unique_ptr<ni::System>(nm::SolverSettings&)> make;
+  // Builds the system and fills the scene's configuration for the named method (one fresh
+  // system per run).
+  std::function<std::unique_ptr<ni::System>(const std::string& method, Solver&)> make;
   bool conservative = false;   // no input, no viscous damping, mu = 0: energy can only drop
   bool driven = false;         // moving supports or obstacles feed work in: the bridge (Takeda
                                //   bents, support motion), the moving wall
@@ -65,12 +74,14 @@ SceneCase from_file(std::string file, double end_time, double h, bool conservati
   c.conservative = conservative;
   c.normal_load = normal_load;
   c.driven = file.rfind("bridge", 0) == 0;
-  c.make = [file, end_time, h, extra](nm::SolverSettings& settings) {
+  c.make = [file, end_time, h, extra](const std::string& method, Solver& solver) {
     std::vector<std::string> o = extra;
     o.push_back("solver.end_time=" + std::to_string(end_time));
     o.push_back("solver.step=" + std::to_string(h));
+    o.push_back("solver.method=" + method);
     auto scene = nm::load_scene(std::filesystem::path(NSB_SCENES_DIR) / file, o);
-    settings = scene.solver;
+    solver.config = scene.run;
+    solver.step = std::stod(std::to_string(h));  // the value solver.step was read as
     return std::move(scene.system);
   };
   return c;
@@ -94,11 +105,12 @@ std::vector<SceneCase> moving_obstacle_scenes() {
   c.name = "wall-block (moving wall)";
   c.normal_load = 11.0;
   c.driven = true;
-  c.make = [](nm::SolverSettings& settings) -> std::unique_ptr<ni::System> {
-    settings = nm::SolverSettings{};
-    settings.end_time = 1.0;
-    settings.step = 1e-4;
-    settings.contact_stiffness = 1e5;
+  c.make = [](const std::string& method, Solver& solver) -> std::unique_ptr<ni::System> {
+    solver.config = ni::default_config(method);
+    solver.step = 1e-4;
+    std::visit([](auto& o) { o.end_time = 1.0; }, solver.config);
+    if (auto* o = std::get_if<ni::MoreauJeanOptions>(&solver.config)) o->step = solver.step;
+    if (auto* o = std::get_if<ni::ComplianceOptions>(&solver.config)) o->stiffness = 1e5;
     nsb::testsupport::WallBlock::Parameters p;
     p.initial_gap = 1e-3;
     p.restitution = 0.5;
@@ -150,8 +162,9 @@ enum class Bound { kStep, kTolerance, kHertz };
 struct MethodCase {
   std::string name;
   Bound bound;
-  // Applied to the scene's solver settings, then make_run_config builds the typed config.
-  std::function<void(nm::SolverSettings&)> configure;
+  std::string method;  // solver.method of the runs
+  // Applied to the scene's configuration of that method.
+  std::function<void(ni::RunConfig&)> configure;
   // Largest relative energy-balance error of a row (EnergyBalance::error) on the simple
   // scenes and on the driven ones (the bridge; the moving wall, whose worst rows are MJ
   // theta = 0.5 3.1e-15, theta = 1 2.1e-4, event-driven 2e-16, compliance 1.8e-3: the
@@ -176,17 +189,18 @@ constexpr double kStiffnessFactor = 1e2;
 
 std::vector<MethodCase> method_cases() {
   return {
-      {"moreau theta=0.5", Bound::kStep,
-       [](nm::SolverSettings& s) { s.method = "moreau"; s.theta = 0.5; }, 1e-10, 4e-3},
-      {"moreau theta=1", Bound::kStep,
-       [](nm::SolverSettings& s) { s.method = "moreau"; s.theta = 1.0; }, 5e-3, 5e-2},
-      {"event_driven", Bound::kTolerance,
-       [](nm::SolverSettings& s) { s.method = "event_driven"; s.tolerance = 1e-8; }, 2e-8, 1e-5},
-      {"compliance 1e2 k", Bound::kHertz,
-       [](nm::SolverSettings& s) {
-         s.method = "compliance";
-         s.tolerance = 1e-8;
-         s.stiffness_factor = kStiffnessFactor;
+      {"moreau theta=0.5", Bound::kStep, "moreau",
+       [](ni::RunConfig& c) { std::get<ni::MoreauJeanOptions>(c).theta = 0.5; }, 1e-10, 4e-3},
+      {"moreau theta=1", Bound::kStep, "moreau",
+       [](ni::RunConfig& c) { std::get<ni::MoreauJeanOptions>(c).theta = 1.0; }, 5e-3, 5e-2},
+      {"event_driven", Bound::kTolerance, "event_driven",
+       [](ni::RunConfig& c) { std::get<ni::EventDrivenOptions>(c).tolerance = 1e-8; }, 2e-8,
+       1e-5},
+      {"compliance 1e2 k", Bound::kHertz, "compliance",
+       [](ni::RunConfig& c) {
+         auto& o = std::get<ni::ComplianceOptions>(c);
+         o.tolerance = 1e-8;
+         o.stiffness_factor = kStiffnessFactor;
        },
        1e-3, 1e-2},
   };
@@ -257,7 +271,7 @@ struct Tally {
 struct RunData {
   const SceneCase* scene = nullptr;
   const MethodCase* method = nullptr;
-  nm::SolverSettings settings;
+  Solver solver;
   ni::System* system = nullptr;
   std::vector<Row> rows;
   std::vector<ni::Event> events;
@@ -272,8 +286,8 @@ void check_run(const RunData& d, Tally& tally) {
   ni::System& sys = *d.system;
   const int m = sys.contacts();
   const auto& rows = d.rows;
-  const double h = d.settings.step;
-  const double T = d.settings.end_time;
+  const double h = d.solver.step;
+  const double T = ni::end_time(d.solver.config);
   const ni::Matrix minv = sys.mass().inverse();
 
   tally.expect(ni::succeeded(d.result.status), "run status " +
@@ -314,11 +328,12 @@ void check_run(const RunData& d, Tally& tally) {
       open_bound = 1.5 * h * v_max + 0.5 * h * T * a_max;
       break;
     case Bound::kTolerance:
-      penetration_bound = 1e-9 + 10.0 * d.settings.tolerance * q_max;
+      penetration_bound = 1e-9 + 10.0 * std::get<ni::EventDrivenOptions>(d.solver.config).tolerance * q_max;
       open_bound = penetration_bound;
       break;
     case Bound::kHertz: {
-      const double k = d.settings.contact_stiffness * d.settings.stiffness_factor;
+      const auto& o = std::get<ni::ComplianceOptions>(d.solver.config);
+      const double k = o.stiffness * o.stiffness_factor;
       double m_eff = 0.0;
       for (int c = 0; c < m; ++c) {
         const auto& w = cd[0][static_cast<std::size_t>(c)].w_normal;
@@ -383,10 +398,12 @@ void check_run(const RunData& d, Tally& tally) {
           sliding = 1e-9 * (1.0 + slip_scale);  // exact at velocity level, to LCP round-off
           break;
         case Bound::kTolerance:
-          sliding = 10.0 * d.settings.tolerance;  // EventDrivenOptions::stick_velocity default
+          // EventDrivenOptions::stick_velocity default
+          sliding = 10.0 * std::get<ni::EventDrivenOptions>(d.solver.config).tolerance;
           break;
         case Bound::kHertz:
-          sliding = d.settings.stick_slip_velocity;  // eq. (10): saturated beyond eps_v
+          // eq. (10): saturated beyond eps_v
+          sliding = std::get<ni::ComplianceOptions>(d.solver.config).stick_slip_velocity;
           break;
       }
       const bool slides = std::min(std::abs(slip), std::abs(slip_alt)) > sliding &&
@@ -460,12 +477,12 @@ RunData run(const SceneCase& s, const MethodCase& m, std::unique_ptr<ni::System>
   RunData d;
   d.scene = &s;
   d.method = &m;
-  holder = s.make(d.settings);
-  m.configure(d.settings);
-  d.settings.validate();
+  holder = s.make(m.method, d.solver);
+  m.configure(d.solver.config);
+  ni::validate(d.solver.config);
   d.system = holder.get();
   ni::Recorder rec(*holder, 0.0);
-  d.result = ni::integrate(*holder, nm::make_run_config(d.settings), rec);
+  d.result = ni::integrate(*holder, d.solver.config, rec);
   d.rows = rows_of(rec, holder->dofs(), holder->contacts());
   d.events = rec.events();
   return d;

@@ -349,7 +349,7 @@ TEST_CASE("deck impact: one corner with friction, stick and slide by hand") {
     // |LT|/LN = 24/132 = 0.1818: sticks for mu >= 0.1818.
     const auto r = an::deck_impact(g, {3}, Eigen::Vector3d(1.0, 0.0, 0.0), 0.0, 0.5);
     REQUIRE(r.solutions == 1);
-    CHECK(r.contact.states[0] == an::ContactState::kStick);
+    CHECK(r.contact.cases[0] == an::ImpactCase::kStick);
     CHECK(r.contact.lambda_n(0) == doctest::Approx(132.0 / 69.0).epsilon(kSolve));
     CHECK(r.contact.lambda_t(0) == doctest::Approx(24.0 / 69.0).epsilon(kSolve));
     CHECK(std::abs(r.contact.gdot_t_plus(0)) <= kSolve);
@@ -362,7 +362,7 @@ TEST_CASE("deck impact: one corner with friction, stick and slide by hand") {
     // gdot_T+ = (G_TN + mu G_TT) LN = (-1/3 + 11/60)(60/33) = -9/33 < 0. Consistent.
     const auto r = an::deck_impact(g, {3}, Eigen::Vector3d(1.0, 0.0, 0.0), 0.0, 0.1);
     REQUIRE(r.solutions == 1);
-    CHECK(r.contact.states[0] == an::ContactState::kSlideNegative);
+    CHECK(r.contact.cases[0] == an::ImpactCase::kSlideNegative);
     CHECK(r.contact.lambda_n(0) == doctest::Approx(60.0 / 33.0).epsilon(kSolve));
     CHECK(r.contact.lambda_t(0) == doctest::Approx(6.0 / 33.0).epsilon(kSolve));
     CHECK(r.contact.gdot_t_plus(0) == doctest::Approx(-9.0 / 33.0).epsilon(kSolve));
@@ -374,7 +374,7 @@ TEST_CASE("deck impact: one corner with friction, stick and slide by hand") {
     // LN = 1/(7/12 - 1/30) = 60/33, gdot_T+ = (1/3 - 11/60)(60/33) = +9/33 > 0.
     const auto r = an::deck_impact(g, {4}, Eigen::Vector3d(1.0, 0.0, 0.0), 0.0, 0.1);
     REQUIRE(r.solutions == 1);
-    CHECK(r.contact.states[0] == an::ContactState::kSlidePositive);
+    CHECK(r.contact.cases[0] == an::ImpactCase::kSlidePositive);
     CHECK(r.contact.lambda_n(0) == doctest::Approx(60.0 / 33.0).epsilon(kSolve));
     CHECK(r.contact.lambda_t(0) == doctest::Approx(-6.0 / 33.0).epsilon(kSolve));
     CHECK(r.contact.gdot_t_plus(0) == doctest::Approx(9.0 / 33.0).epsilon(kSolve));

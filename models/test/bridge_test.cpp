@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+#include <array>
+
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
@@ -167,15 +169,21 @@ TEST_CASE("a transverse bent force produces the torque force x lever arm") {
   Bridge b(p);
   Vector f(3);
   const Vector z = Vector::Zero(3);
+  // The two bent forces follow from f: F_1 + F_2 = -f_y and s_1 F_1 + s_2 F_2 = -torque.
+  const auto bent_forces = [](const Vector& g) {
+    const double s1 = 4.0, s2 = -2.0;
+    const double f1 = (-g(2) + s2 * g(1)) / (s1 - s2);
+    return std::array<double, 2>{f1, -g(1) - f1};
+  };
   b.forces(0.0, Eigen::Vector3d(0, 1e-3, 0), z, f);
-  CHECK(b.bent_force_transverse(0) == doctest::Approx(1.0));
-  CHECK(b.bent_force_transverse(1) == doctest::Approx(3.0));
+  CHECK(bent_forces(f)[0] == doctest::Approx(1.0));
+  CHECK(bent_forces(f)[1] == doctest::Approx(3.0));
   CHECK(f(0) == doctest::Approx(0.0));
   CHECK(f(1) == doctest::Approx(-4.0));
   CHECK(f(2) == doctest::Approx(2.0));
   b.forces(0.0, Eigen::Vector3d(0, 0, 1e-4), z, f);
-  CHECK(b.bent_force_transverse(0) == doctest::Approx(0.4));
-  CHECK(b.bent_force_transverse(1) == doctest::Approx(-0.6));
+  CHECK(bent_forces(f)[0] == doctest::Approx(0.4));
+  CHECK(bent_forces(f)[1] == doctest::Approx(-0.6));
   CHECK(f(1) == doctest::Approx(0.2));
   CHECK(f(2) == doctest::Approx(-2.8));
   // Longitudinal displacement: only f_x.

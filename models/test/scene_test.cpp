@@ -2,6 +2,7 @@
 // naming the file and the key or line; overrides apply before validation.
 #include "models/scene.hpp"
 
+#include "integrators/run.hpp"
 #include "models/bridge.hpp"
 #include "models/rigid_deck.hpp"
 #include "models/simple_systems.hpp"
@@ -17,6 +18,7 @@
 
 namespace fs = std::filesystem;
 using nsb::models::load_scene;
+namespace ni = nsb::integrators;
 
 namespace {
 
@@ -109,12 +111,12 @@ TEST_CASE("every scene in scenes/ loads and builds its system") {
     const auto scene = load_scene(entry.path());
     CHECK(scene.system != nullptr);
     CHECK(scene.name == entry.path().stem().string());
-    CHECK(scene.solver.end_time > 0);
+    CHECK(ni::end_time(scene.run) > 0);
     if (scene.kind == "bridge") {
       CHECK(scene.system->dofs() == 3);
       CHECK(scene.system->contacts() == 4);
       // The record is covered: RSN 1084 (43.9 s) compressed by 0.5, or RSN 988 (39.98 s).
-      CHECK(scene.solver.end_time >= 21.9);
+      CHECK(ni::end_time(scene.run) >= 21.9);
     }
     ++count;
   }
@@ -170,9 +172,11 @@ TEST_CASE("overrides apply before validation") {
                                     "solver.method=event_driven", "output.sample_dt=0.01"});
   const auto& ball = dynamic_cast<const nsb::models::BouncingBall&>(*scene.system);
   CHECK(ball.parameters().restitution == 0.5);
-  CHECK(scene.solver.step == 1e-5);
-  CHECK(scene.solver.method == "event_driven");
+  CHECK(ni::method_name(scene.run) == "event_driven");
   CHECK(scene.output.sample_dt == 0.01);
+  // solver.step is Moreau–Jean's: it reaches the run under that method.
+  const auto moreau = load_scene(p, {"solver.step=1e-5"});
+  CHECK(std::get<ni::MoreauJeanOptions>(moreau.run).step == 1e-5);
 
   // A key absent from the file but known to the schema, and an array element.
   const auto bridge = load_scene(fs::path(NSB_SCENES_DIR) / "bridge-exc1.toml",
@@ -183,7 +187,7 @@ TEST_CASE("overrides apply before validation") {
   d.height = 2.0;
   CHECK(b.parameters().bents[1].transverse.k0 == doctest::Approx(d.stiffness()));
   CHECK(b.parameters().deck.skew_deg == 10.0);
-  CHECK(bridge.solver.end_time == 1.0);
+  CHECK(ni::end_time(bridge.run) == 1.0);
 
   // Unknown keys and bad values through overrides.
   CHECK(contains(error_of("ov1.toml", kBall, {"solver.stepp=1e-5"}), "solver.stepp (override)"));
@@ -355,7 +359,7 @@ stiffness_transverse = 3000.0
   CHECK(b.parameters().bents[1].transverse.f_yield == doctest::Approx(d.yield_force()));
   CHECK(b.parameters().bents[1].longitudinal.k0 == doctest::Approx(d.stiffness()));
   // No excitation: the default end time stays.
-  CHECK(scene.solver.end_time == 1.0);
+  CHECK(ni::end_time(scene.run) == 1.0);
 }
 
 TEST_CASE("per-support delays and a prescribed seat rotation") {
@@ -399,5 +403,60 @@ time_scale = 0.5
   REQUIRE(e.seats[1].rotation != nullptr);
   CHECK(e.seats[0].rotation == nullptr);
   // End time: the longest support motion, including its delay.
-  CHECK(scene.solver.end_time == doctest::Approx(e.bents[0].transverse->end_time()));
+  CHECK(ni::end_time(scene.run) == doctest::Approx(e.bents[0].transverse->end_time()));
+}
+
+TEST_CASE("every integrator option is reachable from the [solver] table") {
+  const std::string text = kBall + R"([solver]
+method = "event_driven"
+end_time = 0.5
+max_step = 1e-3
+max_events_per_window = 50
+lcp_solver = "pgs"
+step = 1e-3
+theta = 1.0
+lcp_fallback = false
+)";
+  const auto scene = load_scene(scratch().write("options.toml", text));
+  const auto& ed = std::get<ni::EventDrivenOptions>(scene.run);
+  CHECK(ed.end_time == 0.5);
+  CHECK(ed.max_step == 1e-3);
+  CHECK(ed.max_events_per_window == 50);
+  CHECK(ed.solver == nsb::lcp::Solver::kPgs);
+  // The Moreau–Jean keys of the same table reach the run when --method switches to it.
+  const auto mj = load_scene(scratch().write("options.toml", text), {"solver.method=moreau"});
+  const auto& o = std::get<ni::MoreauJeanOptions>(mj.run);
+  CHECK(o.step == 1e-3);
+  CHECK(o.theta == 1.0);
+  CHECK(!o.lcp_fallback);
+  CHECK(o.solver == nsb::lcp::Solver::kPgs);
+  // Compliance keeps the Hertz stiffness and its factor as two fields.
+  const auto cp = load_scene(scratch().write("options.toml", text),
+                             {"solver.method=compliance", "solver.contact_stiffness=1e5",
+                              "solver.stiffness_factor=100", "solver.damping_law=flores"});
+  const auto& c = std::get<ni::ComplianceOptions>(cp.run);
+  CHECK(c.stiffness == 1e5);
+  CHECK(c.stiffness_factor == 100.0);
+  CHECK(c.law == ni::DampingLaw::kFlores);
+}
+
+TEST_CASE("a [solver] value is checked against its method's range, naming file and key") {
+  const fs::path p = fs::path(NSB_SCENES_DIR) / "bouncing-ball.toml";
+  const auto e = error_of("tol.toml", kBall, {"solver.method=compliance", "solver.tolerance=0.5"});
+  CHECK(contains(e, "tol.toml: solver.tolerance (override): must be in (0, 0.1)"));
+  // A key of another method is accepted when that method accepts it, and refused otherwise.
+  CHECK(error_of("tol2.toml", kBall + "[solver]\ntolerance = 0.5\n").empty());
+  CHECK(contains(error_of("tol3.toml", kBall + "[solver]\ntolerance = 5.0\n"),
+                 "tol3.toml:7:13: solver.tolerance: for event_driven, must be in (0, 1) (got 5)"));
+  // The bridge's default end time and the check step <= end_time against it.
+  CHECK(contains(error_of("step.toml", kBall + "[solver]\nstep = 2.0\n"),
+                 "step.toml:7:8: solver.step: must be <= end_time (1 s)"));
+}
+
+TEST_CASE("an unknown [solver] key names every key the methods declare") {
+  const auto e = error_of("unknown.toml", kBall + "[solver]\nstepp = 1e-5\n");
+  CHECK(contains(e, "unknown.toml:7:9: solver.stepp: unknown key; allowed here: method, "
+                    "end_time, step, theta, lcp_solver, lcp_tolerance, lcp_fallback, "
+                    "event_velocity_tolerance, tolerance, event_time_tolerance"));
+  CHECK(contains(e, "contact_stiffness, stiffness_factor, damping_law"));
 }

@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -74,9 +75,47 @@ TEST_CASE("JSON numbers and strings") {
   // JSON (RFC 8259) has no NaN or infinity: they are written as null.
   CHECK(json_number(std::numeric_limits<double>::quiet_NaN()) == "null");
   CHECK(json_number(std::numeric_limits<double>::infinity()) == "null");
-  // 17 significant digits read back to the same double: 0.1 is 0.1000000000000000055...
-  CHECK(json_number(0.1) == "0.10000000000000001");
+  // The shortest text that reads back to the same double (summary.json's form): 0.1 is
+  // 0.1000000000000000055..., and "0.1" is the shortest text that reads back to it.
+  CHECK(json_number(0.1) == "0.1");
+  CHECK(std::stod(json_number(0.1 + 0.2)) == 0.1 + 0.2);
   CHECK(json_number(-2.0) == "-2");
-  // A quote, a backslash and a newline are escaped (RFC 8259, section 7).
+  // A quote, a backslash and a newline are escaped (RFC 8259, section 7), and so is every
+  // other control character.
   CHECK(json_string("a\"b\\c\nd") == "\"a\\\"b\\\\c\\nd\"");
+  CHECK(json_string("\x01\t") == "\"\\u0001\\t\"");
+}
+
+TEST_CASE("C4 from hand-made peaks: a stiff contact tracks, a soft one underestimates") {
+  using nsb::paper_figures::claim_c4;
+  // Nonsmooth peak 0.01 rad. 1e-4 k: 0.005 (ratio 0.5 < 0.9). 1e0 k: no check. 1e2 k: 0.0105,
+  // |1.05 - 1| = 0.05 < 0.1, RMS difference 0.2 < 0.5.
+  const auto c = claim_c4(0.01, 12.0, {{1e-4, 0.005, 0.7}, {1.0, 0.009, 0.3}, {1e2, 0.0105, 0.2}});
+  REQUIRE(c.checks.size() == 3);
+  CHECK(c.checks[0].quantity == "peak_ratio_k0.0001");
+  CHECK(c.checks[0].value == doctest::Approx(0.5));
+  CHECK(c.checks[1].quantity == "abs_peak_ratio_minus_1_k100");
+  CHECK(c.checks[1].value == doctest::Approx(0.05));
+  CHECK(c.checks[2].value == 0.2);
+  CHECK(c.holds());
+  // 1e2 k off by 20 %: it no longer tracks.
+  CHECK_FALSE(claim_c4(0.01, 12.0, {{1e2, 0.012, 0.2}}).holds());
+}
+
+TEST_CASE("C5 and the first pounding, by hand") {
+  using nsb::paper_figures::claim_c5;
+  using nsb::paper_figures::measure_first_pounding;
+  // g closes at t = 1 (first g < 0 after t0 = 0), reaches -3 at t = 2 and opens at t = 4:
+  // penetration 3, duration 4 - 1 = 3.
+  const auto fp = measure_first_pounding(1.0, {0, 1, 2, 3, 4}, {1, -1, -3, -2, 0.5}, 0.0);
+  CHECK(fp.penetration == 3.0);
+  CHECK(fp.duration == 3.0);
+  // Still closed at the end of the history: not measured.
+  CHECK(std::isnan(measure_first_pounding(1.0, {0, 1}, {1, -1}, 0.0).duration));
+  // Ascending factors; the lower one deeper (2x) and longer (2.5x): holds.
+  CHECK(claim_c5({{1e-4, 0.002, 0.05}, {1.0, 0.001, 0.02}}).holds());
+  // Equal penetrations: "strictly deeper" fails.
+  CHECK_FALSE(claim_c5({{1e-4, 0.001, 0.05}, {1.0, 0.001, 0.02}}).holds());
+  // One factor: no ratio, the checks are NaN and fail.
+  CHECK_FALSE(claim_c5({{1.0, 0.001, 0.02}}).holds());
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end tests of `nsbridge sweep`: design errors (exit 2, nothing written), a failing run
 # inside a sweep (exit 1, a row with its status), resume, refusal of a changed design, the
-# equality of --jobs 1 and --jobs 2, the Fig. 6 design and the plots.
+# equality of --jobs 1 and --jobs 2, the Fig. 6 design and the plots, --gnuplot, and the
+# warnings of a sweep's run against `nsbridge run` with the same overrides.
 #   bash sweep/test/sweep_cli_test.sh NSBRIDGE
 set -uo pipefail
 nsb=$1
@@ -85,6 +86,28 @@ design "$tmp/oat.toml" bridge-exc7 $'mode = "oat"\nset = ["solver.end_time=3"]
 run 0 '5 in the design' sweep "$tmp/oat.toml" --out "$tmp/oat" --plot --limit 0.001
 for f in tornado.csv tornado.png tornado.svg; do check "plot $f" test -s "$tmp/oat/plots/$f"; done
 check "tornado rows" test "$(wc -l < "$tmp/oat/plots/tornado.csv")" -eq 3
+
+# --- The plots are drawn by the gnuplot that --gnuplot names ------------------------------------
+printf '#!/bin/sh\nexit 3\n' > "$tmp/no-gnuplot"
+chmod +x "$tmp/no-gnuplot"
+run 1 'gnuplot failed' sweep "$tmp/oat.toml" --out "$tmp/oat" --plot-only --limit 0.001 \
+  --gnuplot "$tmp/no-gnuplot"
+
+# --- A run of a sweep is `nsbridge run`: the same summary, warnings included ---------------------
+# Excitation 7 with a coarse step: 7 warnings (step, energy balance, penetration of each contact).
+design "$tmp/coarse.toml" bridge-exc7 $'[[factor]]\nkey = "solver.step"\nvalues = [0.02]'
+run 0 '1 in the design' sweep "$tmp/coarse.toml" --out "$tmp/coarse"
+run 0 'warnings   7' run "$root/scenes/bridge-exc7.toml" --set solver.step=0.02 --quiet \
+  --out "$tmp/coarse-run"
+warnings() { python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["warnings"])' "$1"; }
+check "a sweep run has warnings" test "$(warnings "$tmp/coarse/runs/0000/summary.json")" != "[]"
+check "the warnings of a sweep run and of nsbridge run are the same" \
+  test "$(warnings "$tmp/coarse/runs/0000/summary.json")" = "$(warnings "$tmp/coarse-run/summary.json")"
+check "the summaries are the same but for the wall time" \
+  cmp -s <(grep -v wall_time "$tmp/coarse/runs/0000/summary.json") \
+         <(grep -v wall_time "$tmp/coarse-run/summary.json")
+check "the histories are the same" \
+  cmp -s "$tmp/coarse/runs/0000/history.csv" "$tmp/coarse-run/history.csv"
 
 echo "sweep_cli_test: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

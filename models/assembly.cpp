@@ -1,0 +1,392 @@
+#include "models/assembly.hpp"
+
+#include "models/rigid_deck.hpp"
+
+#include <cmath>
+#include <initializer_list>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace nsb::models {
+
+namespace {
+
+void require(bool ok, const std::string& field, const std::string& what) {
+  if (!ok) throw std::invalid_argument(field + ": " + what);
+}
+
+std::string indexed(const char* list, std::size_t i) {
+  return std::string(list) + "[" + std::to_string(i) + "].";
+}
+
+// Coordinate names: x, y, theta for one body (as models::Bridge), x1, y1, theta1, ... else.
+std::vector<std::string> names(std::size_t bodies, std::initializer_list<const char*> base) {
+  std::vector<std::string> out;
+  for (std::size_t b = 0; b < bodies; ++b) {
+    for (const char* n : base) {
+      out.push_back(bodies == 1 ? std::string(n) : n + std::to_string(b + 1));
+    }
+  }
+  return out;
+}
+
+void validate_takeda(const takeda::Parameters& p, const std::string& field) {
+  try {
+    p.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(field + "." + e.what());
+  }
+}
+
+}  // namespace
+
+Assembly::Assembly(Parts parts)
+    : SystemBase(names(parts.bodies.size(), {"x", "y", "theta"}),
+                 names(parts.bodies.size(), {"vx", "vy", "omega"})),
+      parts_(std::move(parts)) {
+  validate_parts();
+  const auto n = static_cast<Eigen::Index>(3 * parts_.bodies.size());
+  integrators::Matrix mass = integrators::Matrix::Zero(n, n);
+  integrators::Vector q0(n), u0(n);
+  for (std::size_t b = 0; b < parts_.bodies.size(); ++b) {
+    const auto& body = parts_.bodies[b];
+    const auto o = static_cast<Eigen::Index>(3 * b);
+    mass(o, o) = mass(o + 1, o + 1) = body.mass;
+    mass(o + 2, o + 2) = body.inertia;
+    q0.segment<3>(o) = body.initial_position;
+    u0.segment<3>(o) = body.initial_velocity;
+  }
+  set_mass(mass);
+  set_initial_state(q0, u0);
+  build_bents(mass);
+  build_contacts();
+  seats_.assign(parts_.prescribed.size(), PlanarMotion{});
+  check_initial_gaps();
+}
+
+void Assembly::validate_parts() const {
+  const auto nb = static_cast<int>(parts_.bodies.size());
+  require(nb >= 1, "bodies", "at least one rigid body is needed");
+  for (std::size_t b = 0; b < parts_.bodies.size(); ++b) {
+    parts_.bodies[b].validate(indexed("bodies", b));
+  }
+  for (std::size_t j = 0; j < parts_.bents.size(); ++j) {
+    const auto& bent = parts_.bents[j];
+    const std::string prefix = indexed("bents", j);
+    require(bent.body >= 0 && bent.body < nb, prefix + "body", "must name one of the bodies");
+    require(std::isfinite(bent.position) &&
+                std::abs(bent.position) <= 0.5 * parts_.bodies[static_cast<std::size_t>(
+                                                      bent.body)].length,
+            prefix + "position", "must lie on the body, |s| <= L/2 [m]");
+    validate_takeda(bent.longitudinal, prefix + "longitudinal");
+    validate_takeda(bent.transverse, prefix + "transverse");
+  }
+  const auto np = static_cast<int>(parts_.prescribed.size());
+  for (std::size_t i = 0; i < parts_.contacts.size(); ++i) {
+    const auto& c = parts_.contacts[i];
+    const std::string prefix = indexed("contacts", i);
+    require(c.body >= 0 && c.body < nb, prefix + "body", "must name one of the bodies");
+    require(c.corner >= 0 && c.corner <= 3, prefix + "corner", "must be 0, 1, 2 or 3");
+    const bool on_body = c.obstacle == parts::Obstacle::kBody;
+    require(c.obstacle_index >= 0 && c.obstacle_index < (on_body ? nb : np),
+            prefix + "obstacle_index",
+            on_body ? "must name one of the bodies" : "must name one of the prescribed bodies");
+    require(!on_body || c.obstacle_index != c.body, prefix + "obstacle_index",
+            "must be another body than the corner's");
+    require(c.face.point.allFinite(), prefix + "face.point", "must be finite [m]");
+    require(c.face.normal.allFinite() && std::abs(c.face.normal.norm() - 1.0) < 1e-12,
+            prefix + "face.normal", "must be a unit vector");
+    require(std::isfinite(c.restitution) && c.restitution >= 0 && c.restitution <= 1,
+            prefix + "restitution", "must be in [0, 1]");
+    require(std::isfinite(c.friction) && c.friction >= 0, prefix + "friction", "must be >= 0");
+  }
+}
+
+void Assembly::build_bents(const integrators::Matrix& mass) {
+  body_forces_.resize(parts_.bodies.size());
+  bent_slot_.resize(parts_.bents.size());
+  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+    BodyForces& body = body_forces_[i];
+    body.offset = static_cast<int>(3 * i);
+    body.bent_begin = bents_.size();
+    for (std::size_t j = 0; j < parts_.bents.size(); ++j) {
+      const auto& p = parts_.bents[j];
+      if (static_cast<std::size_t>(p.body) != i) continue;
+      bent_slot_[j] = bents_.size();
+      bents_.push_back({.offset = body.offset, .position = p.position,
+                        .x = takeda::Spring(p.longitudinal), .y = takeda::Spring(p.transverse),
+                        .ground_x = motions_.add(p.ground_longitudinal, false),
+                        .ground_y = motions_.add(p.ground_transverse, false)});
+      // K0 += k0_x b_x b_x^T + k0_y b_y b_y^T, written as models::Bridge writes it.
+      const Eigen::Vector3d by(0.0, 1.0, p.position);
+      body.k0(0, 0) += p.longitudinal.k0;
+      body.k0 += p.transverse.k0 * by * by.transpose();
+    }
+    body.bent_end = bents_.size();
+  }
+  us_dot_.assign(body_forces_.size(), Eigen::Vector3d::Zero());
+  if (parts_.damping) build_damping(mass);
+}
+
+void Assembly::build_damping(const integrators::Matrix& mass) {
+  const auto& d = *parts_.damping;
+  integrators::Matrix k0 = integrators::Matrix::Zero(mass.rows(), mass.cols());
+  for (const auto& b : body_forces_) k0.block<3, 3>(b.offset, b.offset) = b.k0;
+  try {
+    rayleigh_ = rayleigh(mass, k0, d.mode_i, d.ratio_i, d.mode_j, d.ratio_j);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("damping: ") + e.what());
+  }
+  for (auto& b : body_forces_) {
+    b.damped = true;
+    b.c = rayleigh_.a0 * mass.block<3, 3>(b.offset, b.offset) + rayleigh_.a1 * b.k0;
+    // us = sum_j (qs_x u_gx,j + qs_y u_gy,j), qs the columns K0_bb^-1 k0_j b_j.
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(b.k0);
+    for (std::size_t j = b.bent_begin; j < b.bent_end; ++j) {
+      BentState& bent = bents_[j];
+      bent.qs_x = ldlt.solve(Eigen::Vector3d(bent.x.parameters().k0, 0.0, 0.0));
+      bent.qs_y =
+          ldlt.solve(bent.y.parameters().k0 * Eigen::Vector3d(0.0, 1.0, bent.position));
+    }
+  }
+}
+
+void Assembly::build_contacts() {
+  for (const auto& p : parts_.prescribed) {
+    seat_index_.push_back({motions_.add(p.longitudinal, true), motions_.add(p.transverse, true),
+                           motions_.add(p.rotation, true)});
+  }
+  for (std::size_t i = 0; i < parts_.contacts.size(); ++i) {
+    const auto& c = parts_.contacts[i];
+    const CornerFace geometry{
+        .body_point = parts_.bodies[static_cast<std::size_t>(c.body)].corner(c.corner),
+        .face_point = c.face.point, .face_normal = c.face.normal};
+    if (c.obstacle == parts::Obstacle::kPrescribed) {
+      seat_contacts_.push_back({.slot = i, .offset = 3 * c.body, .seat = c.obstacle_index,
+                                .geometry = geometry, .restitution = c.restitution,
+                                .friction = c.friction});
+    } else {
+      body_contacts_.push_back({.slot = i, .offset_a = 3 * c.body,
+                                .offset_b = 3 * c.obstacle_index, .geometry = geometry,
+                                .restitution = c.restitution, .friction = c.friction});
+    }
+  }
+}
+
+void Assembly::check_initial_gaps() const {
+  std::vector<integrators::ContactData> c = make_contact_buffer();
+  contact_data(initial_time(), initial_position(), initial_velocity(), c);
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (c[i].gap_normal < -kPenetrationTolerance) {
+      std::ostringstream s;
+      s << "contacts[" << i << "]: initial penetration (g_N = " << c[i].gap_normal
+        << " m); the initial gaps must be >= 0";
+      throw std::invalid_argument(s.str());
+    }
+  }
+}
+
+void Assembly::update_motions(double t) const {
+  if (!motions_.update(t)) return;
+  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+    const BodyForces& body = body_forces_[i];
+    if (!body.damped) continue;
+    Eigen::Vector3d us = Eigen::Vector3d::Zero();
+    for (std::size_t j = body.bent_begin; j < body.bent_end; ++j) {
+      const BentState& b = bents_[j];
+      us += b.qs_x * motions_.value(b.ground_x).v + b.qs_y * motions_.value(b.ground_y).v;
+    }
+    us_dot_[i] = us;
+  }
+  for (std::size_t p = 0; p < seats_.size(); ++p) seat_pose(p, seats_[p]);
+}
+
+void Assembly::seat_pose(std::size_t p, PlanarMotion& m) const {
+  const SeatIndex& ix = seat_index_[p];
+  const auto &mx = motions_.value(ix.x), &my = motions_.value(ix.y),
+             &mr = motions_.value(ix.phi);
+  const Eigen::Vector2d& a = parts_.prescribed[p].reference;
+  m.position << a.x() + mx.d, a.y() + my.d, mr.d;
+  m.velocity << mx.v, my.v, mr.v;
+  m.acceleration << mx.a, my.a, mr.a;
+}
+
+PlanarMotion Assembly::prescribed_motion(int p, double t) const {
+  update_motions(t);
+  return seats_.at(static_cast<std::size_t>(p));
+}
+
+integrators::Matrix Assembly::damping_matrix() const {
+  integrators::Matrix c = integrators::Matrix::Zero(dofs(), dofs());
+  for (const auto& b : body_forces_) c.block<3, 3>(b.offset, b.offset) = b.c;
+  return c;
+}
+
+integrators::Matrix Assembly::initial_stiffness() const {
+  integrators::Matrix k = integrators::Matrix::Zero(dofs(), dofs());
+  for (const auto& b : body_forces_) k.block<3, 3>(b.offset, b.offset) = b.k0;
+  return k;
+}
+
+double Assembly::bent_force_longitudinal(int j) const {
+  return bents_[bent_slot_.at(static_cast<std::size_t>(j))].x.force();
+}
+
+double Assembly::bent_force_transverse(int j) const {
+  return bents_[bent_slot_.at(static_cast<std::size_t>(j))].y.force();
+}
+
+void Assembly::forces(double t, const integrators::Vector& q, const integrators::Vector& u,
+                      integrators::Vector& f) {
+  update_motions(t);
+  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+    const BodyForces& body = body_forces_[i];
+    Eigen::Vector3d fs = Eigen::Vector3d::Zero();
+    for (std::size_t j = body.bent_begin; j < body.bent_end; ++j) {
+      BentState& b = bents_[j];
+      const double s = b.position;
+      const int o = b.offset;
+      // Body displacement at the bent relative to the bent's own ground (small rotations).
+      const double dx = q(o) - motions_.value(b.ground_x).d;
+      const double dy = q(o + 1) + s * q(o + 2) - motions_.value(b.ground_y).d;
+      const double fx = b.x.set_trial(dx);
+      const double fy = b.y.set_trial(dy);
+      fs(0) -= fx;
+      fs(1) -= fy;
+      fs(2) -= s * fy;  // torque of the transverse bent force about the body centre
+    }
+    if (body.damped) {
+      const Eigen::Vector3d vr = u.segment<3>(body.offset) - us_dot_[i];
+      f.segment<3>(body.offset) = fs - body.c * vr;
+    } else {
+      f.segment<3>(body.offset) = fs;
+    }
+  }
+}
+
+void Assembly::tangent(double, const integrators::Vector&, const integrators::Vector&,
+                       integrators::Matrix& K, integrators::Matrix& C) {
+  K.setZero(dofs(), dofs());
+  for (const auto& b : bents_) {
+    const double s = b.position;
+    const int o = b.offset;
+    const double kx = b.x.tangent(), ky = b.y.tangent();
+    K(o, o) += kx;
+    K(o + 1, o + 1) += ky;
+    K(o + 1, o + 2) += ky * s;
+    K(o + 2, o + 1) += ky * s;
+    K(o + 2, o + 2) += ky * s * s;
+  }
+  C.setZero(dofs(), dofs());
+  for (const auto& b : body_forces_) C.block<3, 3>(b.offset, b.offset) = b.c;
+}
+
+bool Assembly::tangent_changed() const {
+  for (const auto& b : bents_) {
+    if (b.x.tangent_changed() || b.y.tangent_changed()) return true;
+  }
+  return false;
+}
+
+void Assembly::commit() {
+  for (auto& b : bents_) b.x.commit();
+  for (auto& b : bents_) b.y.commit();
+}
+
+void Assembly::revert() {
+  for (auto& b : bents_) b.x.revert();
+  for (auto& b : bents_) b.y.revert();
+}
+
+void Assembly::resize_buffer(std::vector<integrators::ContactData>& out) const {
+  out.resize(parts_.contacts.size());
+  for (auto& c : out) {
+    c.w_normal = integrators::Vector::Zero(dofs());
+    c.w_tangent = integrators::Vector::Zero(dofs());
+  }
+}
+
+void Assembly::contact_data(double t, const integrators::Vector& q, const integrators::Vector& u,
+                            std::vector<integrators::ContactData>& out) const {
+  size_buffer(out);
+  update_motions(t);
+  // The corners of one body are consecutive: its state is copied once for them.
+  Eigen::Vector3d qa, ua;
+  int body = -1;
+  for (const auto& c : seat_contacts_) {
+    if (c.offset != body) {
+      body = c.offset;
+      qa = q.segment<3>(body);
+      ua = u.segment<3>(body);
+    }
+    const auto k = corner_contact(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
+    parts::write_contact(k, c.offset, c.restitution, c.friction, out[c.slot]);
+  }
+  for (const auto& c : body_contacts_) {
+    const auto k = parts::corner_on_body(c.geometry, q.segment<3>(c.offset_a),
+                                         u.segment<3>(c.offset_a), q.segment<3>(c.offset_b),
+                                         u.segment<3>(c.offset_b));
+    parts::write_body_contact(k, c.offset_a, c.offset_b, c.restitution, c.friction,
+                              out[c.slot]);
+  }
+}
+
+void Assembly::contact_normals(double t, const integrators::Vector& q,
+                               const integrators::Vector& u,
+                               std::vector<integrators::ContactData>& out) const {
+  size_buffer(out);
+  update_motions(t);
+  Eigen::Vector3d qa, ua;
+  int body = -1;
+  for (const auto& c : seat_contacts_) {
+    if (c.offset != body) {
+      body = c.offset;
+      qa = q.segment<3>(body);
+      ua = u.segment<3>(body);
+    }
+    const auto k =
+        corner_contact_normal(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
+    parts::write_contact_normal(k, c.offset, out[c.slot]);
+  }
+  // A body face needs g_T for B's column: the full kinematics, its normal fields kept.
+  for (const auto& c : body_contacts_) {
+    const auto k = parts::corner_on_body(c.geometry, q.segment<3>(c.offset_a),
+                                         u.segment<3>(c.offset_a), q.segment<3>(c.offset_b),
+                                         u.segment<3>(c.offset_b));
+    parts::write_body_contact_normal(k, c.offset_a, c.offset_b, out[c.slot]);
+  }
+}
+
+integrators::PowerTerms Assembly::power(double t, const integrators::Vector&,
+                                        const integrators::Vector& u) const {
+  integrators::PowerTerms pw;
+  update_motions(t);
+  double ground = 0.0;
+  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+    const BodyForces& body = body_forces_[i];
+    if (!body.damped) continue;
+    const Eigen::Vector3d& us = us_dot_[i];
+    const Eigen::Vector3d vr = u.segment<3>(body.offset) - us;
+    const Eigen::Vector3d cvr = body.c * vr;
+    pw.damping += vr.dot(cvr);
+    ground -= us.dot(cvr);
+  }
+  for (const auto& b : bents_) {
+    ground -= b.x.force() * motions_.value(b.ground_x).v +
+              b.y.force() * motions_.value(b.ground_y).v;
+  }
+  pw.ground = ground;
+  return pw;
+}
+
+integrators::EnergyState Assembly::energy(double, const integrators::Vector&) const {
+  integrators::EnergyState e;
+  for (const auto& b : bents_) {
+    e.stored += b.x.stored_energy() + b.y.stored_energy();
+    e.hysteretic += b.x.dissipated_energy() + b.y.dissipated_energy();
+  }
+  return e;
+}
+
+}  // namespace nsb::models

@@ -1,0 +1,150 @@
+// A mechanical system assembled from parts (models/parts.hpp): the one integrators::System
+// that the contact stage and the integrators see, summing what each part adds.
+//
+// Equation of motion (eq. 2 of Shi & Dimitrakopoulos 2017, for any number of bodies):
+//   M udot = f_S + f_D + W_N lambda_N + W_T lambda_T,   M = diag(m_b, m_b, I_b) per body,
+//   f_S = sum over bents of their Takeda forces (models/parts.hpp, Bent),
+//   f_D = -C (u - us_dot(t)),   C = a0 M + a1 K0 (RayleighParts; none without it),
+// where K0 is the initial stiffness of the bents and us = K0^-1 sum_j k0_j b_j u_g,j the
+// quasi-static displacement of the supports (Chopra, Dynamics of Structures, sec. 9.7).
+// Bents join a body to the ground, so K0 and C are block-diagonal, one 3x3 block per body,
+// and us is found body by body. The contacts are listed in the order given; each is a corner
+// against a prescribed face (rheonomic, models/contact_geometry.hpp) or against a face of
+// another body (W_N and W_T span both bodies' DOFs, parts::corner_on_body).
+//
+// Cost: every evaluation is a pass over vectors of concrete part types sized at
+// construction; no allocation and no virtual call per part. Ground motions are evaluated once
+// per distinct t (parts::MotionTable, a cache inside const calls): one Assembly must not be
+// used from several threads at once.
+//
+// With one body, bents and contacts in the order of models::Bridge, the assembly performs the
+// same floating-point operations in the same order as models::Bridge
+// (verification/parts_bridge_check.cpp).
+//
+// Units: kN, t, m, s, rad.
+#pragma once
+
+#include "integrators/system.hpp"
+#include "models/contact_geometry.hpp"
+#include "models/parts.hpp"
+#include "models/rayleigh.hpp"
+#include "models/takeda.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace nsb::models {
+
+class Assembly final : public integrators::SystemBase {
+ public:
+  struct Parts {
+    std::vector<parts::RigidBody> bodies;          // >= 1; DOFs 3b .. 3b + 2 of body b
+    std::vector<parts::PrescribedBody> prescribed; // seats and fixed ground faces
+    std::vector<parts::Bent> bents;
+    std::vector<parts::CornerContact> contacts;    // output order (gN1, gN2, ...)
+    std::optional<parts::RayleighParts> damping;   // needs a bent on every body (K0 > 0)
+  };
+
+  // Throws std::invalid_argument naming the part and field ("bodies[1].mass: ...") for bad
+  // parameters, indices out of range, and an initial penetration at t = 0.
+  explicit Assembly(Parts parts);
+
+  const Parts& parts() const { return parts_; }
+  // C = a0 M + a1 K0 and the assembled K0, dofs() x dofs() (zero without damping or bents).
+  integrators::Matrix damping_matrix() const;
+  integrators::Matrix initial_stiffness() const;
+  const RayleighDamping& rayleigh_damping() const { return rayleigh_; }
+  // Pose of prescribed body p at time t, with derivatives.
+  PlanarMotion prescribed_motion(int p, double t) const;
+  // Trial spring forces of bent j from the last forces() call [kN].
+  double bent_force_longitudinal(int j) const;
+  double bent_force_transverse(int j) const;
+
+  void forces(double t, const integrators::Vector& q, const integrators::Vector& u,
+              integrators::Vector& f) override;
+  void tangent(double t, const integrators::Vector& q, const integrators::Vector& u,
+               integrators::Matrix& K, integrators::Matrix& C) override;
+  bool tangent_changed() const override;
+  void commit() override;
+  void revert() override;
+  int contacts() const override { return static_cast<int>(parts_.contacts.size()); }
+  void contact_data(double t, const integrators::Vector& q, const integrators::Vector& u,
+                    std::vector<integrators::ContactData>& out) const override;
+  // g_N, W_N, what_N and far only; prescribed faces use corner_contact_normal.
+  void contact_normals(double t, const integrators::Vector& q, const integrators::Vector& u,
+                       std::vector<integrators::ContactData>& out) const override;
+  // As models::Bridge::power: damping = (u - us_dot)^T C (u - us_dot); ground = work rate of
+  // the bents' support reactions on the support motion - us_dot^T C (u - us_dot). The seats'
+  // work enters through the contact impulses (their rheonomic terms).
+  integrators::PowerTerms power(double t, const integrators::Vector& q,
+                                const integrators::Vector& u) const override;
+  // stored: elastic energy of the bents; hysteretic: dissipated by them (trial state).
+  integrators::EnergyState energy(double t, const integrators::Vector& q) const override;
+
+ private:
+  // One bent with its two springs, its body's DOF offset and its motions in motions_.
+  struct BentState {
+    int offset = 0;
+    double position = 0.0;
+    takeda::Spring x, y;
+    int ground_x = parts::MotionTable::kNone, ground_y = parts::MotionTable::kNone;
+    Eigen::Vector3d qs_x = Eigen::Vector3d::Zero(), qs_y = Eigen::Vector3d::Zero();
+  };
+  // One body's share of the smooth force: its bents bents_[bent_begin, bent_end), its damping
+  // block C_bb and its initial stiffness K0_bb. Summing body by body into fixed-size vectors
+  // performs models::Bridge's operations for a single body.
+  struct BodyForces {
+    int offset = 0;
+    std::size_t bent_begin = 0, bent_end = 0;
+    bool damped = false;
+    Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d k0 = Eigen::Matrix3d::Zero();
+  };
+  struct SeatIndex {
+    int x = parts::MotionTable::kNone, y = parts::MotionTable::kNone,
+        phi = parts::MotionTable::kNone;
+  };
+  // A contact against a prescribed face, or against a body face, with its output slot.
+  struct SeatContact {
+    std::size_t slot = 0;
+    int offset = 0, seat = 0;
+    CornerFace geometry;
+    double restitution = 0.0, friction = 0.0;
+  };
+  struct BodyContact {
+    std::size_t slot = 0;
+    int offset_a = 0, offset_b = 0;
+    CornerFace geometry;
+    double restitution = 0.0, friction = 0.0;
+  };
+
+  void validate_parts() const;
+  void build_bents(const integrators::Matrix& mass);
+  void build_damping(const integrators::Matrix& mass);
+  void build_contacts();
+  void check_initial_gaps() const;
+  // Evaluates the motions at t unless cached, then us_dot and the seats' poses.
+  void update_motions(double t) const;
+  void seat_pose(std::size_t p, PlanarMotion& m) const;
+  // Sizes `out` for contacts() entries of dofs() rows, unless it already has them.
+  void size_buffer(std::vector<integrators::ContactData>& out) const {
+    if (out.size() != parts_.contacts.size()) resize_buffer(out);
+  }
+  void resize_buffer(std::vector<integrators::ContactData>& out) const;
+
+  Parts parts_;
+  parts::MotionTable motions_;
+  std::vector<BentState> bents_;         // grouped by body, in the given order within a body
+  std::vector<std::size_t> bent_slot_;   // bents_ index of the given bent j
+  std::vector<BodyForces> body_forces_;  // one per body
+  std::vector<SeatIndex> seat_index_;
+  std::vector<SeatContact> seat_contacts_;
+  std::vector<BodyContact> body_contacts_;
+  RayleighDamping rayleigh_;
+  // Workspaces of the const evaluations, sized at construction.
+  mutable std::vector<Eigen::Vector3d> us_dot_;  // us_dot per body at the motions' time
+  mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time
+};
+
+}  // namespace nsb::models

@@ -1,0 +1,318 @@
+// The bridge of a scene file (docs/bridge.md): its tables read by field
+// (models/scene_schema.hpp), in the order of the model: the deck, its gaps, the damping, the
+// bents, the seats, the excitation, and the support motions made from the records.
+#include "models/scene_builders.hpp"
+
+#include "models/bridge.hpp"
+#include "models/ground_motion.hpp"
+#include "models/scene_schema.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <optional>
+
+namespace nsb::models {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kStandardGravity = 9.81;  // [m/s^2]: target PGA in scenes is in units of g
+
+// Finds a record file: absolute, next to the scene, in ../data/ beside it, or in ./data/.
+fs::path find_record(const Section& s, const std::string& key, const std::string& name) {
+  const Context& c = s.context();
+  const fs::path p(name);
+  std::vector<fs::path> tried;
+  if (p.is_absolute()) {
+    tried.push_back(p);
+  } else {
+    tried.push_back(c.dir / p);
+    tried.push_back(c.dir / ".." / "data" / p);
+    tried.push_back(fs::current_path() / "data" / p);
+  }
+  for (const auto& t : tried) {
+    std::error_code ec;
+    if (fs::is_regular_file(t, ec)) return t;
+  }
+  std::string list;
+  for (const auto& t : tried) list += (list.empty() ? "" : ", ") + t.lexically_normal().string();
+  s.fail(key, "record file \"" + name + "\" not found (looked for " + list + ")");
+}
+
+Record read_record(const Section& s, const std::string& key, const std::string& name,
+                   double unit) {
+  const Context& c = s.context();
+  const fs::path path = find_record(s, key, name);
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  Record r;
+  try {
+    if (ext == ".at2") {
+      r = read_at2(path, kStandardGravity);
+    } else if (ext == ".csv") {
+      r = read_csv(path, unit);
+    } else {
+      r = read_two_column(path, unit);
+    }
+  } catch (const std::exception& e) {
+    s.fail(key, "cannot read record \"" + path.string() + "\": " + e.what());
+  }
+  if (r.t.size() < 2 || r.t.size() != r.a.size()) {
+    s.fail(key, "record \"" + path.string() + "\" needs at least 2 samples of (t, a)");
+  }
+  for (std::size_t i = 1; i < r.t.size(); ++i) {
+    if (!(r.t[i] > r.t[i - 1])) {
+      s.fail(key, "record \"" + path.string() + "\": time is not strictly increasing at sample " +
+                      std::to_string(i + 1) + " (t = " + config::format_value(r.t[i]) + " s after " +
+                      config::format_value(r.t[i - 1]) + " s)");
+    }
+  }
+  for (std::size_t i = 0; i < r.a.size(); ++i) {
+    if (!std::isfinite(r.a[i]) || !std::isfinite(r.t[i])) {
+      s.fail(key, "record \"" + path.string() + "\": non-finite value at sample " +
+                      std::to_string(i + 1));
+    }
+  }
+  for (std::size_t i = 1; i < r.t.size(); ++i) {
+    const double dt = r.t[i] - r.t[i - 1];
+    if (c.record_step == 0.0 || dt < c.record_step) c.record_step = dt;
+  }
+  return r;
+}
+
+double peak(const Record& r) {
+  double p = 0.0;
+  for (double a : r.a) p = std::max(p, std::abs(a));
+  return p;
+}
+
+// Ground motions of one direction, one per distinct delay (shared by the supports).
+class MotionSet {
+ public:
+  MotionSet() = default;
+  MotionSet(std::optional<Record> r, GroundMotionOptions o) : record_(std::move(r)), options_(o) {}
+  Bridge::Motion at_delay(double delay) {
+    if (!record_) return nullptr;
+    auto& m = cache_[delay];
+    if (!m) {
+      GroundMotionOptions o = options_;
+      o.delay = delay;
+      m = std::make_shared<const GroundMotion>(*record_, o);
+    }
+    return m;
+  }
+
+ private:
+  std::optional<Record> record_;
+  GroundMotionOptions options_;
+  std::map<double, Bridge::Motion> cache_;
+};
+
+// Reads the sub-table `key` of [model] with fields into p; p keeps its values when the
+// table is absent. Returns the table's section, or nullopt.
+template <class S>
+std::optional<Section> read_table(const Section& m, std::string_view key,
+                                  std::span<const config::Field<S>> fields, S& p) {
+  const auto* t = m.subtable(key);
+  if (t == nullptr) return std::nullopt;
+  Section s(m.context(), *t, m.key_path(key));
+  s.only(keys_of(fields));
+  s.read_all(fields, p);
+  return s;
+}
+
+void read_damping(const Section& m, Bridge::Parameters& p) {
+  const auto s = read_table(m, "damping", bridge_damping_fields(), p);
+  if (s && p.damping_mode_i == p.damping_mode_j) s->fail("mode_j", "must differ from mode_i");
+}
+
+// The spring of one direction of a bent: explicit stiffness and yield force where given, the
+// column design's values otherwise.
+takeda::Parameters bent_spring(const Section& s, const BentSettings& b, const char* direction) {
+  const std::string sk = std::string("stiffness_") + direction;
+  const std::string fk = std::string("yield_force_") + direction;
+  const bool stiff = s.has(sk), fy = s.has(fk);
+  if ((!stiff || !fy) && !s.has("height")) {
+    s.fail_table("missing key height (needed to derive " + (stiff ? fk : sk) +
+                 "; give height, or both " + sk + " and " + fk + ")");
+  }
+  const bool longitudinal = std::string_view(direction) == "longitudinal";
+  const double kk = stiff ? (longitudinal ? b.stiffness_longitudinal : b.stiffness_transverse)
+                          : b.design.stiffness();
+  const double ff = fy ? (longitudinal ? b.yield_force_longitudinal : b.yield_force_transverse)
+                       : b.design.yield_force();
+  return takeda::Parameters::bilinear(ff, ff / kk, b.design.post_yield_ratio,
+                                      b.design.unloading_exponent);
+}
+
+// [[model.bents]]: the bents and the wave-passage delay of each [s].
+std::vector<double> read_bents(const Section& m, Bridge::Parameters& p) {
+  std::vector<double> delays;
+  const auto* bents = m.array_of_tables("bents");
+  if (bents == nullptr || bents->size() < 2) {
+    m.fail(bents == nullptr ? "kind" : "bents",
+           "a bridge needs at least 2 [[model.bents]] (torsional stiffness)");
+  }
+  for (std::size_t j = 0; j < bents->size(); ++j) {
+    Section s(m.context(), *(*bents)[j].as_table(),
+              m.key_path("bents") + "[" + std::to_string(j) + "]");
+    s.only(keys_of(BentSettings::fields()));
+    BentSettings b;
+    s.read_all(BentSettings::fields(), b);
+    if (!s.has("position")) {
+      s.fail_table("missing key position (bent position along the deck axis [m])");
+    }
+    if (std::abs(b.position) > 0.5 * p.deck.length) {
+      s.fail("position", "must lie on the deck, |position| <= length / 2 = " +
+                             config::format_value(0.5 * p.deck.length) + " m (got " +
+                             config::format_value(b.position) + ")");
+    }
+    p.bents.push_back({b.position, bent_spring(s, b, "longitudinal"),
+                       bent_spring(s, b, "transverse")});
+    delays.push_back(b.delay);
+  }
+  return delays;
+}
+
+// [model.seats]: the seats' motion.
+struct SeatMotions {
+  std::array<double, 2> delays{0.0, 0.0};         // wave-passage delay of each seat [s]
+  bool transverse = false;                        // seats follow the transverse record too
+  std::array<std::optional<Record>, 2> rotation;  // angular acceleration records [rad/s^2]
+  double rotation_scale = 1.0;                    // factor on the rotation records
+};
+
+SeatMotions read_seats(const Section& m, Bridge::Parameters& p) {
+  SeatMotions out;
+  const auto* t = m.subtable("seats");
+  if (t == nullptr) return out;
+  Section s(m.context(), *t, m.key_path("seats"));
+  std::vector<std::string_view> keys = keys_of(bridge_seat_fields());
+  for (const auto& k : keys_of(SeatMotionSettings::fields())) keys.push_back(k);
+  s.only(keys);
+  s.read_all(bridge_seat_fields(), p);
+  SeatMotionSettings seats;
+  s.read_all(SeatMotionSettings::fields(), seats);
+  out.transverse = seats.transverse;
+  out.delays = {seats.delay_left, seats.delay_right};
+  out.rotation_scale = seats.rotation_scale;
+  const std::array<std::pair<const char*, const std::string*>, 2> records{
+      {{"rotation_record_left", &seats.rotation_record_left},
+       {"rotation_record_right", &seats.rotation_record_right}}};
+  for (std::size_t a = 0; a < 2; ++a) {
+    if (records[a].second->empty()) continue;
+    out.rotation[a] = read_record(s, records[a].first, *records[a].second, seats.rotation_unit);
+  }
+  return out;
+}
+
+// [model.excitation]: the two records with their own factors, and the shared options.
+struct ExcitationRecords {
+  std::optional<Record> longitudinal, transverse;
+  double longitudinal_factor = 1.0, transverse_factor = 1.0;  // amplitude factors
+  GroundMotionOptions options;                                // time scale, baseline
+};
+
+// The factor that scales record r to target [g]; fails at key when the record is all zeros.
+double factor_to(const Section& s, const std::string& key, const Record& r, double target) {
+  const double pk = peak(r);
+  if (!(pk > 0)) s.fail(key, "the record's peak acceleration is zero: cannot scale it");
+  return target * kStandardGravity / pk;
+}
+
+// target_pga scales the transverse component (or the longitudinal one when it is alone);
+// without longitudinal_pga the other component takes the same factor. longitudinal_pga gives
+// the longitudinal component its own target (docs/bridge.md, "Target PGAs").
+void scale_to_targets(const Section& s, const ExcitationSettings& e, ExcitationRecords& out) {
+  const Record* ref = out.transverse ? &*out.transverse
+                                     : (out.longitudinal ? &*out.longitudinal : nullptr);
+  double common = 1.0;
+  if (ref != nullptr && e.target_pga > 0) common = factor_to(s, "target_pga", *ref, e.target_pga);
+  out.transverse_factor = e.scale * common;
+  out.longitudinal_factor = e.scale * common;
+  if (e.longitudinal_pga > 0) {
+    if (!out.longitudinal) s.fail("longitudinal_pga", "needs a longitudinal_record to scale");
+    out.longitudinal_factor =
+        e.scale * factor_to(s, "longitudinal_pga", *out.longitudinal, e.longitudinal_pga);
+  }
+}
+
+ExcitationRecords read_excitation(const Section& m, double& time_scale) {
+  ExcitationRecords out;
+  ExcitationSettings e;
+  const auto s = read_table(m, "excitation", ExcitationSettings::fields(), e);
+  time_scale = e.time_scale;
+  if (!s) return out;
+  if (!e.longitudinal_record.empty()) {
+    out.longitudinal = read_record(*s, "longitudinal_record", e.longitudinal_record, e.record_unit);
+  }
+  if (!e.transverse_record.empty()) {
+    out.transverse = read_record(*s, "transverse_record", e.transverse_record, e.record_unit);
+  }
+  out.options.time_scale = e.time_scale;
+  out.options.baseline_correction = e.baseline_correction;
+  scale_to_targets(*s, e, out);
+  out.options.target_pga = 0.0;
+  return out;
+}
+
+// The support motions of every bent and seat, and the end of the longest bent motion [s].
+Bridge::Excitation support_motions(const ExcitationRecords& e, const SeatMotions& seats,
+                                   const std::vector<double>& bent_delays, double& end) {
+  GroundMotionOptions ox = e.options, oy = e.options;
+  ox.scale = e.longitudinal_factor;
+  oy.scale = e.transverse_factor;
+  MotionSet mx(e.longitudinal, ox), my(e.transverse, oy);
+  GroundMotionOptions rot = e.options;
+  rot.scale = seats.rotation_scale;
+  Bridge::Excitation exc;
+  for (double delay : bent_delays) {
+    exc.bents.push_back({mx.at_delay(delay), my.at_delay(delay), nullptr});
+  }
+  for (std::size_t a = 0; a < 2; ++a) {
+    exc.seats[a].longitudinal = mx.at_delay(seats.delays[a]);
+    if (seats.transverse) exc.seats[a].transverse = my.at_delay(seats.delays[a]);
+    if (seats.rotation[a]) {
+      GroundMotionOptions o = rot;
+      o.delay = seats.delays[a];
+      exc.seats[a].rotation = std::make_shared<const GroundMotion>(*seats.rotation[a], o);
+    }
+  }
+  end = 0.0;
+  for (const auto& b : exc.bents) {
+    for (const auto& mo : {b.longitudinal, b.transverse}) {
+      if (mo) end = std::max(end, mo->end_time());
+    }
+  }
+  return exc;
+}
+
+}  // namespace
+
+BridgeScene build_bridge(Section& m) {
+  m.only({"kind", "deck", "gaps", "damping", "bents", "seats", "excitation"});
+  Bridge::Parameters p = Bridge::Parameters::benchmark();
+  p.bents.clear();
+  const auto deck = read_table(m, "deck", bridge_deck_fields(), p);
+  read_table(m, "gaps", bridge_gap_fields(), p);
+  read_damping(m, p);
+  const std::vector<double> bent_delays = read_bents(m, p);
+  const SeatMotions seats = read_seats(m, p);
+  BridgeScene out;
+  const ExcitationRecords excitation = read_excitation(m, out.time_scale);
+  Bridge::Excitation exc = support_motions(excitation, seats, bent_delays, out.motion_end);
+  try {
+    out.system = std::make_unique<Bridge>(p, std::move(exc));
+  } catch (const std::invalid_argument& e) {
+    if (deck && std::string(e.what()).rfind("initial_position", 0) == 0) deck->rethrow(e);
+    m.rethrow(e);
+  }
+  return out;
+}
+
+}  // namespace nsb::models

@@ -1,0 +1,76 @@
+// The rotation criterion of eq. (1); see criterion.hpp for the formulas and docs/criterion.md
+// for the derivation.
+#include "models/criterion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace nsb::models::analytic {
+
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument(what);
+}
+
+double deg2rad(double d) { return d * std::numbers::pi / 180.0; }
+double sgn(double x) { return (x > 0.0) - (x < 0.0); }
+
+}  // namespace
+
+void CriterionInput::validate() const {
+  require(std::isfinite(skew_deg) && std::abs(skew_deg) < 90.0,
+          "skew: must be in (-90, 90) degrees");
+  require(std::isfinite(width) && width > 0.0, "width: must be > 0 [m]");
+  require(std::isfinite(length) && length > 0.0, "length: must be > 0 [m]");
+  require(std::isfinite(friction) && friction >= 0.0, "friction: must be >= 0");
+}
+
+double eta(const CriterionInput& in, double impulse_ratio) {
+  in.validate();
+  const double a = deg2rad(in.skew_deg);
+  const double wl = in.width / in.length;
+  // (L/W) cos a (sin a - k cos a): the offset of the impulse line of action along the end
+  // face, in units of the half face length W/(2 cos a); see docs/criterion.md.
+  return std::sin(2.0 * a) / (2.0 * wl) - impulse_ratio * std::cos(a) * std::cos(a) / wl;
+}
+
+Criterion rotation_criterion(const CriterionInput& in) {
+  in.validate();
+  const double a = deg2rad(in.skew_deg);
+  const double wl = in.width / in.length;
+  const double base = std::sin(2.0 * a) / (2.0 * wl);
+  const double fr = in.friction * std::cos(a) * std::cos(a) / wl;
+  Criterion c;
+  c.eta_plus = base + fr;
+  c.eta_minus = base - fr;
+  c.rotation = std::max(std::abs(c.eta_plus), std::abs(c.eta_minus)) > 1.0;
+  c.printed_eta_plus = base + 2.0 * fr;
+  c.printed_eta_minus = base - 2.0 * fr;
+  c.printed_rotation = std::max(std::abs(c.printed_eta_plus), std::abs(c.printed_eta_minus)) > 1.0;
+  return c;
+}
+
+CriterionPrediction predict_right_end_impact(const CriterionInput& in, double vx, double vy,
+                                             double restitution) {
+  in.validate();
+  require(std::isfinite(vx) && vx > 0.0, "vx: must be > 0 (towards the right abutment)");
+  require(std::isfinite(vy), "vy: must be finite");
+  require(restitution >= 0.0 && restitution <= 1.0, "restitution: must be in [0, 1]");
+  const double a = deg2rad(in.skew_deg);
+  const double gn = -vx * std::cos(a) + vy * std::sin(a);
+  const double gt = -vx * std::sin(a) - vy * std::cos(a);
+  require(gn < 0.0, "vx, vy: the end must approach the abutment (gdot_N- < 0)");
+  CriterionPrediction out;
+  const double e = restitution;
+  out.sliding = std::abs(gt) > in.friction * (1.0 + e) * std::abs(gn);
+  out.impulse_ratio = out.sliding ? -sgn(gt) * in.friction : gt / ((1.0 + e) * gn);
+  out.eta = eta(in, out.impulse_ratio);
+  out.rotation = std::abs(out.eta) > 1.0;
+  return out;
+}
+
+}  // namespace nsb::models::analytic

@@ -1,0 +1,50 @@
+// The rotation criterion eta of eq. (1) of Shi & Dimitrakopoulos (2017), derived from the
+// impact law of eqs. (3)-(7); the derivation is docs/criterion.md. A product feature (the
+// `nsbridge criterion` command), not a test oracle.
+#pragma once
+
+namespace nsb::models::analytic {
+
+// Assumptions: a rigid parallelogram deck, not rotating before the impact, strikes a rigid
+// abutment with both corners of one end at once; equal e and mu at both corners. Then a
+// post-impact motion without rotation exists if and only if the line of action of the total
+// impulse (direction n + k t, k = Lambda_T,total / Lambda_N,total in [-mu, mu]) passes through
+// the deck's end face between the two corners, which is
+//   |eta(k)| <= 1,  eta(k) = (L/W) cos(a) (sin(a) - k cos(a)) = sin(2a)/(2 W/L) - k cos^2(a)/(W/L).
+// Fully mobilised friction (both corners sliding) gives the two branches k = -+mu:
+//   eta_+- = sin(2a)/(2 W/L) +- mu cos^2(a)/(W/L).
+// eq. (1) as printed has 2 mu in place of mu; see docs/criterion.md.
+struct CriterionInput {
+  double skew_deg = 0.0;  // alpha [deg], in (-90, 90)
+  double width = 1.0;     // W [m], > 0
+  double length = 1.0;    // L [m], > 0
+  double friction = 0.0;  // mu, >= 0
+  void validate() const;  // throws std::invalid_argument naming the field
+};
+struct Criterion {
+  double eta_plus = 0.0;          // sin(2a)/(2W/L) + mu cos^2 a/(W/L)  (derived)
+  double eta_minus = 0.0;         // sin(2a)/(2W/L) - mu cos^2 a/(W/L)  (derived)
+  bool rotation = false;          // max(|eta_plus|, |eta_minus|) > 1
+  double printed_eta_plus = 0.0;  // eq. (1) as printed: + 2 mu cos^2 a/(W/L)
+  double printed_eta_minus = 0.0; // eq. (1) as printed: - 2 mu cos^2 a/(W/L)
+  bool printed_rotation = false;  // max(|printed_eta_plus|, |printed_eta_minus|) > 1
+};
+Criterion rotation_criterion(const CriterionInput& in);
+// eta(k) for a given ratio k = total tangential / total normal impulse.
+double eta(const CriterionInput& in, double impulse_ratio);
+
+// The two-corner impact at the right end (corners 3 and 4) with u- = (vx, vy, 0), vx > 0:
+// which branch applies and what the criterion predicts for this particular impact.
+//   gdot_N- = -vx cos a + vy sin a (both corners), gdot_T- = -vx sin a - vy cos a.
+//   If |gdot_T-| > mu (1 + e) |gdot_N-| the corners slide with sign s = sgn(gdot_T-) and
+//   k = -s mu; otherwise they stick and k = gdot_T- / ((1 + e) gdot_N-).
+struct CriterionPrediction {
+  bool sliding = false;
+  double impulse_ratio = 0.0;  // k
+  double eta = 0.0;            // eta(k)
+  bool rotation = false;       // |eta| > 1
+};
+CriterionPrediction predict_right_end_impact(const CriterionInput& in, double vx, double vy,
+                                             double restitution);
+
+}  // namespace nsb::models::analytic

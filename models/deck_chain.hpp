@@ -1,0 +1,67 @@
+// A chain of N free rigid decks in a row between two fixed abutment faces: no bents, no
+// excitation, no gravity in the plane; only the N + 1 joints (left abutment, N - 1 hinges,
+// right abutment), each a pair of unilateral frictional corner contacts (models/parts.hpp).
+//
+// Geometry at rest: the decks lie along global x at y = 0, theta = 0, all of width W and skew
+// alpha (every face is parallel to the line x = y tan(alpha)). The left abutment face passes
+// through x = 0; joint k's gap is the clear distance along the axis between the faces it
+// joins, so deck i's centre is at x_i = sum_{k <= i} gap_k + sum_{k < i} L_k + L_i / 2, and the
+// right abutment face passes through x_{N-1} + L_{N-1} / 2 + gap_N. The normal gap of joint k is
+// gap_k cos(alpha), as in models/deck_geometry.hpp.
+//
+// Contacts, in output order (two per joint, y_b = +W/2 first):
+//   joint 0:        corners 0, 1 (left end) of deck 0 against the left abutment face;
+//   joint k, 0<k<N: corners 0, 1 (left end) of deck k against the right end face of deck k-1;
+//   joint N:        corners 2, 3 (right end) of deck N-1 against the right abutment face.
+// At a hinge, only the corners of the left end of deck k touch the right end face of deck
+// k - 1, not also the reverse. With equal widths the corners of both ends meet: the corner of
+// deck k at point p on the face of deck k - 1 (normal n) has the columns
+// (n, r_k x n) for deck k and (-n, -d x n) for deck k - 1 (d = p - centre of k - 1); the corner
+// of deck k - 1 at the same p on the face of deck k (normal -n) has (-n, -d x n) for deck k - 1
+// and (n, r_k x n) for deck k: the same column. Adding the reverse pair would make the
+// Delassus matrix W^T M^-1 W singular and the impulses non-unique; the two corners of one end
+// already bound the relative normal motion at both edges of the joint (its normal
+// displacement and its relative rotation), as the two deck corners do at each abutment. The
+// faces are lines, as at the abutments (models/contact_geometry.hpp).
+//
+// Units: kN, t, m, s, rad, deg.
+#pragma once
+
+#include "models/assembly.hpp"
+
+#include <Eigen/Dense>
+
+#include <vector>
+
+namespace nsb::models {
+
+struct DeckChain {
+  struct Deck {
+    double mass = 0.0;      // [t], > 0
+    double inertia = 0.0;   // about the centre [t m^2], > 0
+    double length = 0.0;    // along the axis [m], > 0
+    Eigen::Vector3d initial_displacement = Eigen::Vector3d::Zero();  // from rest [m, m, rad]
+    Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();      // [m/s, m/s, rad/s]
+  };
+  struct Joint {
+    double gap = 0.0;          // clear distance along the axis at rest [m], >= 0
+    double restitution = 0.0;  // Newton's eps_N in [0, 1]
+    double friction = 0.0;     // Coulomb's mu >= 0
+  };
+  struct Parameters {
+    std::vector<Deck> decks;    // N >= 1
+    std::vector<Joint> joints;  // N + 1: left abutment, N - 1 hinges, right abutment
+    double width = 0.0;         // W of every deck [m], > 0
+    double skew_deg = 0.0;      // alpha of every face [deg], |alpha| < 80
+    // Throws std::invalid_argument naming the field ("joints[2].gap: must be >= 0 [m]").
+    void validate() const;
+  };
+
+  // The assembly's parts; throws std::invalid_argument for bad parameters (Assembly's
+  // constructor then rejects an initial penetration).
+  static Assembly::Parts parts(const Parameters& p);
+  // Centre x of deck i at rest [m].
+  static double rest_position(const Parameters& p, int deck);
+};
+
+}  // namespace nsb::models

@@ -1,2 +1,0 @@
-// Models: systems behind the integrators/system.hpp interface.
-namespace nsb::models {}

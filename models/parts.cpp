@@ -1,0 +1,141 @@
+#include "models/parts.hpp"
+
+#include "models/deck_geometry.hpp"
+#include "models/rigid_deck.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace nsb::models::parts {
+
+namespace {
+
+void require(bool ok, const std::string& field, const std::string& what) {
+  if (!ok) throw std::invalid_argument(field + ": " + what);
+}
+
+bool finite_positive(double v) { return std::isfinite(v) && v > 0; }
+
+DeckGeometry plan(const RigidBody& b) {
+  return {.length = b.length, .width = b.width, .skew_deg = b.skew_deg, .gap_right = 0.0,
+          .gap_left = 0.0};
+}
+
+// `far` exactly as models::copy_contact: the contact cannot close within kFarHorizon.
+bool is_far(double gap_normal, double gap_rate_normal) {
+  return gap_normal > kFarGap + kFarHorizon * std::max(0.0, -gap_rate_normal);
+}
+
+}  // namespace
+
+void RigidBody::validate(const std::string& prefix) const {
+  require(finite_positive(mass), prefix + "mass", "must be > 0 [t]");
+  require(finite_positive(inertia), prefix + "inertia", "must be > 0 [t m^2]");
+  plan(*this).validate(prefix);
+  require(initial_position.allFinite(), prefix + "initial_position",
+          "must be finite [m, m, rad]");
+  require(initial_velocity.allFinite(), prefix + "initial_velocity",
+          "must be finite [m/s, m/s, rad/s]");
+}
+
+Eigen::Vector2d RigidBody::corner(int index) const { return plan(*this).corner(index); }
+
+Face end_face(const RigidBody& body, End end) {
+  // DeckGeometry's face normals point from an abutment towards the deck, i.e. into the deck
+  // end: the outward normal of the deck's end face is their opposite.
+  const DeckGeometry g = plan(body);
+  const int contact = end == End::kLeft ? 0 : 2;
+  const double sign = end == End::kLeft ? -1.0 : 1.0;
+  return {Eigen::Vector2d(sign * 0.5 * body.length, 0.0), -g.face_normal(contact)};
+}
+
+BodyContactKinematics corner_on_body(const CornerFace& c, const Eigen::Vector3d& q_a,
+                                     const Eigen::Vector3d& u_a, const Eigen::Vector3d& q_b,
+                                     const Eigen::Vector3d& u_b) {
+  PlanarMotion b;
+  b.position = q_b;
+  b.velocity = u_b;  // acceleration zero: its part is W_B^T udot_B (see the header)
+  BodyContactKinematics k;
+  k.a = corner_contact(c, q_a, u_a, b);
+  const double dx = k.a.point.x() - q_b.x(), dy = k.a.point.y() - q_b.y();
+  const Eigen::Vector2d& n = k.a.normal;
+  const Eigen::Vector2d& t = k.a.tangent;
+  k.w_normal_b << -n.x(), -n.y(), -(dx * n.y() - dy * n.x());
+  k.w_tangent_b << -t.x(), -t.y(), -(dx * t.y() - dy * t.x());
+  return k;
+}
+
+void write_contact(const ContactKinematics& k, int offset_a, double restitution,
+                   double friction, integrators::ContactData& out) {
+  // The same assignments as models::copy_contact, into the body's rows of a column of any
+  // size (a 3-DOF system gets exactly copy_contact's numbers).
+  // A column of a 3-DOF system is the body's alone; a longer one is zero outside the body.
+  out.gap_normal = k.gap_normal;
+  if (out.w_normal.size() != 3) out.w_normal.setZero();
+  if (out.w_tangent.size() != 3) out.w_tangent.setZero();
+  out.w_normal.segment<3>(offset_a) = k.w_normal;
+  out.w_tangent.segment<3>(offset_a) = k.w_tangent;
+  out.what_normal = k.what_normal;
+  out.what_tangent = k.what_tangent;
+  out.wbar_normal = k.wbar_normal;
+  out.wbar_tangent = k.wbar_tangent;
+  out.restitution = restitution;
+  out.friction = friction;
+  out.far = is_far(k.gap_normal, k.gap_rate_normal);
+}
+
+void write_body_contact(const BodyContactKinematics& k, int offset_a, int offset_b,
+                        double restitution, double friction, integrators::ContactData& out) {
+  write_contact(k.a, offset_a, restitution, friction, out);
+  out.w_normal.segment<3>(offset_b) = k.w_normal_b;
+  out.w_tangent.segment<3>(offset_b) = k.w_tangent_b;
+  out.what_normal = 0.0;  // scleronomic: both sides are free bodies
+  out.what_tangent = 0.0;
+}
+
+void write_contact_normal(const ContactNormal& k, int offset_a, integrators::ContactData& out) {
+  out.gap_normal = k.gap_normal;
+  if (out.w_normal.size() != 3) out.w_normal.setZero();
+  out.w_normal.segment<3>(offset_a) = k.w_normal;
+  out.what_normal = k.what_normal;
+  out.far = is_far(k.gap_normal, k.gap_rate_normal);
+}
+
+void write_body_contact_normal(const BodyContactKinematics& k, int offset_a, int offset_b,
+                               integrators::ContactData& out) {
+  out.gap_normal = k.a.gap_normal;
+  out.w_normal.setZero();
+  out.w_normal.segment<3>(offset_a) = k.a.w_normal;
+  out.w_normal.segment<3>(offset_b) = k.w_normal_b;
+  out.what_normal = 0.0;
+  out.far = is_far(k.a.gap_normal, k.a.gap_rate_normal);
+}
+
+int MotionTable::add(const Motion& m, bool needs_acceleration) {
+  if (!m) return kNone;
+  const auto it = std::find(motions_.begin(), motions_.end(), m);
+  const auto i = static_cast<std::size_t>(it - motions_.begin());
+  if (it == motions_.end()) {
+    motions_.push_back(m);
+    needs_acceleration_.push_back(0);
+    values_.emplace_back();
+  }
+  if (needs_acceleration) needs_acceleration_[i] = 1;
+  t_ = std::numeric_limits<double>::quiet_NaN();
+  return static_cast<int>(i);
+}
+
+void MotionTable::evaluate(double t) const {
+  for (std::size_t i = 0; i < motions_.size(); ++i) {
+    const GroundMotion::Values g = motions_[i]->values(t);
+    Value& v = values_[i];
+    v.d = g.displacement;
+    v.v = g.velocity;
+    v.a = needs_acceleration_[i] ? g.acceleration : 0.0;
+  }
+  t_ = t;
+}
+
+}  // namespace nsb::models::parts

@@ -1,0 +1,172 @@
+// The parts a bridge is assembled from (DESIGN.md, "Models are assemblies of parts"): rigid
+// bodies, prescribed bodies, connectors between a body and the ground, and unilateral
+// frictional contacts of a body corner against a face of the ground, of a prescribed body or of
+// another body. models/assembly.hpp sums them into one integrators::System.
+//
+// Rigid body b has the generalized coordinates q_b = (x, y, theta) of its centre and the
+// velocities u_b = (vx, vy, omega); its plan is the parallelogram of models/deck_geometry.hpp
+// (length L along the body axis, width W, skew alpha; corners 0..3 numbered as there).
+// A prescribed body (an abutment seat, or the fixed ground) moves with the support excitation:
+// its pose is (reference point + (u_x(t), u_y(t)), phi(t)) (eq. 2 of Shi & Dimitrakopoulos
+// 2017, multi-support excitation), as models::Bridge poses its seats.
+//
+// Units: kN, t, m, s, rad.
+#pragma once
+
+#include "integrators/system.hpp"
+#include "models/contact_geometry.hpp"
+#include "models/ground_motion.hpp"
+#include "models/takeda.hpp"
+
+#include <Eigen/Dense>
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace nsb::models::parts {
+
+// Ground motion of one support component; null means none.
+using Motion = std::shared_ptr<const GroundMotion>;
+
+// A free rigid body in the plane (a deck segment).
+struct RigidBody {
+  double mass = 0.0;       // m [t], > 0
+  double inertia = 0.0;    // I about the centre [t m^2], > 0
+  double length = 0.0;     // L along the body axis [m], > 0
+  double width = 0.0;      // W across it [m], > 0
+  double skew_deg = 0.0;   // alpha of both end faces [deg], |alpha| < 80
+  Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();  // (x, y, theta) [m, m, rad]
+  Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();  // (vx, vy, omega)
+  // Throws std::invalid_argument naming the field, prefixed with `prefix`.
+  void validate(const std::string& prefix) const;
+  // Corner 0..3 in the body frame (models/deck_geometry.hpp numbering) [m].
+  Eigen::Vector2d corner(int index) const;
+};
+
+// The two end faces of a rigid body.
+enum class End { kLeft, kRight };
+// A face of a body or of a prescribed body, in that body's frame: a point on it and its unit
+// normal, pointing out of the body (towards whatever touches the face).
+struct Face {
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();   // [m]
+  Eigen::Vector2d normal = Eigen::Vector2d::UnitX(); // unit length
+};
+// The end face of `body`: through (+-L/2, 0), normal (-+cos alpha, +-sin alpha) outwards.
+Face end_face(const RigidBody& body, End end);
+
+// A body whose motion is prescribed: the pose of its frame at time t is
+// (reference.x + u_x(t), reference.y + u_y(t), phi(t)); null motions are zero.
+struct PrescribedBody {
+  Eigen::Vector2d reference = Eigen::Vector2d::Zero();  // frame origin at rest [m]
+  Motion longitudinal;  // u_x(t) along global x [m]
+  Motion transverse;    // u_y(t) along global y [m]
+  Motion rotation;      // phi(t) about the frame origin; the record's "acceleration" is the
+                        // angular acceleration [rad/s^2]
+};
+
+// A bent between a body and the ground: two Takeda springs (models/takeda.hpp) at the position
+// s along the body axis, acting on the displacement of that point relative to the bent's own
+// support motion (small rotations, as models::Bridge):
+//   F_x = Takeda_x(x - u_gx(t)),   F_y = Takeda_y(y + s theta - u_gy(t)),
+//   f_b -= F_x (1, 0, 0) + F_y (0, 1, s).
+struct Bent {
+  int body = 0;                    // index of the rigid body, >= 0
+  double position = 0.0;           // s from the body centre along its axis [m], |s| <= L/2
+  takeda::Parameters longitudinal; // spring along x (all columns together)
+  takeda::Parameters transverse;   // spring along y
+  Motion ground_longitudinal;      // u_gx(t); null: fixed
+  Motion ground_transverse;        // u_gy(t); null: fixed
+};
+
+// Rayleigh damping C = a0 M + a1 K0 on the assembled mass and initial stiffness, from two
+// modal ratios (models/rayleigh.hpp), acting on the velocity relative to the quasi-static
+// motion of the supports: f_D = -C (u - us_dot(t)) (Chopra, Dynamics of Structures, sec. 9.7).
+struct RayleighParts {
+  double ratio_i = 0.0, ratio_j = 0.0;  // zeta of modes i and j, in [0, 1)
+  int mode_i = 1, mode_j = 3;           // 1-based modes of (M, K0), distinct
+};
+
+// What a corner touches: the face of a prescribed body, or the face of another rigid body.
+enum class Obstacle { kPrescribed, kBody };
+
+// A unilateral frictional contact: corner `corner` of rigid body `body` against `face` of the
+// obstacle (index `obstacle_index` among the prescribed or the rigid bodies).
+struct CornerContact {
+  int body = 0;                 // the body whose corner touches, >= 0
+  int corner = 0;               // 0..3 (models/deck_geometry.hpp numbering)
+  Obstacle obstacle = Obstacle::kPrescribed;
+  int obstacle_index = 0;       // >= 0, a different body when obstacle == kBody
+  Face face;                    // in the obstacle's frame
+  double restitution = 0.0;     // Newton's eps_N in [0, 1]
+  double friction = 0.0;        // Coulomb's mu >= 0
+};
+
+// Kinematics of a corner of body A against a face of body B (both free). corner_contact()
+// (models/contact_geometry.hpp) with B as an obstacle moving at u_B gives g_N, g_T, the columns
+// of A and the relative rates; its rheonomic terms are the part of the rates linear in u_B,
+// which here belong to B's columns. The contact impulse acts on B at the contact point p
+// with the opposite sign (Newton's third law), so with d = p - (x_B, y_B):
+//   W_N,B = (-n_x, -n_y, -d x n),   W_T,B = (-t_x, -t_y, -d x t),   what_N = what_T = 0,
+// equal to the u_B-coefficients of what_N = Phidot (g_T - r_a x n) - n . v_B (d = r_a + g_N n
+// + g_T t, t x n = -1). wbar: corner_contact()'s with B's acceleration set to zero, since
+// the part linear in B's acceleration is W_B^T udot_B.
+struct BodyContactKinematics {
+  ContactKinematics a;                                 // as corner_contact(), for body A
+  Eigen::Vector3d w_normal_b = Eigen::Vector3d::Zero();   // W_N,B [-, -, m]
+  Eigen::Vector3d w_tangent_b = Eigen::Vector3d::Zero();  // W_T,B [-, -, m]
+};
+BodyContactKinematics corner_on_body(const CornerFace& c, const Eigen::Vector3d& q_a,
+                                     const Eigen::Vector3d& u_a, const Eigen::Vector3d& q_b,
+                                     const Eigen::Vector3d& u_b);
+
+// Writes the contact data of body A's corner (its columns at offset_a) and, when w_*_b are
+// given, of body B (at offset_b) into `out`, whose vectors are sized dofs(): the other entries
+// are zeroed. `far` as models::copy_contact (models/rigid_deck.hpp). write_contact takes
+// what_N, what_T from `k` (a prescribed obstacle); write_body_contact sets them to zero.
+void write_contact(const ContactKinematics& k, int offset_a, double restitution,
+                   double friction, integrators::ContactData& out);
+void write_body_contact(const BodyContactKinematics& k, int offset_a, int offset_b,
+                        double restitution, double friction, integrators::ContactData& out);
+// The normal fields only (System::contact_normals): gap_normal, w_normal, what_normal, far,
+// as models::copy_contact_normal; the other fields of `out` keep their values.
+void write_contact_normal(const ContactNormal& k, int offset_a, integrators::ContactData& out);
+void write_body_contact_normal(const BodyContactKinematics& k, int offset_a, int offset_b,
+                               integrators::ContactData& out);
+
+// The distinct ground motions of an assembly, each evaluated once per distinct time t (an
+// integrator asks for forces, contacts and power at the same t several times per step, and
+// supports often share one record). The values are a cache inside const calls: one table must
+// not be used from several threads at once.
+class MotionTable {
+ public:
+  static constexpr int kNone = -1;  // index of "no motion": displacement etc. are 0
+  struct Value {
+    double d = 0.0, v = 0.0, a = 0.0;  // displacement, velocity, acceleration
+  };
+  // Index of m (supports sharing a GroundMotion object share an entry); kNone for null.
+  // needs_acceleration: the acceleration is evaluated (contact kinematics of a seat need it,
+  // springs do not).
+  int add(const Motion& m, bool needs_acceleration);
+  // Evaluates every motion at t unless the values are already at t; true if it evaluated.
+  bool update(double t) const {
+    if (t == t_) return false;
+    evaluate(t);
+    return true;
+  }
+  const Value& value(int index) const {
+    static constexpr Value kZero{};
+    return index == kNone ? kZero : values_[static_cast<std::size_t>(index)];
+  }
+
+ private:
+  void evaluate(double t) const;
+
+  std::vector<Motion> motions_;
+  std::vector<char> needs_acceleration_;
+  mutable std::vector<Value> values_;
+  mutable double t_ = std::numeric_limits<double>::quiet_NaN();
+};
+
+}  // namespace nsb::models::parts

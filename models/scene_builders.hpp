@@ -1,0 +1,37 @@
+// The parts of load_scene (models/scene.hpp): the [solver] table read into the typed run
+// configuration, the simple systems and the bridge built from their [model] tables.
+#pragma once
+
+#include "integrators/run.hpp"
+#include "integrators/system.hpp"
+#include "models/scene_reader.hpp"
+
+#include <memory>
+#include <string>
+
+namespace nsb::models {
+
+// [solver]: `method` selects the options struct (integrators::default_config); every other
+// key is read into the chosen method's field of that key with that field's range. A key only
+// other methods declare is accepted when one of them accepts its value (a scene may carry the
+// settings of several methods; --method switches between them); a key no method declares is
+// unknown.
+integrators::RunConfig read_solver(Section& s);
+
+// The chosen method's own checks across fields (Moreau–Jean: step <= end_time), reported at
+// the [solver] key they name.
+void check_solver(const Section& s, const integrators::RunConfig& config);
+
+// bouncing_ball, impact_oscillator, sliding_block or rigid_deck from the [model] table.
+std::unique_ptr<integrators::System> build_simple_system(const std::string& kind, Section& m);
+
+// The bridge of [model] kind = "bridge", the end of its longest bent support motion [s] (0
+// without an excitation) and the time scale of its records.
+struct BridgeScene {
+  std::unique_ptr<integrators::System> system;
+  double motion_end = 0.0;
+  double time_scale = 1.0;
+};
+BridgeScene build_bridge(Section& m);
+
+}  // namespace nsb::models

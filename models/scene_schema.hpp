@@ -1,0 +1,93 @@
+// The schema of scene files: every key of every table, declared once as a config::Field
+// (key, member, unit, range, meaning; the default is the member's initializer, or the
+// benchmark's value for the bridge). The scene reader reads each table by looping over these
+// declarations and docs/scenes.md's key tables are generated from them (models/scene_docs.hpp).
+// Keys that a model's parameters struct cannot hold (delays, record names, target PGAs) are
+// members of the settings structs below.
+#pragma once
+
+#include "config/schema.hpp"
+#include "models/bridge.hpp"
+#include "models/rigid_deck.hpp"
+#include "models/simple_systems.hpp"
+
+#include <span>
+#include <string>
+
+namespace nsb::models {
+
+// The top level and [model]: the free description and the model kind.
+struct SceneHeader {
+  std::string description;
+  std::string kind;
+  static std::span<const config::Field<SceneHeader>> fields();  // description, kind
+};
+
+// [solver] method: the integrator whose options the other [solver] keys set.
+struct MethodSetting {
+  std::string method = "moreau";
+  static std::span<const config::Field<MethodSetting>> fields();
+};
+
+// [output]
+struct OutputSettings {
+  double sample_dt = 0.0;  // sampling interval of the history [s], >= 0; 0 = every step
+  static std::span<const config::Field<OutputSettings>> fields();
+  void validate() const;   // throws std::invalid_argument naming the key
+};
+
+// One [[model.bents]] element: its position, the column design its springs are derived from
+// (models/bridge.hpp, BentDesign), explicit spring values that replace the derived ones (0:
+// derived) and the wave-passage delay of its ground motion.
+struct BentSettings {
+  double position = 0.0;                  // s_j along the deck axis from the centre [m]
+  BentDesign design;
+  double stiffness_longitudinal = 0.0;    // [kN/m], 0: design.stiffness()
+  double yield_force_longitudinal = 0.0;  // [kN], 0: design.yield_force()
+  double stiffness_transverse = 0.0;
+  double yield_force_transverse = 0.0;
+  double delay = 0.0;                     // [s]
+  static std::span<const config::Field<BentSettings>> fields();
+};
+
+// [model.seats] beyond the contact law: how the two seats move.
+struct SeatMotionSettings {
+  bool transverse = false;            // the seats follow the transverse record too
+  double delay_left = 0.0;            // wave-passage delay of each seat [s]
+  double delay_right = 0.0;
+  std::string rotation_record_left;   // angular acceleration record of each seat ("" none)
+  std::string rotation_record_right;
+  double rotation_unit = 1.0;         // [rad/s^2 per file unit]
+  double rotation_scale = 1.0;        // factor on the rotation records
+  static std::span<const config::Field<SeatMotionSettings>> fields();
+};
+
+// [model.excitation]: the two records, their scaling and the shared options.
+struct ExcitationSettings {
+  std::string longitudinal_record;  // record file of the x component ("" none)
+  std::string transverse_record;    // record file of the y component ("" none)
+  double record_unit = 1.0;         // [m/s^2 per file unit]
+  double target_pga = 0.0;          // [g], 0: as recorded
+  double longitudinal_pga = 0.0;    // [g], 0: the factor of target_pga
+  double scale = 1.0;
+  double time_scale = 1.0;
+  bool baseline_correction = true;
+  static std::span<const config::Field<ExcitationSettings>> fields();
+};
+
+// The simple systems' [model] keys (besides kind).
+std::span<const config::Field<BouncingBall::Parameters>> bouncing_ball_fields();
+std::span<const config::Field<ImpactOscillator::Parameters>> impact_oscillator_fields();
+std::span<const config::Field<SlidingBlock::Parameters>> sliding_block_fields();
+std::span<const config::Field<RigidDeck::Parameters>> rigid_deck_fields();
+
+// The bridge's tables that set Bridge::Parameters.
+std::span<const config::Field<Bridge::Parameters>> bridge_deck_fields();     // [model.deck]
+std::span<const config::Field<Bridge::Parameters>> bridge_gap_fields();      // [model.gaps]
+std::span<const config::Field<Bridge::Parameters>> bridge_damping_fields();  // [model.damping]
+std::span<const config::Field<Bridge::Parameters>> bridge_seat_fields();     // [model.seats]
+
+// The model kinds a scene may name in [model] kind.
+const std::vector<std::string>& scene_kinds();
+
+}  // namespace nsb::models

@@ -1,0 +1,82 @@
+// The [solver] table read straight into integrators::RunConfig with the methods' own fields
+// (integrators/options.cpp): one declaration of every key, its unit and its range.
+#include "models/scene_builders.hpp"
+#include "models/scene_schema.hpp"
+
+#include <algorithm>
+#include <type_traits>
+#include <variant>
+
+namespace nsb::models {
+
+namespace {
+
+using integrators::RunConfig;
+
+// Calls fn.template operator()<O>() for every options type O registered in RunConfig.
+template <class Fn>
+void for_each_method(Fn&& fn) {
+  [&]<class... O>(std::type_identity<std::variant<O...>>) {
+    (fn.template operator()<O>(), ...);
+  }(std::type_identity<RunConfig>{});
+}
+
+// Every [solver] key: method, then each method's keys in their order of declaration, once.
+std::vector<std::string_view> solver_keys() {
+  std::vector<std::string_view> keys = keys_of(MethodSetting::fields());
+  for_each_method([&]<class O>() {
+    for (const auto& f : O::fields()) {
+      if (std::find(keys.begin(), keys.end(), f.key) == keys.end()) keys.push_back(f.key);
+    }
+  });
+  return keys;
+}
+
+// A key the chosen method does not declare: accepted when a method that declares it accepts
+// its value, else an error with the rule of the first method that declares it.
+void check_other_method_key(const Section& s, std::string_view key) {
+  std::string why;
+  bool accepted = false;
+  for_each_method([&]<class O>() {
+    const auto* f = config::find_field(O::fields(), key);
+    if (f == nullptr || accepted) return;
+    const std::string misfit = config::misfit(*f, *s.value(key, f->kind));
+    if (misfit.empty()) {
+      accepted = true;
+    } else if (why.empty()) {
+      why = "for " + std::string(O::kMethod) + ", " + misfit;
+    }
+  });
+  if (!accepted) s.fail(key, why);
+}
+
+}  // namespace
+
+RunConfig read_solver(Section& s) {
+  s.only(solver_keys());
+  MethodSetting chosen;
+  s.read_all(MethodSetting::fields(), chosen);
+  RunConfig config = integrators::default_config(chosen.method);
+  std::visit(
+      [&s](auto& options) {
+        const auto fields = options.fields();
+        s.read_all(fields, options);
+        for (auto&& [k, v] : s.table()) {
+          const std::string_view key = k.str();
+          if (config::find_field(MethodSetting::fields(), key) != nullptr) continue;
+          if (config::find_field(fields, key) == nullptr) check_other_method_key(s, key);
+        }
+      },
+      config);
+  return config;
+}
+
+void check_solver(const Section& s, const RunConfig& config) {
+  try {
+    integrators::validate(config);
+  } catch (const std::invalid_argument& e) {
+    s.rethrow(e);
+  }
+}
+
+}  // namespace nsb::models

@@ -1,0 +1,42 @@
+#include "runs/run.hpp"
+
+#include "integrators/run.hpp"
+#include "runs/trust.hpp"
+
+#include <stdexcept>
+#include <utility>
+
+namespace nsb::runs {
+
+PreparedRun prepare(const RunRequest& request) {
+  std::vector<std::string> overrides = request.overrides;
+  if (!request.method.empty()) overrides.push_back("solver.method=" + request.method);
+  PreparedRun p{models::load_scene(request.scene, overrides), {}};
+  const std::string file = request.scene.string();
+  if (!p.scene.system) throw std::invalid_argument(file + ": the scene built no system");
+  try {
+    check_initial_state(*p.scene.system);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(file + ": " + e.what());
+  }
+  p.warnings = step_warnings(*p.scene.system, p.scene.run, p.scene.record_step);
+  return p;
+}
+
+RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
+  models::Scene& scene = prepared.scene;
+  integrators::Recorder history(*scene.system, scene.output.sample_dt);
+  integrators::RunResult result =
+      integrators::integrate(*scene.system, scene.run, history, progress);
+  Digest digest = make_digest(history, result);
+  std::vector<std::string> warnings = std::move(prepared.warnings);
+  for (auto& w : result_warnings(history, digest, result)) warnings.push_back(std::move(w));
+  result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
+  digest.warnings.insert(digest.warnings.end(), warnings.begin(), warnings.end());
+  return RunRecord{scene.name, scene.kind, std::move(result), std::move(history),
+                   std::move(digest)};
+}
+
+RunRecord execute(const RunRequest& request) { return run(prepare(request), request.progress); }
+
+}  // namespace nsb::runs

@@ -1,0 +1,59 @@
+// The one way to run a scene: request -> record -> files. `nsbridge run`, every run of a
+// sweep, the figures and the Python module call it, so a run means the same thing everywhere
+// (docs/run-api.md, "The run pipeline").
+//
+//   RunRequest ──prepare──► PreparedRun ──run──► RunRecord ──write_record──► history.csv,
+//   (scene, overrides,      (scene loaded,        (result, history,          events.csv,
+//    method, progress)       checked, step         digest with every          summary.json
+//                            warnings)             warning)
+//
+// execute() is prepare() then run(). A caller that must know the scene before it integrates
+// (`nsbridge run`: its default output folder is named after the scene) calls the two steps.
+#pragma once
+
+#include "integrators/recorder.hpp"
+#include "models/scene.hpp"
+#include "runs/digest.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace nsb::runs {
+
+struct RunRequest {
+  std::filesystem::path scene;         // the scene file (TOML, docs/scenes.md)
+  std::vector<std::string> overrides;  // "section.key=value", applied in order
+  std::string method;                  // an integrators::method_names() entry; empty: the
+                                       //   scene's solver.method
+  integrators::Progress progress;      // called with the simulated time reached; may be empty
+};
+
+struct RunRecord {
+  std::string scene_name, kind;   // the scene's name (file stem) and [model] kind
+  integrators::RunResult result;  // status and statistics; result.warnings holds every warning
+  integrators::Recorder history;  // the sampled history and the events
+  Digest digest;                  // peaks, event counts, energy and warnings, computed once
+};
+
+// A scene loaded and checked, ready to integrate.
+struct PreparedRun {
+  models::Scene scene;
+  std::vector<std::string> warnings;  // step warnings (runs/trust.hpp), found before the run
+};
+
+// Loads the scene with the overrides (and "solver.method=<method>" last when a method is
+// given), checks its initial state and finds the step warnings. Throws std::invalid_argument
+// for bad input, naming the file and key ("<file>:<line>:<col>: <key>: ..."), before any
+// integration.
+PreparedRun prepare(const RunRequest& request);
+
+// Integrates a prepared scene and digests the run: the trust checks' warnings follow the
+// integrator's own in result.warnings and digest.warnings. A numerical failure is the
+// record's result.status, never an exception.
+RunRecord run(PreparedRun prepared, const integrators::Progress& progress = {});
+
+// prepare(request), then run(..., request.progress).
+RunRecord execute(const RunRequest& request);
+
+}  // namespace nsb::runs

@@ -1,0 +1,136 @@
+#include "runs/trust.hpp"
+
+#include "io/csv.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace nsb::runs {
+
+namespace {
+
+// Penetrations below this depth [m] are round-off in the gap of a closed contact (1e-16
+// relative to positions of order 10 m), not a result: they never warn.
+constexpr double kRoundoffDepth = 1e-9;
+
+// Three significant digits for messages (printf's %.3g).
+std::string brief(double x) { return integrators::format_number(x); }
+
+}  // namespace
+
+void TrustLimits::validate() const {
+  auto bad = [](const char* field, const char* what) {
+    throw std::invalid_argument(std::string("TrustLimits.") + field + ": " + what);
+  };
+  if (!(energy_error > 0.0 && energy_error < 1.0)) bad("energy_error", "must be in (0, 1)");
+  if (!(penetration > 0.0 && penetration < 1.0)) bad("penetration", "must be in (0, 1)");
+  if (!(steps_per_period >= 1.0 && std::isfinite(steps_per_period)))
+    bad("steps_per_period", "must be finite and >= 1");
+  if (!(record_steps > 0.0 && std::isfinite(record_steps))) bad("record_steps", "must be > 0");
+}
+
+double shortest_period(integrators::System& system) {
+  const int n = system.dofs();
+  integrators::Matrix K = integrators::Matrix::Zero(n, n);
+  integrators::Matrix C = integrators::Matrix::Zero(n, n);
+  system.tangent(system.initial_time(), system.initial_position(), system.initial_velocity(), K,
+                 C);
+  system.revert();
+  const integrators::Matrix Ks = 0.5 * (K + K.transpose());
+  if (!Ks.allFinite()) return 0.0;
+  // K phi = omega^2 M phi, M symmetric positive definite (checked by every integrator).
+  Eigen::GeneralizedSelfAdjointEigenSolver<integrators::Matrix> eig(Ks, system.mass(),
+                                                                    Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return 0.0;
+  const double omega2 = eig.eigenvalues().maxCoeff();
+  if (!(omega2 > 0.0)) return INFINITY;
+  return 2.0 * std::numbers::pi / std::sqrt(omega2);
+}
+
+void check_initial_state(const integrators::System& system) {
+  const integrators::Vector q = system.initial_position();
+  const integrators::Vector u = system.initial_velocity();
+  const double kinetic = 0.5 * u.dot(system.mass() * u);
+  if (!std::isfinite(kinetic)) {
+    throw std::invalid_argument(
+        "the initial velocity (" + io::shortest(u.cwiseAbs().maxCoeff()) +
+        " in magnitude) makes the kinetic energy 1/2 u^T M u overflow; expected an initial "
+        "velocity whose energy is a finite number");
+  }
+  const double stored = system.energy(system.initial_time(), q).stored;
+  if (!std::isfinite(stored)) {
+    throw std::invalid_argument(
+        "the initial position (" + io::shortest(q.cwiseAbs().maxCoeff()) +
+        " in magnitude) makes the stored energy overflow; expected an initial position whose "
+        "energy is a finite number");
+  }
+}
+
+std::vector<std::string> step_warnings(integrators::System& system,
+                                       const integrators::RunConfig& config, double record_step,
+                                       const TrustLimits& limits) {
+  limits.validate();
+  std::vector<std::string> w;
+  const auto* mj = std::get_if<integrators::MoreauJeanOptions>(&config);
+  if (mj == nullptr) return w;  // the adaptive methods choose their steps by their tolerance
+  const double h = mj->step;
+  const double period = shortest_period(system);
+  if (std::isfinite(period) && h * limits.steps_per_period > period) {
+    w.push_back("step_period: solver.step = " + brief(h) + " s resolves the shortest natural "
+                "period " + brief(period) + " s with " + brief(period / h) +
+                " steps; the method needs >= " + brief(limits.steps_per_period) +
+                " (solver.step <= " + brief(period / limits.steps_per_period) + " s)");
+  }
+  if (record_step > 0.0 && h > limits.record_steps * record_step) {
+    w.push_back("step_record: solver.step = " + brief(h) + " s is longer than the record's "
+                "sampling interval " + brief(record_step) + " s (after time_scale): samples of "
+                "the excitation fall between steps; the method needs solver.step <= " +
+                brief(limits.record_steps * record_step) + " s");
+  }
+  return w;
+}
+
+std::vector<std::string> result_warnings(const integrators::Recorder& history,
+                                         const Digest& digest,
+                                         const integrators::RunResult& result,
+                                         const TrustLimits& limits) {
+  limits.validate();
+  std::vector<std::string> w;
+  const double e = result.energy.error;
+  if (!std::isfinite(e)) {
+    w.push_back("energy_balance: the energy balance is not a finite number; the run cannot "
+                "be checked");
+  } else if (e > limits.energy_error) {
+    w.push_back("energy_balance: error " + brief(100.0 * e) + " % of the largest energy term; "
+                "the method is trusted up to " + brief(100.0 * limits.energy_error) +
+                " % (reduce solver.step or solver.tolerance)");
+  }
+  // With rigid contacts (Moreau–Jean, event-driven) g_N >= 0 is the contact law and a
+  // penetration is its numerical violation. The compliance method's penetration is the Hertz
+  // deformation of the contact, a result of its model, and is not checked.
+  if (result.method == "compliance") return w;
+  const auto& info = history.column_info();
+  for (std::size_t c = 1; c < info.size(); ++c) {
+    if (info[c].kind != integrators::ColumnKind::kGap) continue;
+    // peaks[c - 1]: the peaks skip the time column.
+    const ColumnPeak& gap = digest.peaks[c - 1];
+    const double lo = gap.min, hi = gap.max;
+    if (!(lo < -kRoundoffDepth)) continue;
+    const double depth = -lo;
+    const double range = hi - lo;
+    if (depth > limits.penetration * range) {
+      w.push_back("penetration: contact " + std::to_string(info[c].index + 1) + " penetrates " +
+                  brief(depth) + " m at t = " + brief(gap.t_min) + " s, " +
+                  brief(100.0 * depth / range) + " % of its range of gaps " + brief(range) +
+                  " m; the method is trusted up to " + brief(100.0 * limits.penetration) +
+                  " % (reduce solver.step)");
+    }
+  }
+  return w;
+}
+
+}  // namespace nsb::runs
