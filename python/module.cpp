@@ -18,9 +18,10 @@ PYBIND11_MODULE(_nsbridge, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const std::invalid_argument& e) {
-      py::set_error(input_error, e.what());
+      input_error(e.what());  // sets the Python error (pybind11 2.10, Debian 12)
     }
   });
   nsb::python::bind_lcp(m);
   nsb::python::bind_runs(m);
+  nsb::python::bind_sweep(m);
 }
