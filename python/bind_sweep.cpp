@@ -34,14 +34,21 @@ std::optional<double> number(const std::string& field) {
   return v;
 }
 
+// The columns of results.csv that hold text whatever their fields look like: the run id
+// ("0007"), the status and the message (docs/sweep.md).
+bool text_column(const std::string& name) {
+  return name == "run" || name == "status" || name == "message";
+}
+
 // One column of a table: a numpy float64 array when every field is a number, else a list of
-// str (status, a factor's level names).
+// str (the text columns, a factor's level names).
 py::object column(const sweep::Table& table, std::size_t c) {
   const std::size_t n = table.rows.size();
+  const bool is_text = text_column(table.header[c]);
   py::array_t<double> values(static_cast<py::ssize_t>(n));
   double* out = values.mutable_data();
   for (std::size_t r = 0; r < n; ++r) {
-    const std::optional<double> v = number(table.rows[r][c]);
+    const std::optional<double> v = is_text ? std::nullopt : number(table.rows[r][c]);
     if (!v) {
       py::list text;
       for (const auto& row : table.rows) text.append(py::str(row[c]));
@@ -52,13 +59,15 @@ py::object column(const sweep::Table& table, std::size_t c) {
   return values;
 }
 
-// Runs a sweep as `nsbridge sweep design --out out --jobs jobs --set ...` does (no progress
-// bar, no plot), the GIL released, and returns the columns of its results.csv.
+// Runs a sweep as `nsbridge sweep design --out out --jobs jobs --set ... [--restart]` does (no
+// progress bar, no plot), the GIL released, and returns the columns of its results.csv.
 py::dict run_sweep(const std::filesystem::path& design, const std::filesystem::path& out,
-                   const std::optional<int>& jobs, const std::vector<std::string>& overrides) {
+                   const std::optional<int>& jobs, const std::vector<std::string>& overrides,
+                   bool restart) {
   sweep::SweepOptions options;
   options.out = out;
   options.jobs = jobs.value_or(0);
+  options.restart = restart;
   options.progress = false;
   options.set = overrides;
   sweep::Table table;
@@ -97,10 +106,10 @@ void bind_sweep(py::module_& m) {
         "What the module was built from: version, revision (git, at build time), build_type, "
         "compiler and libraries (name -> version), as `nsbridge --version` says");
   m.def("sweep", &run_sweep, py::arg("design_path"), py::arg("out"), py::arg("jobs") = py::none(),
-        py::arg("overrides") = std::vector<std::string>{},
+        py::arg("overrides") = std::vector<std::string>{}, py::arg("restart") = false,
         "Runs a sweep design (docs/sweep.md) into the folder out, as `nsbridge sweep` does "
-        "(runs already complete there are kept), on jobs threads (None: all cores), the GIL "
-        "released; returns results.csv's columns: numpy float64 arrays for numeric columns, "
+        "(runs already complete there are kept; a folder of another design is refused unless "
+        "restart), on jobs threads (None: all cores), the GIL released; returns results.csv's columns: numpy float64 arrays for numeric columns, "
         "lists of str otherwise");
 }
 

@@ -16,8 +16,10 @@ def test_a_two_by_two_problem_solved_by_hand():
     # z = [4/3, 7/3] (Cramer: det 3, z1 = (10 - 6)/3, z2 = (12 - 5)/3).
     M = np.array([[2.0, 1.0], [1.0, 2.0]])
     q = np.array([-5.0, -6.0])
+    # The solvers stop at a residual of `tolerance`: PGS's z is then ~4e-12 off at the default
+    # 1e-12, so the comparison to 1e-12 asks for a residual of 1e-14.
     for solver in SOLVERS:
-        r = nsbridge.lcp.solve(M, q, solver=solver)
+        r = nsbridge.lcp.solve(M, q, solver=solver, tolerance=1e-14)
         assert r.status == "solved", solver
         np.testing.assert_allclose(r.z, [4.0 / 3.0, 7.0 / 3.0], rtol=0, atol=1e-12)
         np.testing.assert_allclose(r.w, [0.0, 0.0], rtol=0, atol=1e-12)
