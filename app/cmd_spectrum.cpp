@@ -115,28 +115,19 @@ void check_output(const std::string& option, const std::string& file) {
   }
 }
 
-// A gnuplot string literal.
-std::string gp_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + '"';
-}
-
 // The gnuplot script of PSA against T (log axis), one curve per record, the data inline.
 std::string plot_script(const std::vector<models::Spectrum>& spectra) {
   std::ostringstream gp;
   gp << "set logscale x\nset grid\nset xlabel 'period T [s]'\nset ylabel 'PSA [g]'\n"
-     << "set title " << gp_string("Pseudo-acceleration spectra, damping " +
+     << "set title " << io::gnuplot_string("Pseudo-acceleration spectra, damping " +
                                   io::shortest(spectra.front().damping))
      << "\nset key top right noenhanced\n";
   for (std::size_t k = 0; k < spectra.size(); ++k) {
     gp << "$r" << k << " << EOD\n";
     for (std::size_t i = 0; i < spectra[k].periods.size(); ++i) {
       if (spectra[k].periods[i] > 0.0) {
-        gp << io::shortest(spectra[k].periods[i]) << ' ' << io::shortest(spectra[k].psa_g[i]) << '\n';
+        gp << io::shortest(spectra[k].periods[i]) << ' ' << io::shortest(spectra[k].psa_g[i])
+           << '\n';
       }
     }
     gp << "EOD\n";
@@ -144,7 +135,7 @@ std::string plot_script(const std::vector<models::Spectrum>& spectra) {
   gp << "plot ";
   for (std::size_t k = 0; k < spectra.size(); ++k) {
     gp << (k ? ", " : "") << "$r" << k << " using 1:2 with lines lw 2 title "
-       << gp_string(fs::path(spectra[k].record).filename().string());
+       << io::gnuplot_string(fs::path(spectra[k].record).filename().string());
   }
   gp << '\n';
   return gp.str();
@@ -155,8 +146,8 @@ std::string csv_text(const std::vector<models::Spectrum>& spectra) {
   for (const auto& s : spectra) {
     for (std::size_t i = 0; i < s.periods.size(); ++i) {
       out += io::csv_quote(s.record) + "," + io::shortest(s.periods[i]) + "," +
-             io::shortest(s.psa_g[i]) + "," + io::shortest(s.sd_m[i]) + "," + io::shortest(s.psv_m_s[i]) +
-             "\n";
+             io::shortest(s.psa_g[i]) + "," + io::shortest(s.sd_m[i]) + "," +
+             io::shortest(s.psv_m_s[i]) + "\n";
     }
   }
   return out;
@@ -210,7 +201,8 @@ void run_spectrum(const SpectrumArgs& a) {
   }
   options.periods = parse_periods(a.periods);
   if (!a.plot.empty() && io::terminal_for(a.plot).empty()) {
-    throw InputError("spectrum: --plot " + a.plot + ": expected a file ending in .png, .svg or .pdf");
+    throw InputError("spectrum: --plot " + a.plot +
+                     ": expected a file ending in .png, .svg or .pdf");
   }
   check_output("--csv", a.csv);
   check_output("--plot", a.plot);

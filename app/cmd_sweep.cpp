@@ -4,10 +4,13 @@
 //
 // Expands a design file (docs/sweep.md) into runs of one scene, runs them on --jobs threads
 // (or, started by mpirun, on every rank), writes each run's outputs to DIR/runs/<id>/ and one
-// row per run to DIR/results.csv. A rerun over the same DIR resumes. Exit code 1 when some
-// run did not complete (the rows say which); 2 for a bad design, before any run.
+// row per run to DIR/results.csv. A rerun over the same DIR resumes. A design with a
+// [fragility] section also gets DIR/fragility.json (and, with --plot, DIR/fragility.png):
+// docs/fragility.md. Exit code 1 when some run did not complete (the rows say which); 2 for a
+// bad design, before any run.
 #include "app/commands.hpp"
 
+#include "sweep/fragility_sweep.hpp"
 #include "sweep/plots.hpp"
 #include "sweep/runner.hpp"
 
@@ -36,10 +39,19 @@ void draw(const SweepArgs& args) {
             << '\n';
 }
 
+// The fragility curves of a design with [fragility], fitted to DIR/results.csv.
+void fragility(const SweepArgs& args, bool plot) {
+  const sweep::Design d = sweep::load_design(args.design, args.options.set);
+  const auto files =
+      sweep::write_fragility(d, args.options.out, plot ? args.plots.gnuplot : std::string());
+  for (const auto& f : files) std::cout << "fragility  " << f.string() << '\n';
+}
+
 void run(const SweepArgs& args) {
   args.plots.validate();
   if (args.plot_only) {
     draw(args);
+    fragility(args, true);
     return;
   }
   const sweep::SweepSummary s = sweep::run_sweep(args.design, args.options);
@@ -56,6 +68,7 @@ void run(const SweepArgs& args) {
             << " runs did not complete (their status is in results.csv)\n";
   std::cout << "results    " << s.results.string() << '\n';
   if (args.plot) draw(args);
+  fragility(args, args.plot);
   if (s.failed > 0) exit_code() = 1;
 }
 
@@ -77,7 +90,8 @@ void add_sweep_command(CLI::App& app) {
       ->allow_extra_args(false);
   cmd->add_flag("--restart", args->options.restart,
                 "Discard the runs already in --out (needed when the design changed)");
-  cmd->add_flag("--plot", args->plot, "Draw IDA, exceedance and tornado plots into DIR/plots/");
+  cmd->add_flag("--plot", args->plot,
+                "Draw IDA, exceedance and tornado plots into DIR/plots/ (and DIR/fragility.png)");
   cmd->add_flag("--plot-only", args->plot_only, "Only draw the plots from DIR/results.csv");
   cmd->add_option("--pga-key", args->plots.pga_key,
                   "Factor on the x axis of the IDA and "

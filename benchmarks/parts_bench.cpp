@@ -5,6 +5,7 @@
 // medians and their ratio (parts / bridge) are printed. Scene loading is outside the timing.
 //
 //   parts_bench [repeats = 5] [csv = parts_bench.csv] [end time = the scene's, 40 s]
+#include "io/build_info.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "models/bridge_parts.hpp"
 #include "models/scene.hpp"
@@ -57,7 +58,7 @@ int main(int argc, char** argv) {
   const std::string scene_file = std::string(NSB_SCENES_DIR) + "/bridge-exc7.toml";
   std::printf("parts_bench: Moreau-Jean, bridge-exc7, h = 1e-4, models::Bridge against the "
               "parts assembly, %d repeats (median)\n", repeats);
-  std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, NSB_GIT_REVISION);
+  std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, nsb::io::build_info().revision.c_str());
   std::vector<double> cpu_bridge, cpu_parts, wall_bridge, wall_parts;
   double end_time = 0.0;
   long long steps = 0;
@@ -69,10 +70,9 @@ int main(int argc, char** argv) {
       return 2;
     }
     models::Assembly parts(models::bridge_parts(bridge->parameters(), bridge->excitation()));
-    integrators::MoreauJeanOptions o;
-    o.end_time = end_arg > 0.0 ? end_arg : scene.solver.end_time;
+    integrators::MoreauJeanOptions o = std::get<integrators::MoreauJeanOptions>(scene.run);
+    if (end_arg > 0.0) o.end_time = end_arg;
     o.step = 1e-4;
-    o.theta = scene.solver.theta;
     end_time = o.end_time;
     const Timing b = time_run(*scene.system, o, scene.output.sample_dt);
     const Timing p = time_run(parts, o, scene.output.sample_dt);

@@ -19,7 +19,9 @@
 //   }
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <optional>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -82,6 +84,22 @@ struct Name {
   std::string_view name;
   E value;
 };
+
+// The name of an enum value in a names list ("unknown" when absent), and the value of a name.
+template <class E, std::size_t N>
+std::string_view name_of(const std::array<Name<E>, N>& names, E value) {
+  for (const auto& n : names) {
+    if (n.value == value) return n.name;
+  }
+  return "unknown";
+}
+template <class E, std::size_t N>
+std::optional<E> value_of(const std::array<Name<E>, N>& names, std::string_view name) {
+  for (const auto& n : names) {
+    if (n.name == name) return n.value;
+  }
+  return std::nullopt;
+}
 
 namespace detail {
 

@@ -43,6 +43,11 @@ struct Hermite {
         h01(-2 * s * s * s + 3 * s * s), h11(s * s * s - s * s) {}
 };
 
+// Which contact fields an evaluation leaves current: kForces those the contact forces read
+// (all of them for penetrated contacts, the normal part otherwise), kAll every field of every
+// contact (accepted states: the events and the energy balance read the tangential ones).
+enum class ContactFields { kForces, kAll };
+
 // The state of the integration: the system, its constant mass matrix, and every buffer the
 // right-hand side and the Jacobian need, sized once.
 class Core {
@@ -59,6 +64,7 @@ class Core {
     Jq_ = Matrix::Zero(n_, n_);
     Ju_ = Matrix::Zero(n_, n_);
     contacts_ = sys_.make_contact_buffer();
+    probes_ = sys_.make_contact_buffer();
     lambda_n_ = Vector::Zero(m_);
     lambda_t_ = Vector::Zero(m_);
     damping_part_ = Vector::Zero(m_);
@@ -72,11 +78,13 @@ class Core {
   // Loads q, u from x and evaluates f, the contact data and the contact forces at (t, q, u).
   // With derivatives, also fills Jq_ = -dF/dq and Ju_ = -dF/du of the generalized contact
   // force F = sum W_N lambda_N + W_T lambda_T (geometric terms dW/dq neglected: see below).
-  void evaluate(double t, const State& x, bool derivatives) {
+  // `data` says which contact fields must be current afterwards (ContactFields).
+  void evaluate(double t, const State& x, bool derivatives,
+                ContactFields data = ContactFields::kForces) {
     q_ = x.head(n_);
     u_ = x.tail(n_);
     sys_.forces(t, q_, u_, f_);
-    sys_.contact_data(t, q_, u_, contacts_);  // gaps, W and the rheonomic terms (eq. 2)
+    load_contacts(t, data);
     if (derivatives) {
       Jq_.setZero();
       Ju_.setZero();
@@ -91,6 +99,22 @@ class Core {
       const TangentForce ft = tangent_force(i, c, fn);
       if (derivatives) add_contact_jacobian(c, fn, ft);
     }
+  }
+
+  // Gaps, W and the rheonomic terms (eq. 2) at (t, q_, u_). For the forces alone the normal
+  // part comes first (System::contact_normals, the same numbers for a fraction of the work):
+  // eqs. (9) and (10) act only on penetrated contacts, so the full data are needed only when
+  // one is; while every gap is open the tangential fields keep stale values nobody reads.
+  void load_contacts(double t, ContactFields data) {
+    if (data == ContactFields::kForces) {
+      sys_.contact_normals(t, q_, u_, contacts_);
+      const bool penetrated = std::any_of(contacts_.begin(), contacts_.end(),
+                                          [](const ContactData& c) {
+                                            return !c.far && c.gap_normal < 0.0;
+                                          });
+      if (!penetrated) return;
+    }
+    sys_.contact_data(t, q_, u_, contacts_);
   }
 
   // Eq. (9) on the penetration delta = -g_N and its rate -gdot_N, added to f along W_N.
@@ -162,7 +186,9 @@ class Core {
     dfdt = (dfdt - dxdt) / ht;
   }
 
-  // Gaps at the cubic Hermite interpolant of q (and the linear one of u) at t0 + s h.
+  // Gaps at the cubic Hermite interpolant of q (and the linear one of u) at t0 + s h: the
+  // normal fields (gap_normal, far) of a buffer of their own, so that the contact data of
+  // the last evaluated state stay as they are.
   const std::vector<ContactData>& gaps_at(double t0, const State& x0, double t1,
                                           const State& x1, double s) {
     const double h = t1 - t0;
@@ -170,8 +196,8 @@ class Core {
     q_ = b.h00 * x0.head(n_) + (b.h10 * h) * x0.tail(n_) + b.h01 * x1.head(n_) +
          (b.h11 * h) * x1.tail(n_);
     u_ = (1.0 - s) * x0.tail(n_) + s * x1.tail(n_);
-    sys_.contact_data(t0 + s * h, q_, u_, contacts_);
-    return contacts_;
+    sys_.contact_normals(t0 + s * h, q_, u_, probes_);
+    return probes_;
   }
 
   System& sys_;
@@ -180,7 +206,7 @@ class Core {
   Matrix minv_;
   Vector q_, u_, f_, acc_;
   Matrix K_, C_, Jq_, Ju_;
-  std::vector<ContactData> contacts_;
+  std::vector<ContactData> contacts_, probes_;
   Vector lambda_n_, lambda_t_, damping_part_;
   Vector chi_, v_minus_;
 };
@@ -274,6 +300,7 @@ class ComplianceRun {
     t_ = system_.initial_time();
     x_ = State::Zero(2 * n_);
     xnew_ = State::Zero(2 * n_);
+    momentum_ = Vector::Zero(n_);
     const Vector q0 = system_.initial_position();
     const Vector u0 = system_.initial_velocity();
     if (q0.size() != n_ || u0.size() != n_) {
@@ -281,7 +308,7 @@ class ComplianceRun {
     }
     x_.head(n_) = q0;
     x_.tail(n_) = u0;
-    core_.evaluate(t_, x_, false);
+    core_.evaluate(t_, x_, false, ContactFields::kAll);
     for (int i = 0; i < m_; ++i) {
       const ContactData& c = core_.contacts_[static_cast<std::size_t>(i)];
       core_.chi_[i] = damping_factor(options_.law, c.restitution);
@@ -290,7 +317,7 @@ class ComplianceRun {
       const ContactData& c = core_.contacts_[static_cast<std::size_t>(i)];
       if (!c.far && c.gap_normal <= 0.0) close_contact(i, t_);
     }
-    core_.evaluate(t_, x_, false);
+    core_.evaluate(t_, x_, false, ContactFields::kAll);
     system_.commit();
     update_state_energy();
     energy_.initial = energy_.kinetic + energy_.stored;
@@ -407,14 +434,15 @@ class ComplianceRun {
     x_ = xnew_;
     t_ = t_new;
     book_.count_step();
-    core_.evaluate(t_, x_, false);
+    core_.evaluate(t_, x_, false, ContactFields::kAll);
     system_.commit();
     const bool closed_now = record_closures(landed, close_at_start);
     if (landed) {
       target_ = std::numeric_limits<double>::infinity();
       std::fill(pending_.begin(), pending_.end(), 0);
     }
-    if (closed_now) core_.evaluate(t_, x_, false);  // forces with the new v_minus, for the record
+    // The forces with the new v_minus, for the record.
+    if (closed_now) core_.evaluate(t_, x_, false, ContactFields::kAll);
     accumulate_energy(h);
     recorder_.sample(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
                      energy_.error);
@@ -450,7 +478,8 @@ class ComplianceRun {
   }
 
   void update_state_energy() {
-    energy_.kinetic = 0.5 * core_.u_.dot(system_.mass() * core_.u_);
+    momentum_.noalias() = system_.mass() * core_.u_;  // M u, in a buffer sized once
+    energy_.kinetic = 0.5 * core_.u_.dot(momentum_);
     const EnergyState es = system_.energy(t_, core_.q_);
     energy_.stored = es.stored + contact_potential();
     energy_.hysteretic = es.hysteretic;
@@ -483,6 +512,7 @@ class ComplianceRun {
   double t_ = 0.0;
   double target_ = std::numeric_limits<double>::infinity();  // closure time to land on
   State x_, xnew_;
+  Vector momentum_;
 };
 
 }  // namespace

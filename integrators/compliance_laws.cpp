@@ -11,10 +11,7 @@
 namespace nsb::integrators {
 
 std::string_view to_string(DampingLaw law) {
-  for (const auto& n : kDampingLawNames) {
-    if (n.value == law) return n.name;
-  }
-  return "unknown";
+  return config::name_of(kDampingLawNames, law);
 }
 
 const std::vector<std::string>& damping_law_names() {
@@ -27,9 +24,7 @@ const std::vector<std::string>& damping_law_names() {
 }
 
 DampingLaw parse_damping_law(std::string_view name) {
-  for (const auto& n : kDampingLawNames) {
-    if (n.name == name) return n.value;
-  }
+  if (const auto law = config::value_of(kDampingLawNames, name)) return *law;
   throw std::invalid_argument("damping_law: '" + std::string(name) +
                               "' is not one of hertzdamp, flores, hunt_crossley_exact");
 }

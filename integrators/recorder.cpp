@@ -9,31 +9,19 @@
 namespace nsb::integrators {
 
 std::string_view to_string(EventKind k) {
-  for (const auto& n : kEventKindNames) {
-    if (n.value == k) return n.name;
-  }
-  return "unknown";
+  return config::name_of(kEventKindNames, k);
 }
 
 std::optional<EventKind> parse_event_kind(std::string_view name) {
-  for (const auto& n : kEventKindNames) {
-    if (n.name == name) return n.value;
-  }
-  return std::nullopt;
+  return config::value_of(kEventKindNames, name);
 }
 
 std::string_view to_string(RunStatus s) {
-  for (const auto& n : kRunStatusNames) {
-    if (n.value == s) return n.name;
-  }
-  return "unknown";
+  return config::name_of(kRunStatusNames, s);
 }
 
 std::optional<RunStatus> parse_run_status(std::string_view name) {
-  for (const auto& n : kRunStatusNames) {
-    if (n.name == name) return n.value;
-  }
-  return std::nullopt;
+  return config::value_of(kRunStatusNames, name);
 }
 
 bool succeeded(RunStatus s) {

@@ -10,6 +10,15 @@
 
 namespace nsb::io {
 
+std::string gnuplot_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + '"';
+}
+
 std::string shell_quote(const std::string& s) {
   std::string out = "'";
   for (const char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);

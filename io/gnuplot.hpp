@@ -32,6 +32,9 @@ std::string terminal_for(const std::filesystem::path& picture);
 std::string draw_gnuplot(const std::string& gnuplot, const std::string& script,
                          const std::filesystem::path& picture);
 
+// s as a gnuplot string literal: in double quotes, with '"' and '\\' escaped.
+std::string gnuplot_string(const std::string& s);
+
 // s quoted for the POSIX shell.
 std::string shell_quote(const std::string& s);
 

@@ -11,17 +11,11 @@
 namespace nsb::lcp {
 
 std::string_view to_string(Solver s) {
-  for (const auto& n : kSolverNames) {
-    if (n.value == s) return n.name;
-  }
-  return "unknown";
+  return config::name_of(kSolverNames, s);
 }
 
 std::optional<Solver> parse_solver(std::string_view name) {
-  for (const auto& n : kSolverNames) {
-    if (n.name == name) return n.value;
-  }
-  return std::nullopt;
+  return config::value_of(kSolverNames, name);
 }
 
 void SolveOptions::validate() const {

@@ -78,11 +78,30 @@ std::string claims_json(const std::vector<Claim>& claims) {
     }
     s << "],\n   \"runs\": [";
     for (std::size_t k = 0; k < c.runs.size(); ++k) s << (k ? ", " : "") << json_string(c.runs[k]);
-    s << "]}";
+    s << "]";
+    if (!c.law.name.empty()) {
+      s << ",\n   \"law\": {\"name\": " << json_string(c.law.name)
+        << ", \"chi\": " << json_number(c.law.chi)
+        << ", \"effective_restitution\": " << json_number(c.law.effective_restitution)
+        << ", \"nonsmooth_restitution\": " << json_number(c.law.nonsmooth_restitution) << "}";
+    }
+    s << "}";
   }
   s << "\n]}\n";
   return s.str();
 }
+
+namespace {
+
+// The claim's statement, with its damping law and effective restitution when it has one.
+std::string statement_with_law(const Claim& c) {
+  if (c.law.name.empty()) return c.statement;
+  return c.statement + " (law " + c.law.name + ", effective restitution " +
+         short_number(c.law.effective_restitution) + "; nonsmooth eps = " +
+         short_number(c.law.nonsmooth_restitution) + ")";
+}
+
+}  // namespace
 
 std::string claims_markdown(const std::vector<Claim>& claims) {
   std::ostringstream s;
@@ -95,13 +114,21 @@ std::string claims_markdown(const std::vector<Claim>& claims) {
               ck.op + " " + short_number(ck.threshold) + ")";
     }
     if (!c.failure.empty()) nums = c.reason();
-    s << "| " << c.id << " | " << c.statement << " | " << (c.holds() ? "holds" : "does not hold")
+    s << "| " << c.id << " | " << statement_with_law(c) << " | "
+      << (c.holds() ? "holds" : "does not hold")
       << " | " << nums << " |\n";
   }
   for (const auto& c : claims) {
-    s << "\n## " << c.id << ": " << c.statement << "\n\n"
+    s << "\n## " << c.id << ": " << statement_with_law(c) << "\n\n"
       << "Verdict: **" << (c.holds() ? "holds" : "does not hold") << "** (" << c.reason()
       << ").\n\n";
+    if (!c.law.name.empty()) {
+      s << "Damping law of eq. (9): `" << c.law.name << "`, chi = " << short_number(c.law.chi)
+        << ", effective restitution of a single impact "
+        << short_number(c.law.effective_restitution)
+        << " (the nonsmooth runs use eps = " << short_number(c.law.nonsmooth_restitution)
+        << ").\n\n";
+    }
     for (const auto& ck : c.checks) {
       s << "- `" << ck.quantity << "` = " << short_number(ck.value) << ", required " << ck.op << " "
         << short_number(ck.threshold) << ": " << (ck.holds() ? "yes" : "no") << ". " << ck.why

@@ -26,6 +26,16 @@ struct Check {
   bool holds() const;      // value op threshold; false for a non-finite value
 };
 
+// The damping law of eq. (9) behind a compliance claim: its name, its factor chi at the
+// nonsmooth runs' restitution, the effective restitution of a single impact under it
+// (integrators::hunt_crossley_restitution(chi)) and that nonsmooth restitution eps.
+struct LawRestitution {
+  std::string name;  // integrators::kDampingLawNames
+  double chi = std::numeric_limits<double>::quiet_NaN();
+  double effective_restitution = std::numeric_limits<double>::quiet_NaN();
+  double nonsmooth_restitution = std::numeric_limits<double>::quiet_NaN();
+};
+
 struct Claim {
   Claim() = default;
   Claim(std::string id_, std::string statement_)
@@ -36,6 +46,7 @@ struct Claim {
   std::vector<std::pair<std::string, double>> measured;   // every number behind the checks
   std::vector<std::string> runs;                          // the runs it used
   std::string failure;      // non-empty: a run failed and the claim was not evaluated
+  LawRestitution law;       // the compliance claims' damping law; empty name for the others
   bool holds() const;       // failure.empty() and every check holds (false without checks)
   std::string reason() const;  // one line: which checks fail, or the failure
 };
@@ -51,7 +62,8 @@ using io::json_number;
 using io::json_string;
 
 // claims.json: {"claims": [{"id", "statement", "holds", "reason", "measured": {...},
-// "checks": [{"quantity", "value", "op", "threshold", "why"}], "runs": [...]}]}.
+// "checks": [{"quantity", "value", "op", "threshold", "why"}], "runs": [...]}]}; a compliance
+// claim also has "law": {"name", "chi", "effective_restitution", "nonsmooth_restitution"}.
 // Numbers are written with 17 significant digits; a non-finite number is written as null.
 std::string claims_json(const std::vector<Claim>& claims);
 // claims.md: a table (claim, verdict, key numbers) and each claim's checks.

@@ -1,6 +1,7 @@
 // Fig. 8 of Shi & Dimitrakopoulos (2017): the first pounding of excitation 5 under the
 // compliance method, every step recorded in a window around it: the gap against time, and the
-// force-penetration loops of the stiffer contacts.
+// force-penetration loops of the stiffer contacts, once per compared damping law of eq. (9)
+// (kComparedLaws), each with its effective restitution.
 #include "paper-figures/figure.hpp"
 
 namespace nsb::paper_figures {
@@ -10,6 +11,16 @@ namespace {
 // Every compliance step is recorded up to this long after the first pounding, long enough for
 // the softest contact (1e-4 k) to open again: measured 0.06 s.
 constexpr double kFirstPoundingWindow = 0.15;  // [s]
+
+// The nonsmooth run's rows of the table: law 0, the effective restitution its eps.
+void add_nonsmooth_rows(Table& t, const History& mj, const std::string& g, const std::string& l,
+                        double t_first, double eps) {
+  const auto ts = mj.series("t"), gs = mj.series(g), ls = mj.series(l);
+  for (std::size_t i = 0; i < ts.size(); ++i) {
+    if (ts[i] >= t_first - kFirstPoundingLead && ts[i] <= t_first + kFirstPoundingWindow)
+      t.add({0.0, 0.0, eps, ts[i], gs[i], ls[i]});
+  }
+}
 
 }  // namespace
 
@@ -21,12 +32,13 @@ Figure fig8_first_pounding() {
     const auto [t_first, contact] = first_impact(s.runs.at(kExc5Moreau).history);
     std::vector<RunSpec> v;
     if (contact == 0) return v;
-    for (double k : s.setup.windows) {
-      v.push_back({exc5_window_run(k),
-                   exc(kExampleRun),
-                   {"solver.method=compliance", "solver.stiffness_factor=" + factor_name(k),
-                    "solver.end_time=" + factor_name(t_first + kFirstPoundingWindow),
-                    "output.sample_dt=0"}});
+    for (const auto law : kComparedLaws) {
+      for (double k : s.setup.windows) {
+        std::vector<std::string> o = compliance_overrides(k, law);
+        o.push_back("solver.end_time=" + factor_name(t_first + kFirstPoundingWindow));
+        o.push_back("output.sample_dt=0");
+        v.push_back({exc5_window_run(k, law), exc(kExampleRun), o});
+      }
     }
     return v;
   };
@@ -35,27 +47,33 @@ Figure fig8_first_pounding() {
     const auto [t_first, contact] = first_impact(mj);
     if (contact == 0) return Drawing{};
     const std::string g = "gN" + std::to_string(contact), l = "lambdaN" + std::to_string(contact);
-    Table t{{"factor", "t", "gap", "lambda_n"}};
+    // law: 1-based position in `laws` (0: the nonsmooth run); e_eff: its effective restitution.
+    Table t{{"factor", "law", "e_eff", "t", "gap", "lambda_n"}};
     std::vector<double> loops;
-    for (double k : s.setup.windows) {
-      const History& h = s.runs.at(exc5_window_run(k)).history;
-      const auto ts = h.series("t"), gs = h.series(g), ls = h.series(l);
-      for (std::size_t i = 0; i < ts.size(); ++i) {
-        if (ts[i] >= t_first - kFirstPoundingLead) t.add({k, ts[i], gs[i], ls[i]});
+    std::string laws;
+    double eps = 0.0;
+    for (std::size_t j = 0; j < kComparedLaws.size(); ++j) {
+      const LawRestitution r = law_restitution(s, kComparedLaws[j]);
+      laws += (laws.empty() ? "" : " ") + r.name;
+      eps = r.nonsmooth_restitution;
+      for (double k : s.setup.windows) {
+        const History& h = s.runs.at(exc5_window_run(k, kComparedLaws[j])).history;
+        const auto ts = h.series("t"), gs = h.series(g), ls = h.series(l);
+        for (std::size_t i = 0; i < ts.size(); ++i) {
+          if (ts[i] >= t_first - kFirstPoundingLead)
+            t.add({k, double(j + 1), r.effective_restitution, ts[i], gs[i], ls[i]});
+        }
+        // The loops of the stiffer contacts, as in the paper (1e0 k, 1e2 k).
+        if (j == 0 && k >= 1.0) loops.push_back(k);
       }
-      // The loops of the stiffer contacts, as in the paper (1e0 k, 1e2 k).
-      if (k >= 1.0) loops.push_back(k);
     }
-    const auto ts = mj.series("t"), gs = mj.series(g), ls = mj.series(l);
-    for (std::size_t i = 0; i < ts.size(); ++i) {
-      if (ts[i] >= t_first - kFirstPoundingLead && ts[i] <= t_first + kFirstPoundingWindow)
-        t.add({0.0, ts[i], gs[i], ls[i]});
-    }
+    add_nonsmooth_rows(t, mj, g, l, t_first, eps);
     return draw_table(canvas, name, t,
                       {gnuplot_number("contact", contact), gnuplot_number("t_first", t_first),
                        gnuplot_string("factors", factor_list(s.setup.windows)),
-                       gnuplot_string("loop_factors", factor_list(loops))},
-                      {1200, 500});
+                       gnuplot_string("loop_factors", factor_list(loops)),
+                       gnuplot_string("laws", laws), gnuplot_number("eps", eps)},
+                      {1200, 900});
   };
   return f;
 }

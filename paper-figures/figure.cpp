@@ -1,5 +1,7 @@
 #include "paper-figures/figure.hpp"
 
+#include "models/bridge.hpp"
+
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -115,8 +117,28 @@ std::string factor_list(const std::vector<double>& factors) {
   return list;
 }
 
-std::string exc5_compliance_run(double factor) { return "exc5-k" + factor_name(factor); }
-std::string exc5_window_run(double factor) { return exc5_compliance_run(factor) + "-first"; }
+std::string exc5_compliance_run(double factor, integrators::DampingLaw law) {
+  const std::string base = "exc5-k" + factor_name(factor);
+  if (law == integrators::DampingLaw::kHertzDamp) return base;
+  return base + "-" + std::string(integrators::to_string(law));
+}
+std::string exc5_window_run(double factor, integrators::DampingLaw law) {
+  return exc5_compliance_run(factor, law) + "-first";
+}
+
+std::vector<std::string> compliance_overrides(double factor, integrators::DampingLaw law) {
+  return {"solver.method=compliance", "solver.stiffness_factor=" + factor_name(factor),
+          "solver.damping_law=" + std::string(integrators::to_string(law))};
+}
+
+LawRestitution law_restitution(const Study& study, integrators::DampingLaw law) {
+  const models::Scene scene = load_run_scene(study, exc5_moreau());
+  const double eps =
+      dynamic_cast<const models::Bridge&>(*scene.system).parameters().restitution;
+  const double chi = integrators::damping_factor(law, eps);
+  return {std::string(integrators::to_string(law)), chi,
+          integrators::hunt_crossley_restitution(chi), eps};
+}
 std::string exc(int n) { return "bridge-exc" + std::to_string(n); }
 
 RunSpec exc5_moreau() { return {kExc5Moreau, exc(kExampleRun), {"solver.method=moreau"}}; }

@@ -14,11 +14,13 @@
 // figure's follow-up runs (those placed by the first runs' events), then draws each figure.
 #pragma once
 
+#include "integrators/compliance.hpp"
 #include "models/scene.hpp"
 #include "paper-figures/plot.hpp"
 #include "paper-figures/runs.hpp"
 #include "paper-figures/uncertainty.hpp"
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -101,8 +103,23 @@ std::string factor_list(const std::vector<double>& factors);
 inline constexpr const char* kExc5Moreau = "exc5-moreau";
 inline constexpr const char* kExc5Event = "exc5-event";
 inline constexpr const char* kExc5Sliding = "exc5-moreau-sliding";
-std::string exc5_compliance_run(double factor);  // "exc5-k<factor>": Fig. 7, C4
-std::string exc5_window_run(double factor);      // "exc5-k<factor>-first": Fig. 8, C5
+// The damping laws of eq. (9) the compliance comparisons are made with: the paper's
+// Hertz-damp (Lankarani & Nikravesh; C4, C5) and the law whose effective restitution equals
+// the nonsmooth runs' eps (Hunt-Crossley exact; C4', C5'), docs/compliance.md.
+inline constexpr std::array<integrators::DampingLaw, 2> kComparedLaws{
+    integrators::DampingLaw::kHertzDamp, integrators::DampingLaw::kHuntCrossleyExact};
+// "exc5-k<factor>" (Hertz-damp) or "exc5-k<factor>-<law>": Fig. 7, C4, C4'.
+std::string exc5_compliance_run(double factor,
+                                integrators::DampingLaw law = integrators::DampingLaw::kHertzDamp);
+// exc5_compliance_run(factor, law) + "-first": Fig. 8, C5, C5'.
+std::string exc5_window_run(double factor,
+                            integrators::DampingLaw law = integrators::DampingLaw::kHertzDamp);
+// The overrides of a compliance run of excitation 5 at c k under a law.
+std::vector<std::string> compliance_overrides(double factor, integrators::DampingLaw law);
+// A damping law at the nonsmooth runs' restitution eps of excitation 5 (the scene's
+// model.seats.restitution): chi(eps) and the effective restitution of a single impact under
+// it (integrators::hunt_crossley_restitution), e.g. 0.663 for Hertz-damp at eps = 0.
+LawRestitution law_restitution(const Study& study, integrators::DampingLaw law);
 // The scene stem of excitation n, "bridge-exc<n>".
 std::string exc(int n);
 // Excitation 5 under Moreau-Jean, as Figs. 3, 4, 5, 7 and 8 use it.

@@ -3,6 +3,7 @@
 #include "models/scene.hpp"
 #include "sweep/csv.hpp"
 #include "sweep/expand.hpp"
+#include "sweep/fragility_sweep.hpp"
 
 #include <toml++/toml.h>
 
@@ -488,13 +489,15 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
   const Context c{file.string()};
   const toml::table root = parse_design(file);
   check_keys(c, root, "",
-             {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor"});
+             {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor",
+              "fragility"});
   Design d;
   d.file = fs::absolute(file).lexically_normal();
   read_scene(c, root, extra_set, d);
   read_mode(c, root, d);
   read_factors(c, root, d);
   expand(c, root, d);
+  d.fragility = read_fragility(root, d, c.file);
   d.hash = design_hash(d);
   return d;
 }

@@ -8,6 +8,8 @@
 // Errors throw std::invalid_argument with "<file>:<line>:<col>: <key>: <what is allowed>".
 #pragma once
 
+#include "sweep/limit_states.hpp"
+
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -57,6 +59,8 @@ struct Design {
   std::vector<Factor> factors;  // in file order (list mode: one per CSV column)
   std::vector<Run> runs;        // the expanded runs, in id order
   std::string hash;             // 16 hex digits; changes whenever a run would change
+  std::optional<FragilitySpec> fragility;  // the [fragility] section, when the design has one;
+                                           //   not part of the hash (it changes no run)
 };
 
 // Reads and expands a design file. Throws std::invalid_argument naming the file, line and key

@@ -16,17 +16,11 @@
 namespace nsb::sweep {
 
 std::string_view to_string(FitStatus s) {
-  for (const auto& n : kFitStatusNames) {
-    if (n.value == s) return n.name;
-  }
-  return "unknown";
+  return config::name_of(kFitStatusNames, s);
 }
 
 std::optional<FitStatus> parse_fit_status(std::string_view name) {
-  for (const auto& n : kFitStatusNames) {
-    if (n.name == name) return n.value;
-  }
-  return std::nullopt;
+  return config::value_of(kFitStatusNames, name);
 }
 
 bool has_estimate(FitStatus s) { return s == FitStatus::kFitted || s == FitStatus::kNotConverged; }

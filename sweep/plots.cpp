@@ -148,16 +148,6 @@ std::vector<TornadoBar> tornado_bars(const Table& t, const PlotOptions& o) {
 
 namespace {
 
-// A gnuplot string literal.
-std::string gp_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + '"';
-}
-
 // Writes the script and runs options.gnuplot on it once per terminal: PNG, then SVG
 // (io::render_gnuplot). The script sets everything but the terminal and the output.
 void render(const PlotOptions& o, const fs::path& dir, const std::string& stem,
@@ -197,11 +187,12 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
     std::string gp =
         "set datafile separator ','\nset termoption noenhanced\nset key top left\nset grid\n"
         "set xlabel 'target PGA [g] (" +
-        o.pga_key + ")'\nset ylabel " + gp_string(axis_label(o.response)) +
+        o.pga_key + ")'\nset ylabel " + io::gnuplot_string(axis_label(o.response)) +
         "\nset title 'IDA curves'\nplot ";
     for (std::size_t i = 0; i < curves.size(); ++i) {
+      const std::string curve = io::gnuplot_string(curves[i]);
       gp += std::string(i == 0 ? "" : ", \\\n     ") + "'ida.csv' skip 1 using 2:(strcol(1) eq " +
-            gp_string(curves[i]) + " ? $3 : NaN) with linespoints title " + gp_string(curves[i]);
+            curve + " ? $3 : NaN) with linespoints title " + curve;
     }
     render(o, dir, "ida", gp + "\n", files);
 
@@ -216,7 +207,8 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
            "set datafile separator ','\nset termoption noenhanced\nset grid\nset yrange [0:1]\nset "
            "xlabel 'target PGA [g] (" +
                o.pga_key + ")'\nset ylabel 'share of runs'\nset title " +
-               gp_string("share of runs with " + o.response + " > " + format_number(o.limit)) +
+               io::gnuplot_string("share of runs with " + o.response + " > " +
+                                  format_number(o.limit)) +
                "\nplot 'exceedance.csv' skip 1 using 1:4 with linespoints notitle\n",
            files);
   }
@@ -234,7 +226,7 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
     const std::string n = std::to_string(bars.size());
     render(o, dir, "tornado",
            "set datafile separator ','\nset termoption noenhanced\nset grid x\nset xlabel " +
-               gp_string(axis_label(o.response)) +
+               io::gnuplot_string(axis_label(o.response)) +
                "\nset title 'one factor at a time, about the base run'\nset yrange [-1:" + n +
                "]\nset style fill solid 0.5\nset arrow from " + format_number(bars[0].base) +
                ", graph 0 to " + format_number(bars[0].base) +

@@ -79,10 +79,9 @@ void check_scene(const std::string& name) {
   ni::System& bridge = *p.scene.system;
   const double dt = p.scene.output.sample_dt;
   {
-    ni::MoreauJeanOptions o;
+    // The scene's own Moreau–Jean options (its step and theta), to kEnd.
+    ni::MoreauJeanOptions o = std::get<ni::MoreauJeanOptions>(p.scene.run);
     o.end_time = kEnd;
-    o.step = p.scene.solver.step;
-    o.theta = p.scene.solver.theta;
     ni::Recorder rb(bridge, dt), rp(p.parts, dt);
     const auto a = ni::moreau_jean(bridge, o, rb);
     const auto b = ni::moreau_jean(p.parts, o, rp);
@@ -94,9 +93,8 @@ void check_scene(const std::string& name) {
   Pair q = load(name);  // fresh springs
   ni::System& bridge2 = *q.scene.system;
   {
-    ni::EventDrivenOptions o;
+    ni::EventDrivenOptions o;  // the scenes set no event-driven key: the defaults
     o.end_time = kEnd;
-    o.tolerance = q.scene.solver.tolerance;
     ni::Recorder rb(bridge2, dt), rp(q.parts, dt);
     const auto a = ni::event_driven(bridge2, o, rb);
     const auto b = ni::event_driven(q.parts, o, rp);

@@ -4,37 +4,7 @@
 # when the input is refused.
 #   bash app/test/spectrum_cli_test.sh NSBRIDGE
 set -uo pipefail
-nsb=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-root=$(cd "$(dirname "$0")/../.." && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-
-# expect CODE PATTERN -- ARGS...: runs nsbridge ARGS, checks the exit code and that stdout or
-# stderr matches the extended regular expression PATTERN; never "internal error" or a hang.
-limit=20
-expect() {
-  local code=$1 pattern=$2
-  shift 3
-  local out rc
-  out=$(timeout -s KILL "$limit" "$nsb" "$@" 2>&1)
-  rc=$?
-  if [[ $rc -eq $code ]] && grep -Eq -- "$pattern" <<<"$out" &&
-     ! grep -q 'internal error' <<<"$out"; then
-    passed=$((passed + 1))
-  else
-    failed=$((failed + 1))
-    echo "FAILED: nsbridge $* -> exit $rc (expected $code), output:" >&2
-    echo "$out" | head -5 >&2
-  fi
-}
-
-check() {  # check DESCRIPTION COMMAND...: a plain assertion
-  local what=$1
-  shift
-  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAILED: $what" >&2; fi
-}
+source "$(dirname "$0")/cli_lib.sh" "$1"
 
 elc=$root/data/ground-motions/elCentro_NS_1940_Peknold.AT2
 rsn6=$root/data/ground-motions/RSN6_IMPVALL.I_I-ELC180.AT2

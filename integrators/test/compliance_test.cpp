@@ -1,9 +1,11 @@
 #include "integrators/compliance.hpp"
+#include "integrators/rosenbrock.hpp"
 #include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace {
@@ -346,4 +348,28 @@ TEST_CASE("compliance: a moving wall (rheonomic contact) strikes a body at rest"
   CHECK(st.energy.ground > st.energy.kinetic);
   CHECK(st.energy.impacts < 0.0);
   CHECK(st.energy.error < 1e-5);
+}
+
+TEST_CASE("SmallLu solves bit for bit as Eigen's PartialPivLU") {
+  // The Rosenbrock step's LU for n <= 8 must give the very numbers of Eigen's, so that the
+  // compliance results do not depend on which of the two solved: random, ill-scaled and
+  // pivoting matrices, and a right-hand side with exact zeros (skipped by both).
+  std::srand(2017);
+  for (int n = 1; n <= nsb::integrators::SmallLu::kMaxSize; ++n) {
+    for (int trial = 0; trial < 50; ++trial) {
+      CAPTURE(n);
+      CAPTURE(trial);
+      Matrix a = Matrix::Random(n, n);
+      if (trial % 3 == 0) a.row(0) *= 1e-9;                  // forces row exchanges
+      if (trial % 5 == 0) a.diagonal().array() += 1e6;       // the stiff I / (gamma h) term
+      Vector b = Vector::Random(n);
+      if (trial % 2 == 0) b[0] = 0.0;
+      nsb::integrators::SmallLu lu;
+      lu.compute(a);
+      Vector x = b;
+      lu.solve_in_place(x);
+      const Vector y = Eigen::PartialPivLU<Matrix>(a).solve(b);
+      for (int i = 0; i < n; ++i) CHECK(x[i] == y[i]);
+    }
+  }
 }

@@ -166,7 +166,52 @@ TEST_CASE("every verdict in claims.json follows from its numbers") {
     }
     CHECK(c.at("holds").b == all);
   }
-  CHECK(ids == std::vector<std::string>{"C1", "C2", "C3", "C4", "C5", "C6"});
+  CHECK(ids == std::vector<std::string>{"C1", "C2", "C3", "C4", "C5", "C6", "C4'", "C5'"});
+}
+
+TEST_CASE("the compliance claims name their damping law and its effective restitution") {
+  const Json root = Parser(read(kDir / "claims.json")).parse();
+  std::map<std::string, const Json*> by_id;
+  for (const Json& c : root.at("claims").a) by_id[c.at("id").s] = &c;
+  const std::map<std::string, std::string> laws{{"C4", "hertzdamp"},
+                                                {"C5", "hertzdamp"},
+                                                {"C4'", "hunt_crossley_exact"},
+                                                {"C5'", "hunt_crossley_exact"}};
+  for (const auto& [id, name] : laws) {
+    CAPTURE(id);
+    REQUIRE(by_id.count(id) == 1);
+    const Json& law = by_id[id]->at("law");
+    REQUIRE(law.kind == Json::kObject);
+    CHECK(law.at("name").s == name);
+    const double chi = law.at("chi").n, e = law.at("effective_restitution").n;
+    const double eps = law.at("nonsmooth_restitution").n;
+    REQUIRE(std::isfinite(chi));
+    REQUIRE(std::isfinite(e));
+    CHECK(chi >= 0.0);
+    CHECK(e >= 0.0);
+    CHECK(e <= 1.0);
+    CHECK(eps >= 0.0);
+    CHECK(eps <= 1.0);
+    // e is the restitution of a Hunt-Crossley impact with factor chi: the root of
+    // 1 - chi e = (1 + chi) exp(-chi (1 + e)) (docs/compliance.md, derived there).
+    CHECK(std::abs(1.0 - chi * e - (1.0 + chi) * std::exp(-chi * (1.0 + e))) < 1e-6);
+    if (name == "hertzdamp") CHECK(chi == doctest::Approx(0.75 * (1.0 - eps * eps)));
+    // The exact law matches the nonsmooth eps, up to its floor of 1e-3 at eps = 0.
+    if (name == "hunt_crossley_exact") CHECK(std::abs(e - eps) <= 1e-3 + 1e-9);
+  }
+  // The primed claims judge the same quantities as their twins, side by side.
+  for (const char* id : {"C4", "C5"}) {
+    CAPTURE(id);
+    std::vector<std::string> a, b;
+    for (const Json& k : by_id[id]->at("checks").a) a.push_back(k.at("quantity").s);
+    for (const Json& k : by_id[std::string(id) + "'"]->at("checks").a) {
+      b.push_back(k.at("quantity").s);
+    }
+    CHECK(a == b);
+  }
+  for (const auto& [id, c] : by_id) {
+    if (laws.count(id) == 0) CHECK(c->at("law").kind == Json::kNull);
+  }
 }
 
 TEST_CASE("every figure has its PNG, SVG and CSV, and axis labels with units") {

@@ -69,6 +69,25 @@ TEST_CASE("claims.json and claims.md carry the verdict and its numbers") {
   CHECK(contains(md, "exponent = 1.25 (> 1)"));
 }
 
+TEST_CASE("a compliance claim carries its damping law; the others carry none") {
+  Claim c{"C4'", "tracks"};
+  c.checks.push_back({"abs_peak_ratio_minus_1_k100", 0.005, "<", 0.1, "10 %"});
+  c.runs = {"exc5-k100-hunt_crossley_exact"};
+  c.law = {"hunt_crossley_exact", 1000.0, 0.001, 0.0};
+  const std::string json = nsb::paper_figures::claims_json({c});
+  CHECK(contains(json, "\"id\": \"C4'\""));
+  CHECK(contains(json, "\"law\": {\"name\": \"hunt_crossley_exact\", \"chi\": 1000, "
+                       "\"effective_restitution\": 0.001, \"nonsmooth_restitution\": 0}"));
+  const std::string md = nsb::paper_figures::claims_markdown({c});
+  CHECK(contains(md, "tracks (law hunt_crossley_exact, effective restitution 0.001; "
+                     "nonsmooth eps = 0)"));
+  CHECK(contains(md, "Damping law of eq. (9): `hunt_crossley_exact`, chi = 1000"));
+  Claim plain{"C2", "grows"};
+  plain.checks.push_back({"exponent", 1.25, ">", 1.0, "b > 1"});
+  CHECK_FALSE(contains(nsb::paper_figures::claims_json({plain}), "\"law\""));
+  CHECK_FALSE(contains(nsb::paper_figures::claims_markdown({plain}), "Damping law"));
+}
+
 TEST_CASE("JSON numbers and strings") {
   using nsb::paper_figures::json_number;
   using nsb::paper_figures::json_string;

@@ -2,6 +2,7 @@
 // that stays a row, resume, and the refusal of a changed design. Expected values come from the
 // bouncing ball's closed form and from independent single runs, not from the sweep itself.
 #include "sweep/runner.hpp"
+#include "sweep/test/results_text.hpp"
 
 #include "integrators/run.hpp"
 #include "models/scene.hpp"
@@ -18,6 +19,7 @@
 
 namespace fs = std::filesystem;
 using namespace nsb::sweep;
+using nsb::sweep::test::without_wall_time;
 
 namespace {
 
@@ -40,17 +42,6 @@ fs::path ball_design(const fs::path& dir, const std::string& gravities) {
                       << "set = [\"solver.method=event_driven\"]\n"
                       << "[[factor]]\nkey = \"model.gravity\"\nvalues = [" << gravities << "]\n";
   return file;
-}
-
-// results.csv without its last column (wall_s), the only one that depends on the machine.
-std::string without_wall_time(const fs::path& results) {
-  const Table t = read_csv(results);
-  std::string out;
-  for (const auto& row : t.rows) {
-    for (std::size_t k = 0; k + 1 < row.size(); ++k) out += row[k] + ",";
-    out += "\n";
-  }
-  return out;
 }
 
 std::string cell(const Table& t, std::size_t row, const std::string& column) {

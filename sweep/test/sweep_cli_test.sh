@@ -2,7 +2,8 @@
 # End-to-end tests of `nsbridge sweep`: design errors (exit 2, nothing written), a failing run
 # inside a sweep (exit 1, a row with its status), resume, refusal of a changed design, the
 # equality of --jobs 1 and --jobs 2, the Fig. 6 design and the plots, --gnuplot, and the
-# warnings of a sweep's run against `nsbridge run` with the same overrides.
+# warnings of a sweep's run against `nsbridge run` with the same overrides, and the fragility
+# of a sweep (fragility.json against the rows counted by hand, errors of [fragility]).
 #   bash sweep/test/sweep_cli_test.sh NSBRIDGE
 set -uo pipefail
 nsb=$1
@@ -108,6 +109,65 @@ check "the summaries are the same but for the wall time" \
          <(grep -v wall_time "$tmp/coarse-run/summary.json")
 check "the histories are the same" \
   cmp -s "$tmp/coarse/runs/0000/history.csv" "$tmp/coarse-run/history.csv"
+
+# --- Fragility: 3 stripes x 3 records on the bridge, counted by hand from results.csv ----------
+design "$tmp/frag.toml" bridge-exc5 $'set = ["solver.end_time=4", "model.excitation.longitudinal_pga=0"]
+[[factor]]\nkey = "model.excitation.target_pga"\nvalues = [0.2, 0.6, 1.2]
+[[factor]]\nkey = "record"
+[[factor.records]]\nname = "sylmar"\ntransverse = "'"$root"$'/data/ground-motions/RSN1084_NORTHR_SCS142.AT2"
+[[factor.records]]\nname = "elcentro"\ntransverse = "'"$root"$'/data/ground-motions/RSN6_IMPVALL.I_I-ELC180.AT2"
+[[factor.records]]\nname = "friuli"
+transverse = "'"$root"$'/data/ground-motions/asce7-suite/RSN125_FRIULI.A_A-TMZ000.AT2"
+[fragility]\nim = "model.excitation.target_pga"
+[[fragility.limit_state]]\nname = "theta_5e-4"\nresponse = "peak_theta"\nthreshold = 5e-4
+[[fragility.limit_state]]\nname = "never"\nresponse = "peak_theta"\nthreshold = 1'
+run 0 'fragility  .*fragility.png' sweep "$tmp/frag.toml" --out "$tmp/frag" --jobs 2 --plot
+check "fragility.png" test -s "$tmp/frag/fragility.png"
+# "im n exceeded" per stripe: from results.csv by awk, and from fragility.json.
+by_hand() {
+  awk -F, -v t="$2" 'NR > 1 { n[$2]++; if ($7 >= t) k[$2]++ }
+    END { for (im in n) print im, n[im], k[im] + 0 }' "$1" | sort -g
+}
+from_json() {
+  python3 -c 'import json, sys
+for s in json.load(open(sys.argv[1]))["limit_states"][sys.argv[2]]["stripes"]:
+    print(s["im"], s["n"], s["exceeded"])' "$1" "$2"
+}
+check "results.csv column 7 is peak_theta" test "$(head -1 "$tmp/frag/results.csv" | cut -d, -f7)" = peak_theta
+check "fragility stripes = the rows counted by hand" \
+  cmp -s <(by_hand "$tmp/frag/results.csv" 5e-4) <(from_json "$tmp/frag/fragility.json" theta_5e-4)
+check "the stripes hold 0, 1 and 3 of 3 runs over 5e-4" \
+  test "$(from_json "$tmp/frag/fragility.json" theta_5e-4)" = $'0.2 3 0\n0.6 3 1\n1.2 3 3'
+check "3 stripes of 3 runs" test "$(from_json "$tmp/frag/fragility.json" never)" = $'0.2 3 0\n0.6 3 0\n1.2 3 0'
+check "no exceedance: null and the status" python3 -c 'import json, sys
+ls = json.load(open(sys.argv[1]))["limit_states"]["never"]
+assert ls["status"] == "no_exceedances" and ls["theta"] is None and ls["ci95_beta"] is None
+assert ls["moments"]["status"] == "censored"' "$tmp/frag/fragility.json"
+check "no NaN in fragility.json" test "$(grep -ci nan "$tmp/frag/fragility.json")" -eq 0
+# A changed [fragility] changes no run: the rerun resumes and refits; --plot-only refits too.
+sed -i 's/threshold = 1$/threshold = 2e-4/' "$tmp/frag.toml"
+run 0 '9 already done \(skipped\), 0 run now' sweep "$tmp/frag.toml" --out "$tmp/frag"
+check "refitted after the threshold changed" \
+  cmp -s <(by_hand "$tmp/frag/results.csv" 2e-4) <(from_json "$tmp/frag/fragility.json" never)
+rm "$tmp/frag/fragility.json"
+run 0 'fragility  .*fragility.json' sweep "$tmp/frag.toml" --out "$tmp/frag" --plot-only
+check "--plot-only writes fragility.json" test -s "$tmp/frag/fragility.json"
+
+# --- Bad [fragility] input: exit 2 naming the key, nothing written ------------------------------
+fragdesign() {  # fragdesign FILE FRAGILITY-BODY: a bouncing-ball grid with a [fragility] section
+  design "$1" bouncing-ball $'[[factor]]\nkey = "model.restitution"\nvalues = [0.5, 0.9]\n'"$2"
+}
+fragdesign "$tmp/f1.toml" $'[fragility]\nim = "model.gravity"\n[[fragility.limit_state]]\nname = "a"\nresponse = "peak_y"\nthreshold = 1'
+run 2 'f1.toml:6:6: fragility.im: "model.gravity" is not a factor' sweep "$tmp/f1.toml" --out "$tmp/o2"
+fragdesign "$tmp/f2.toml" $'[fragility]\nim = "model.restitution"\n[[fragility.limit_state]]\nname = "a"\nresponse = "peak_theta"\nthreshold = 1'
+run 2 'f2.toml:9:12: fragility.limit_state\[0\].response: "peak_theta" is not a results.csv column' \
+  sweep "$tmp/f2.toml" --out "$tmp/o2"
+fragdesign "$tmp/f3.toml" $'[fragility]\nim = "model.restitution"\n[[fragility.limit_state]]\nname = "a"\nresponse = "peak_y"\nthreshold = inf'
+run 2 'f3.toml:10:13: fragility.limit_state\[0\].threshold: required: a finite number' \
+  sweep "$tmp/f3.toml" --out "$tmp/o2"
+fragdesign "$tmp/f4.toml" $'[fragility]\nim = "model.restitution"\nlimit = 1'
+run 2 'f4.toml:7:9: fragility.limit: unknown key' sweep "$tmp/f4.toml" --out "$tmp/o2"
+check "no output after [fragility] errors" test ! -e "$tmp/o2"
 
 echo "sweep_cli_test: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -4,6 +4,7 @@
 // of a process, such as a library's global error handler switched per run) fails it there.
 #include "sweep/csv.hpp"
 #include "sweep/runner.hpp"
+#include "sweep/test/results_text.hpp"
 
 #include <doctest/doctest.h>
 #include <unistd.h>
@@ -14,6 +15,7 @@
 
 namespace fs = std::filesystem;
 using namespace nsb::sweep;
+using nsb::sweep::test::without_wall_time;
 
 namespace {
 
@@ -26,17 +28,6 @@ fs::path bridge_design(const fs::path& dir) {
                       << "[[factor]]\nkey = \"model.excitation.target_pga\"\n"
                       << "values = [0.6, 0.7, 0.8, 1.0]\n";
   return file;
-}
-
-// results.csv without its last column (wall_s), the only one that depends on the machine.
-std::string without_wall_time(const fs::path& results) {
-  const Table t = read_csv(results);
-  std::string out;
-  for (const auto& row : t.rows) {
-    for (std::size_t k = 0; k + 1 < row.size(); ++k) out += row[k] + ",";
-    out += "\n";
-  }
-  return out;
 }
 
 }  // namespace

@@ -1,0 +1,26 @@
+// The `[fragility]` section of a sweep design (docs/fragility.md, "Fragility from a sweep"):
+// the factor whose levels are the intensity stripes and the limit states, each a results.csv
+// column compared with a threshold. Read and checked with the design (sweep/fragility_sweep.hpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace nsb::sweep {
+
+// A limit state: a run reaches it when its `response` (a results.csv column, in that column's
+// unit: rad for peak_theta and residual_theta) is >= `threshold` (in the same unit), or, with
+// `absolute`, when |response| >= threshold (for signed columns such as residual_theta).
+struct LimitState {
+  std::string name;      // key of the limit state in fragility.json, unique in the design
+  std::string response;  // a results.csv column of the design
+  double threshold = 0.0;
+  bool absolute = false;
+};
+
+struct FragilitySpec {
+  std::string im;                       // a factor key of the design: its levels are the stripes
+  std::vector<LimitState> limit_states;  // in file order, at least one
+};
+
+}  // namespace nsb::sweep
