@@ -1,12 +1,14 @@
 // nsbridge run SCENE.toml [--out DIR] [--method moreau|event_driven|compliance]
-//                         [--set key=value ...] [--quiet] [--strict]
+//                         [--set key=value ...] [--quiet] [--strict] [--dump-lcp DIR]
 //
 // Loads a scene (with overrides) and checks its initial state (runs::prepare), checks the
 // output directory, then integrates the scene with the chosen method (runs::run), and writes
 // history.csv, events.csv and summary.json (docs/outputs.md) into DIR, by default
 // out/<scene name>/, as one set (runs::write_record). Exit code 1 when the run stopped early
 // or a contact problem stayed unsolved (the files are still written, and say so), or with
-// --strict when a warning says the run is not to be trusted (docs/cli.md).
+// --strict when a warning says the run is not to be trusted (docs/cli.md). --dump-lcp DIR
+// writes every contact problem of the run to DIR in Siconos's .dat format, with
+// DIR/manifest.csv (runs/lcp_dump.hpp); a DIR that cannot be created is refused before the run.
 #include "app/commands.hpp"
 
 #include "integrators/run.hpp"
@@ -40,6 +42,8 @@ struct RunArgs {
   std::vector<std::string> overrides;
   bool quiet = false;
   bool strict = false;
+  std::string dump_lcp;
+  bool dump_lcp_given = false;  // --dump-lcp was on the command line (possibly as "")
 };
 
 // A progress bar on stderr, drawn only when stderr is a terminal and only once the run has
@@ -135,9 +139,11 @@ void print_summary(const runs::RunRecord& record, const std::filesystem::path& o
 
 void run(const RunArgs& args) {
   // Everything a user can get wrong is found before the integration starts.
+  if (args.dump_lcp_given && args.dump_lcp.empty())
+    throw InputError("--dump-lcp: empty path; expected a directory for the contact problems");
   runs::PreparedRun prepared;
   try {
-    prepared = runs::prepare({args.scene, args.overrides, args.method, {}});
+    prepared = runs::prepare({args.scene, args.overrides, args.method, {}, args.dump_lcp});
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -154,8 +160,14 @@ void run(const RunArgs& args) {
 
   ProgressBar bar(prepared.scene.system->initial_time(),
                   integrators::end_time(prepared.scene.run), !args.quiet);
-  const runs::RunRecord record =
-      runs::run(std::move(prepared), [&bar](double t) { bar.update(t); });
+  const runs::RunRecord record = [&] {
+    try {
+      return runs::run(std::move(prepared), [&bar](double t) { bar.update(t); });
+    } catch (const std::runtime_error& e) {
+      // Only the dump writes during a run: its folder became unwritable, as for --out.
+      throw InputError(std::string("--dump-lcp: ") + e.what());
+    }
+  }();
   bar.finish();
   try {
     runs::write_record(out, record);
@@ -193,8 +205,12 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--quiet", args->quiet, "No progress bar on standard error");
   cmd->add_flag("--strict", args->strict,
                 "Exit 1 when a warning says the run is not to be trusted (docs/cli.md)");
-  cmd->callback([args, out] {
+  auto* dump = cmd->add_option("--dump-lcp", args->dump_lcp,
+                               "Write every contact problem to this directory (Siconos .dat "
+                               "files and manifest.csv)");
+  cmd->callback([args, out, dump] {
     args->out_given = out->count() > 0;
+    args->dump_lcp_given = dump->count() > 0;
     run(*args);
   });
 }

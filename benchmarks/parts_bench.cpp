@@ -2,11 +2,13 @@
 // against the bridge assembled from parts (models/bridge_parts.hpp) from the same parameters
 // and excitation. The two alternate within each repetition, so that both see the same load
 // of a shared machine; the process CPU time and the wall time of each run are kept, and the
-// medians and their ratio (parts / bridge) are printed. Scene loading is outside the timing.
+// medians and their ratio (parts / bridge) are printed. Then the two-frame bridge
+// (scenes/bridge-two-frame.toml: two segments joined by a hinge, four bents) on its own, at
+// the same step and window. Scene loading is outside the timing.
 //
 //   parts_bench [repeats = 5] [csv = parts_bench.csv] [end time = the scene's, 40 s]
-#include "io/build_info.hpp"
 #include "integrators/moreau_jean.hpp"
+#include "io/build_info.hpp"
 #include "models/bridge_parts.hpp"
 #include "models/scene.hpp"
 
@@ -17,6 +19,7 @@
 #include <ctime>
 #include <fstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace {
@@ -42,6 +45,24 @@ Timing time_run(nsb::integrators::System& system, const nsb::integrators::Moreau
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
+}
+
+// Median CPU and wall time of the two-frame bridge (two bodies, six contacts, two of them
+// body-body) over `repeats` runs of [0, end_time] at h = 1e-4.
+Timing time_two_frame(int repeats, double end_time) {
+  using namespace nsb;
+  std::vector<double> cpu, wall;
+  for (int r = 0; r < repeats; ++r) {
+    models::Scene scene =
+        models::load_scene(std::string(NSB_SCENES_DIR) + "/bridge-two-frame.toml");
+    integrators::MoreauJeanOptions o = std::get<integrators::MoreauJeanOptions>(scene.run);
+    o.end_time = end_time;
+    o.step = 1e-4;
+    const Timing f = time_run(*scene.system, o, scene.output.sample_dt);
+    cpu.push_back(f.cpu);
+    wall.push_back(f.wall);
+  }
+  return {.wall = median(wall), .cpu = median(cpu)};
 }
 
 }  // namespace
@@ -70,9 +91,11 @@ int main(int argc, char** argv) {
       return 2;
     }
     models::Assembly parts(models::bridge_parts(bridge->parameters(), bridge->excitation()));
-    integrators::MoreauJeanOptions o = std::get<integrators::MoreauJeanOptions>(scene.run);
-    if (end_arg > 0.0) o.end_time = end_arg;
+    integrators::MoreauJeanOptions o;
+    const auto& mj = std::get<integrators::MoreauJeanOptions>(scene.run);
+    o.end_time = end_arg > 0.0 ? end_arg : mj.end_time;
     o.step = 1e-4;
+    o.theta = mj.theta;
     end_time = o.end_time;
     const Timing b = time_run(*scene.system, o, scene.output.sample_dt);
     const Timing p = time_run(parts, o, scene.output.sample_dt);
@@ -87,16 +110,21 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  const Timing frames = time_two_frame(repeats, end_time);
+  const double cf = frames.cpu, wf = frames.wall;
   const double cb = median(cpu_bridge), cp = median(cpu_parts);
   const double wb = median(wall_bridge), wp = median(wall_parts);
   std::printf("%-8s %8s %10s %10s %9s\n", "model", "T [s]", "cpu [s]", "wall [s]", "x real");
   std::printf("%-8s %8.2f %10.4f %10.4f %9.0f\n", "bridge", end_time, cb, wb, end_time / cb);
   std::printf("%-8s %8.2f %10.4f %10.4f %9.0f\n", "parts", end_time, cp, wp, end_time / cp);
+  std::printf("%-8s %8.2f %10.4f %10.4f %9.0f\n", "2-frame", end_time, cf, wf, end_time / cf);
   std::printf("parts / bridge: cpu %.3f, wall %.3f (%lld steps each)\n", cp / cb, wp / wb, steps);
   std::ofstream csv(csv_path);
   csv << "model,end_time,steps,cpu_median,wall_median,cpu_ratio\n";
   csv << "bridge," << end_time << ',' << steps << ',' << cb << ',' << wb << ",1\n";
   csv << "parts," << end_time << ',' << steps << ',' << cp << ',' << wp << ',' << cp / cb << '\n';
+  csv << "two_frame," << end_time << ',' << steps << ',' << cf << ',' << wf << ',' << cf / cb
+      << '\n';
   std::printf("wrote %s\n", csv_path.c_str());
   return 0;
 }

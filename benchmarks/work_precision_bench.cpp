@@ -119,13 +119,16 @@ Run measure(const std::string& scene, const std::string& method, double paramete
   return run;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Arguments {
   std::filesystem::path out = "work_precision";
-  double bridge_end = 22.0;
+  double bridge_end = 22.0;  // [s]
   int repeats = 3;
   bool quick = false;
+};
+
+// The options of the usage line above; exits with status 2 on a bad one.
+Arguments parse_arguments(int argc, char** argv) {
+  Arguments args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -136,46 +139,46 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "--out") {
-      out = next();
+      args.out = next();
     } else if (a == "--end-time") {
-      bridge_end = std::atof(next().c_str());
+      args.bridge_end = std::atof(next().c_str());
     } else if (a == "--repeats") {
-      repeats = std::max(1, std::atoi(next().c_str()));
+      args.repeats = std::max(1, std::atoi(next().c_str()));
     } else if (a == "--quick") {
-      quick = true;
+      args.quick = true;
     } else {
       std::cerr << "usage: work_precision_bench [--out DIR] [--end-time T] [--repeats N] "
                    "[--quick]\n";
-      return 2;
+      std::exit(2);
     }
   }
-  std::printf("work_precision_bench: build %s, revision %s\n", NSB_BUILD_TYPE,
-              nsb::io::build_info().revision.c_str());
-  std::filesystem::create_directories(out);
+  return args;
+}
 
+// The parameters each method runs with: event-driven tolerances, Moreau–Jean steps [s] and
+// compliance stiffness factors.
+struct Grid {
   std::vector<double> tolerances{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
   std::vector<double> steps{1e-2, 1e-3, 1e-4, 1e-5};
   std::vector<double> stiffness_factors{1e-4, 1e-2, 1.0, 1e2};
-  if (quick) {
-    tolerances = {1e-4, 1e-6, 1e-8};
-    steps = {1e-2, 1e-3};
-    stiffness_factors = {1e-2, 1.0};
-    bridge_end = std::min(bridge_end, 6.0);
-  }
+};
 
-  struct SceneSpec {
-    std::string name;
-    Factory make;
-    double end_time, sample_dt;
-    const char* column;
-    double peak_from;  // [s]: the peak is taken over t >= peak_from
-  };
+struct SceneSpec {
+  std::string name;
+  Factory make;
+  double end_time, sample_dt;
+  const char* column;
+  double peak_from;  // [s]: the peak is taken over t >= peak_from
+};
+
+// The bridge under excitation 5 (until bridge_end) and the bouncing ball.
+std::vector<SceneSpec> study_scenes(double bridge_end) {
   const std::filesystem::path bridge_file =
       std::filesystem::path(NSB_SCENES_DIR) / "bridge-exc5.toml";
-  const std::vector<SceneSpec> scenes{
+  return {
       {"bridge-exc5",
-       [&] { return std::move(nm::load_scene(bridge_file).system); }, bridge_end, 0.005,
-       "theta", 0.0},
+       [bridge_file] { return std::move(nm::load_scene(bridge_file).system); }, bridge_end,
+       0.005, "theta", 0.0},
       {"bouncing-ball",
        [] {
          nm::BouncingBall::Parameters p;
@@ -186,44 +189,72 @@ int main(int argc, char** argv) {
        // sqrt(2 h / g) = 0.4515 s.
        6.0, 0.001, "y", 0.5},
   };
+}
 
-  std::ofstream csv(out / "work_precision.csv");
+// Every method over its grid on one scene, event-driven first.
+std::vector<Run> run_scene(const SceneSpec& sc, const Grid& grid, int repeats) {
+  std::vector<Run> runs;
+  for (double tol : grid.tolerances) {
+    runs.push_back(measure(sc.name, "event_driven", tol, sc.make, sc.end_time, sc.sample_dt,
+                           sc.column, repeats));
+  }
+  for (double h : grid.steps) {
+    runs.push_back(measure(sc.name, "moreau", h, sc.make, sc.end_time, sc.sample_dt,
+                           sc.column, repeats));
+  }
+  for (double k : grid.stiffness_factors) {
+    runs.push_back(measure(sc.name, "compliance", k, sc.make, sc.end_time, sc.sample_dt,
+                           sc.column, repeats));
+  }
+  return runs;
+}
+
+// One table line and one CSV row per run, its errors against the reference run ref.
+void report(const std::vector<Run>& runs, const Run& ref, double peak_from, std::ofstream& csv) {
+  const double ref_peak = peak_abs(ref, peak_from);
+  for (const auto& r : runs) {
+    const auto [hmax, hrms] = history_error(r, ref);
+    const double peak = peak_abs(r, peak_from);
+    std::printf("%-14s %-12s %9.1e %10.3e %12.6e %12.3e %12.3e %9lld %8lld %7zu %7zu %6lld\n",
+                r.scene.c_str(), r.method.c_str(), r.parameter, r.wall, peak,
+                std::abs(peak - ref_peak), hmax, static_cast<long long>(r.stats.steps),
+                static_cast<long long>(r.stats.rejected_steps), r.events, r.impacts,
+                static_cast<long long>(r.stats.lcp_solves));
+    csv << r.scene << ',' << r.method << ',' << r.parameter << ',' << r.wall << ',' << peak
+        << ',' << std::abs(peak - ref_peak) << ',' << hmax << ',' << hrms << ','
+        << r.stats.steps << ',' << r.stats.rejected_steps << ',' << r.events << ','
+        << r.impacts << ',' << r.stats.lcp_solves << ',' << r.stats.energy.error << ','
+        << (r.stats.completed ? 1 : 0) << '\n';
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Arguments args = parse_arguments(argc, argv);
+  std::printf("work_precision_bench: build %s, revision %s\n", NSB_BUILD_TYPE,
+              nsb::io::build_info().revision.c_str());
+  std::filesystem::create_directories(args.out);
+
+  Grid grid;
+  if (args.quick) {
+    grid.tolerances = {1e-4, 1e-6, 1e-8};
+    grid.steps = {1e-2, 1e-3};
+    grid.stiffness_factors = {1e-2, 1.0};
+    args.bridge_end = std::min(args.bridge_end, 6.0);
+  }
+
+  std::ofstream csv(args.out / "work_precision.csv");
   csv << "scene,method,parameter,wall_s,peak,peak_error,history_max_error,history_rms_error,"
          "steps,rejected_steps,events,impacts,lcp_solves,energy_error,completed\n";
   std::printf("%-14s %-12s %9s %10s %12s %12s %12s %9s %8s %7s %7s %6s\n", "scene", "method",
               "param", "wall[s]", "peak", "peak_err", "hist_max", "steps", "rejected",
               "events", "impacts", "lcp");
-  for (const auto& sc : scenes) {
-    std::vector<Run> runs;
-    for (double tol : tolerances) {
-      runs.push_back(measure(sc.name, "event_driven", tol, sc.make, sc.end_time, sc.sample_dt,
-                             sc.column, repeats));
-    }
-    for (double h : steps) {
-      runs.push_back(measure(sc.name, "moreau", h, sc.make, sc.end_time, sc.sample_dt,
-                             sc.column, repeats));
-    }
-    for (double k : stiffness_factors) {
-      runs.push_back(measure(sc.name, "compliance", k, sc.make, sc.end_time, sc.sample_dt,
-                             sc.column, repeats));
-    }
-    const Run& ref = runs[tolerances.size() - 1];  // tightest event-driven tolerance
-    const double ref_peak = peak_abs(ref, sc.peak_from);
-    for (const auto& r : runs) {
-      const auto [hmax, hrms] = history_error(r, ref);
-      const double peak = peak_abs(r, sc.peak_from);
-      std::printf("%-14s %-12s %9.1e %10.3e %12.6e %12.3e %12.3e %9lld %8lld %7zu %7zu %6lld\n",
-                  r.scene.c_str(), r.method.c_str(), r.parameter, r.wall, peak,
-                  std::abs(peak - ref_peak), hmax, static_cast<long long>(r.stats.steps),
-                  static_cast<long long>(r.stats.rejected_steps), r.events, r.impacts,
-                  static_cast<long long>(r.stats.lcp_solves));
-      csv << r.scene << ',' << r.method << ',' << r.parameter << ',' << r.wall << ',' << peak
-          << ',' << std::abs(peak - ref_peak) << ',' << hmax << ',' << hrms << ','
-          << r.stats.steps << ',' << r.stats.rejected_steps << ',' << r.events << ','
-          << r.impacts << ',' << r.stats.lcp_solves << ',' << r.stats.energy.error << ','
-          << (r.stats.completed ? 1 : 0) << '\n';
-    }
+  for (const auto& sc : study_scenes(args.bridge_end)) {
+    const std::vector<Run> runs = run_scene(sc, grid, args.repeats);
+    const Run& ref = runs[grid.tolerances.size() - 1];  // tightest event-driven tolerance
+    report(runs, ref, sc.peak_from, csv);
   }
-  std::printf("wrote %s\n", (out / "work_precision.csv").c_str());
+  std::printf("wrote %s\n", (args.out / "work_precision.csv").c_str());
   return 0;
 }

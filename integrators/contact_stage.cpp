@@ -74,7 +74,16 @@ bool ContactStage::accept(const lcp::FrictionalResult& r) const {
          r.residual <= options_.tolerance;
 }
 
-ContactStatus ContactStage::solve() {
+ContactStatus ContactStage::solve(const ProblemOrigin& origin) {
+  bool closed_form = false;
+  const ContactStatus status = solve_chain(closed_form);
+  if (options_.observer != nullptr) {
+    options_.observer->solved({origin, *problem_, *result_, status, closed_form});
+  }
+  return status;
+}
+
+ContactStatus ContactStage::solve_chain(bool& closed_form) {
   lcp::FrictionalProblem& p = *problem_;
   lcp::FrictionalResult& r = *result_;
   const int k = kinematics_.contacts();
@@ -100,6 +109,7 @@ ContactStatus ContactStage::solve() {
     r.solver_used = options_.solver;
     r.used_fallback = false;
     r.residual = 0.0;
+    closed_form = true;
     ++counts_.by_status[static_cast<int>(lcp::Status::kSolved)];
     return ContactStatus::kSolved;
   }

@@ -19,11 +19,17 @@
 //
 // Allocation: after the first call with each index-set size, a call allocates nothing
 // unless the chain reaches enumeration (a rare, small problem).
+//
+// Observation: a ContactObserver given in ContactStageOptions is shown every problem handed
+// to solve(), after the chain, with where it came from (ProblemOrigin) and what the chain
+// did. Without one the stage tests one pointer per solve and does nothing else.
 #pragma once
 
+#include "config/schema.hpp"
 #include "integrators/contact_kinematics.hpp"
 #include "lcp/frictional.hpp"
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -71,11 +77,55 @@ enum class ContactStatus {
                       //   the impulses are the last finite answer, or zero
   kNonFiniteInput,    // the problem's data were not finite; nothing was solved, impulses zero
 };
+// Their names in the manifest of `nsbridge run --dump-lcp` (docs/outputs.md).
+inline constexpr std::array<config::Name<ContactStatus>, 4> kContactStatusNames{
+    {{"solved", ContactStatus::kSolved},
+     {"solved_by_fallback", ContactStatus::kSolvedByFallback},
+     {"unsolved", ContactStatus::kUnsolved},
+     {"non_finite_input", ContactStatus::kNonFiniteInput}}};
+
+// Which problem of which integrator the stage solves.
+enum class ProblemKind {
+  kImpact,      // event-driven: the velocity-level impact problem at an event (eq. 6)
+  kContinuous,  // event-driven: the acceleration-level contact problem after an event
+  kStep,        // Moreau–Jean: the velocity-level problem of one time step
+};
+// Their names in the manifest of `nsbridge run --dump-lcp` (docs/outputs.md).
+inline constexpr std::array<config::Name<ProblemKind>, 3> kProblemKindNames{
+    {{"impact", ProblemKind::kImpact},
+     {"continuous", ProblemKind::kContinuous},
+     {"step", ProblemKind::kStep}}};
+
+// Where a problem handed to ContactStage::solve comes from.
+struct ProblemOrigin {
+  ProblemKind kind = ProblemKind::kStep;
+  double t = 0.0;          // the time at which the contact law is imposed [s]
+  std::int64_t step = 0;   // the integrator's accepted steps before this problem
+};
+
+// One problem as the stage solved it: the data, the chain's answer and outcome.
+struct SolvedProblem {
+  ProblemOrigin origin;
+  const lcp::FrictionalProblem& problem;  // as solved (eq. 6 of it: lcp::build_eq6)
+  const lcp::FrictionalResult& result;    // the accepted answer, or the chain's last one;
+                                          //   status kNotRun for kNonFiniteInput
+  ContactStatus status;
+  bool closed_form;  // one frictionless contact, solved as max(0, -b / G) without a solver
+};
+
+// Shown every problem the stage solves (ContactStageOptions::observer), e.g. to write it to
+// a file (runs/lcp_dump.hpp). Called on the integrator's thread, once per solve.
+class ContactObserver {
+ public:
+  virtual ~ContactObserver() = default;
+  virtual void solved(const SolvedProblem& problem) = 0;
+};
 
 struct ContactStageOptions {
   lcp::Solver solver = lcp::Solver::kLemke;  // the configured solver, first in the chain
   double tolerance = 1e-12;  // residual (lcp::frictional_residual) an answer must reach, > 0
   bool fallback = true;      // run the rest of the chain when the configured solver fails
+  ContactObserver* observer = nullptr;  // shown every solve when not null; not owned
   void validate() const;     // throws std::invalid_argument naming the field
 };
 
@@ -105,8 +155,8 @@ class ContactStage {
                                 const Matrix& a_inv, const Vector& v_free, ContactLevel level,
                                 const double* slip_coupling = nullptr);
   // Solves the problem built last through the chain; the answer is in impulses() and
-  // result().
-  ContactStatus solve();
+  // result(). origin is what the observer (if any) is told about the problem.
+  ContactStatus solve(const ProblemOrigin& origin = {});
   // [Lambda_N; Lambda_T] of the last solve (size kinematics().size()).
   Eigen::Ref<const Vector> impulses() const { return impulses_.head(kinematics_.size()); }
   double lambda_n(int j) const { return impulses_[j]; }
@@ -121,6 +171,7 @@ class ContactStage {
   const ContactStageCounts& counts() const { return counts_; }
 
  private:
+  ContactStatus solve_chain(bool& closed_form);
   bool accept(const lcp::FrictionalResult& r) const;
   bool finite_input(const lcp::FrictionalProblem& p) const;
 

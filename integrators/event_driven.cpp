@@ -65,6 +65,7 @@ EventDriven::EventDriven(System& system, const EventDrivenOptions& options, Reco
   ContactStageOptions stage_options;
   stage_options.solver = opt_.solver;
   stage_options.tolerance = opt_.lcp_tolerance;
+  stage_options.observer = opt_.contact_observer;
   stage_ = ContactStage(n_, m_, stage_options);
   touching_.reserve(static_cast<std::size_t>(m_));
   candidates_.reserve(static_cast<std::size_t>(m_));

@@ -33,6 +33,8 @@
 
 namespace nsb::integrators {
 
+class ContactObserver;  // contact_stage.hpp
+
 struct EventDrivenOptions {
   static constexpr std::string_view kMethod = "event_driven";  // solver.method in scene files
   double end_time = 1.0;            // final time [s], > initial time of the system
@@ -54,6 +56,9 @@ struct EventDrivenOptions {
   int max_events_per_window = 2000; // bound on events in any window of length event_window,
                                     //   > 0; reaching it gives a kWarning and forces closure
   double event_window = 1e-2;       // [s], > 0
+  // Shown every contact problem of the run (contact_stage.hpp), e.g. to write it to a file;
+  // not a scene key (the run pipeline sets it: runs::RunRequest::dump_lcp). Not owned.
+  ContactObserver* contact_observer = nullptr;
   // The schema of these fields (keys of a scene's [solver] table, units, ranges).
   static std::span<const config::Field<EventDrivenOptions>> fields();
   void validate() const;            // throws std::invalid_argument naming the key

@@ -212,7 +212,7 @@ bool EventDriven::impact_problem(double t, Vector& u, bool forced, int trigger_c
     fp.gdot_n_minus[jj] = std::min(0.0, c.gap_rate(u));
     if (forced) fp.restitution[jj] = 0.0;
   }
-  const ContactStatus status = stage_.solve();
+  const ContactStatus status = stage_.solve({ProblemKind::kImpact, t, book_.result().steps});
   if (stage_failed(t, trigger_contact, status, "impact problem (eq. 6)")) return false;
   u_plus_ = u;
   stage_.apply(u_plus_);
@@ -275,7 +275,8 @@ bool EventDriven::contact_problem(double t, Vector& q, Vector& u) {
       fp.friction[static_cast<Eigen::Index>(j)] = cbuf_[idx(candidates_[j])].friction;
     }
   }
-  const ContactStatus status = stage_.solve();
+  const ContactStatus status =
+      stage_.solve({ProblemKind::kContinuous, t, book_.result().steps});
   if (status == ContactStatus::kUnsolved) {
     // The candidates keep their modes, and the run goes on; the status says
     // contact_unsolved from here (failure_time: the first such event).

@@ -179,6 +179,7 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   stage_options.solver = options.solver;
   stage_options.tolerance = options.lcp_tolerance;
   stage_options.fallback = options.lcp_fallback;
+  stage_options.observer = options.contact_observer;
   stage_ = ContactStage(n_, m_, stage_options);
   lambda_n_ = Vector::Zero(m_);
   lambda_t_ = Vector::Zero(m_);
@@ -379,7 +380,7 @@ bool MoreauJean::solve_contacts(double t1) {
     p.gdot_n_minus[j] =
         gap_rate(contacts_[static_cast<std::size_t>(active_[static_cast<std::size_t>(j)])], u_);
   }
-  const ContactStatus status = stage_.solve();
+  const ContactStatus status = stage_.solve({ProblemKind::kStep, t1, book_.result().steps});
   if (status == ContactStatus::kNonFiniteInput) return false;
   if (status == ContactStatus::kUnsolved) {
     book_.note_unsolved(t1);

@@ -29,6 +29,8 @@
 
 namespace nsb::integrators {
 
+class ContactObserver;  // contact_stage.hpp
+
 struct MoreauJeanOptions {
   static constexpr std::string_view kMethod = "moreau";  // solver.method in scene files
   double end_time = 1.0;       // final time [s], > initial time of the system
@@ -41,6 +43,9 @@ struct MoreauJeanOptions {
   // Normal or tangential contact velocity [m/s] below which a contact counts as resting or
   // sticking, for events only (it does not change the dynamics); > 0.
   double event_velocity_tolerance = 1e-6;
+  // Shown every contact problem of the run (contact_stage.hpp), e.g. to write it to a file;
+  // not a scene key (the run pipeline sets it: runs::RunRequest::dump_lcp). Not owned.
+  ContactObserver* contact_observer = nullptr;
   // The schema of these fields (keys of a scene's [solver] table, units, ranges).
   static std::span<const config::Field<MoreauJeanOptions>> fields();
   void validate() const;       // throws std::invalid_argument naming the key

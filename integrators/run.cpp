@@ -59,6 +59,15 @@ void validate(const RunConfig& config) {
   std::visit([](const auto& o) { o.validate(); }, config);
 }
 
+RunConfig with_contact_observer(RunConfig config, ContactObserver* observer) {
+  std::visit(
+      [observer](auto& o) {
+        if constexpr (requires { o.contact_observer; }) o.contact_observer = observer;
+      },
+      config);
+  return config;
+}
+
 RunResult integrate(System& system, const RunConfig& config, Recorder& recorder,
                     const Progress& progress) {
   return std::visit([&](const auto& o) { return run_method(system, o, recorder, progress); },

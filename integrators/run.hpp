@@ -42,6 +42,10 @@ RunConfig default_config(std::string_view name);
 double end_time(const RunConfig& config);
 // Throws std::invalid_argument naming the field, as the method's options do.
 void validate(const RunConfig& config);
+// The same configuration with every contact problem of the run shown to observer (not
+// owned; nullptr: none). Compliance solves no contact problem, so its configuration is
+// returned unchanged.
+RunConfig with_contact_observer(RunConfig config, ContactObserver* observer);
 
 // Integrates system from its initial state with the method config holds, recording into
 // recorder; progress (recorder.hpp) is called by every method. Returns the result with the

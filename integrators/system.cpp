@@ -1,5 +1,9 @@
 #include "integrators/system.hpp"
 
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -78,6 +82,26 @@ Matrix checked_inverse_mass(const System& system, std::string_view method) {
   }
   if (!q0.allFinite() || !u0.allFinite()) fail("the initial state has a non-finite entry");
   return llt.solve(Matrix::Identity(n, n));
+}
+
+std::vector<double> natural_periods(System& system) {
+  const int n = system.dofs();
+  Matrix K = Matrix::Zero(n, n);
+  Matrix C = Matrix::Zero(n, n);
+  system.tangent(system.initial_time(), system.initial_position(), system.initial_velocity(), K,
+                 C);
+  system.revert();
+  const Matrix Ks = 0.5 * (K + K.transpose());
+  if (!Ks.allFinite()) return {};
+  // K phi = omega^2 M phi, M symmetric positive definite (checked by every integrator).
+  Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(Ks, system.mass(), Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return {};
+  // Eigen sorts the eigenvalues in increasing order: the longest period comes first.
+  std::vector<double> periods;
+  for (const double omega2 : eig.eigenvalues()) {
+    periods.push_back(omega2 > 0.0 ? 2.0 * std::numbers::pi / std::sqrt(omega2) : INFINITY);
+  }
+  return periods;
 }
 
 }  // namespace nsb::integrators

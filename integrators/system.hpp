@@ -157,6 +157,16 @@ class SystemBase : public System {
 void set_fixed_contact(ContactData& c, double gap, const Vector& w_normal,
                        const Vector& w_tangent, double restitution, double friction);
 
+// The natural periods 2 pi / omega [s] of the undamped linearization at the initial state,
+// longest first: omega^2 are the eigenvalues of K phi = omega^2 M phi (generalized symmetric
+// eigenproblem, Eigen::GeneralizedSelfAdjointEigenSolver), with K the symmetric part of the
+// tangent stiffness at (t0, q0, u0) and M the mass matrix. A mode with omega^2 <= 0 (a
+// mechanism) has an infinite period. Empty when K is not finite or the eigensolver fails.
+// Evaluates the system's tangent at its initial state and reverts the trial state. The
+// trust checks take the shortest of these periods (runs/trust.hpp), the spectral scaling of
+// the records the longest (docs/bridge.md, "Target spectral accelerations").
+std::vector<double> natural_periods(System& system);
+
 // Checks what every integrator relies on and throws std::invalid_argument, the message
 // prefixed with `method`, when the system breaks it: dofs() > 0, contacts() >= 0, a finite
 // symmetric positive definite dofs() x dofs() mass matrix, and a finite initial state of size

@@ -236,8 +236,19 @@ Status Lemke::run_n(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Ve
     for (Eigen::Index i = 0; i < n; ++i) w_[i] = q(i);
     return Status::kSolved;
   }
+  load_tableau<N>(M, q, options);
+  const int limit =
+      options.max_pivots > 0 ? options.max_pivots : LemkeOptions::default_max_pivots(n);
+  Eigen::Index entering = 2 * n;  // z0 enters first
+  const Status status = complementary_pivots<N>(limit, entering);
+  return read_solution<N>(M, q, options, status, entering, z);
+}
 
-  // Tableau B^-1 [I, -M, -d, q] with B = I, written column by column.
+// Tableau B^-1 [I, -M, -d, q] with B = I, written column by column; the basis is {w}.
+template <int N>
+inline void Lemke::load_tableau(const Eigen::Ref<const Matrix>& M,
+                                const Eigen::Ref<const Vector>& q, const LemkeOptions& options) {
+  const Eigen::Index n = fixed::size<N>(q.size());
   double* T = tableau_.data();
   std::fill(T, T + n * n, 0.0);
   for (Eigen::Index i = 0; i < n; ++i) T[i + i * n] = 1.0;
@@ -251,35 +262,37 @@ Status Lemke::run_n(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Ve
   for (Eigen::Index i = 0; i < n; ++i) T[i + (2 * n + 1) * n] = q(i);
   for (Eigen::Index i = 0; i < n; ++i) basis_[i] = i;
   for (Eigen::Index v = 0; v <= 2 * n; ++v) position_[v] = v < n ? v : -1;
+}
 
-  const int limit =
-      options.max_pivots > 0 ? options.max_pivots : LemkeOptions::default_max_pivots(n);
+// Complementary pivoting: pivot the entering variable in, then let the complement of the
+// one that left enter, until z0 leaves (kSolved), no row blocks (kRayTermination, entering
+// is then the unblocked variable) or the pivot limit is reached (kMaxIterations).
+template <int N>
+inline Status Lemke::complementary_pivots(int limit, Eigen::Index& entering) {
+  const Eigen::Index n = fixed::size<N>(n_);
   const Eigen::Index z0 = 2 * n;
-  Eigen::Index entering = z0;
-  Status status = Status::kMaxIterations;
   bool initial = true;
   while (true) {
-    if (pivots_ >= limit) {
-      status = Status::kMaxIterations;
-      break;
-    }
+    if (pivots_ >= limit) return Status::kMaxIterations;
     const Eigen::Index row = ratio_test<N>(entering, initial);
-    if (row < 0) {
-      status = Status::kRayTermination;
-      break;
-    }
+    if (row < 0) return Status::kRayTermination;
     const Eigen::Index leaving = basis_[row];
     pivot<N>(row, entering);
     ++pivots_;
     initial = false;
-    if (leaving == z0) {
-      status = Status::kSolved;
-      break;
-    }
+    if (leaving == z0) return Status::kSolved;
     entering = leaving < n ? leaving + n : leaving - n;  // the complement of the leaving one
   }
+}
 
-  const double* qcol = T + (2 * n + 1) * n;
+// z from the final basis (basic z_j = (B^-1 q)_r, clipped at 0), its residual, and the final
+// status: a ray is confirmed on the original data, a solution refined when round-off shows.
+template <int N>
+inline Status Lemke::read_solution(const Eigen::Ref<const Matrix>& M,
+                                   const Eigen::Ref<const Vector>& q, const LemkeOptions& options,
+                                   Status status, Eigen::Index entering, Eigen::Ref<Vector> z) {
+  const Eigen::Index n = fixed::size<N>(q.size());
+  const double* qcol = tableau_.data() + (2 * n + 1) * n;
   for (Eigen::Index j = 0; j < n; ++j) {
     const Eigen::Index r = position_[n + j];
     z(j) = r >= 0 ? std::max(0.0, qcol[r]) : 0.0;

@@ -78,6 +78,15 @@ class Lemke {
   template <int N>
   void solve_n(const Problem& p, const LemkeOptions& options, Result& r);
   template <int N>
+  void load_tableau(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+                    const LemkeOptions& options);
+  template <int N>
+  Status complementary_pivots(int limit, Eigen::Index& entering);
+  template <int N>
+  Status read_solution(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
+                       const LemkeOptions& options, Status status, Eigen::Index entering,
+                       Eigen::Ref<Vector> z);
+  template <int N>
   void pivot(Eigen::Index row, Eigen::Index entering);
   // Leaving row for the entering variable; -1: no entry above the pivot tolerance.
   template <int N>

@@ -219,6 +219,82 @@ bool newton_direction(const Problem& p, Workspace<Max>& ws) {
   return true;
 }
 
+// The search direction of one step at the current point: the Newton direction if H is regular,
+// finite and within descent_angle of -grad Psi, else -grad Psi (grad Psi = H^T Phi = D_a Phi +
+// M^T (D_b Phi)). Sets is_regular and newton (true: ws.d is the Newton direction).
+template <int Max>
+void search_direction(const Problem& p, const NewtonFbOptions& options, Workspace<Max>& ws,
+                      bool& is_regular, bool& newton) {
+  ws.rhs = ws.db.cwiseProduct(ws.phi);
+  ws.grad.noalias() = p.M.transpose() * ws.rhs;
+  ws.grad += ws.da.cwiseProduct(ws.phi);
+  newton = false;
+  is_regular = newton_direction(p, ws);
+  if (is_regular) {
+    newton = ws.d.allFinite() &&
+             ws.grad.dot(ws.d) <= -options.descent_angle * ws.grad.norm() * ws.d.norm();
+  }
+  if (!newton) ws.d = -ws.grad;
+}
+
+// Armijo backtracking on Psi from ws.z along ws.d; the gradient step is tried when the Newton
+// step fails. On success the accepted point is in ws.trial, ws.w_trial, ws.phi_trial and its
+// merit in psi_trial. The first Newton trial (the full step) is kept in ws.z_full, ws.w_full.
+template <int Max>
+bool line_search(const Problem& p, const NewtonFbOptions& options, double psi, bool newton,
+                 Workspace<Max>& ws, double& psi_trial) {
+  bool accepted = false;
+  psi_trial = kInf;
+  for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
+    const double slope = ws.grad.dot(ws.d);
+    double t = 1.0;
+    for (int b = 0; b < options.max_backtracks; ++b) {
+      ws.trial = ws.z + t * ws.d;
+      product(p, ws.trial, ws.w_trial);
+      psi_trial = merit(ws.trial, ws.w_trial, ws.phi_trial);
+      if (b == 0 && attempt == 0) {
+        ws.z_full = ws.trial;
+        ws.w_full = ws.w_trial;
+      }
+      if (psi_trial <= psi + options.armijo * t * slope) {
+        accepted = true;
+        break;
+      }
+      t *= options.backtrack;
+    }
+    if (!accepted && newton) {
+      ws.d = -ws.grad;
+      newton = false;
+    } else {
+      break;
+    }
+  }
+  return accepted;
+}
+
+// Active-set points: from the support estimate of the iterate, then from that of the full
+// (undamped) step, which identifies the support before the damped iterates do. Either is
+// accepted if it lowers the merit function: the method stays monotone in Psi, and with the
+// right support the point is the solution. Updates the iterate, psi and res in place.
+template <int Max>
+void polish_by_active_set(const Problem& p, const NewtonFbOptions& options, double scale,
+                          Workspace<Max>& ws, double& psi, double& res) {
+  auto& x = ws.z;
+  for (int source = 0; source < 2 && options.polish && res > options.tolerance; ++source) {
+    const bool formed = source == 0 ? active_set_trial(p, x, ws.w, ws)
+                                    : active_set_trial(p, ws.z_full, ws.w_full, ws);
+    if (!formed) continue;
+    const double psi_a = merit(ws.trial, ws.w_trial, ws.phi_trial);
+    if (psi_a < psi) {
+      x = ws.trial;
+      ws.w = ws.w_trial;
+      ws.phi = ws.phi_trial;
+      psi = psi_a;
+      res = natural(x, ws.w, scale);
+    }
+  }
+}
+
 template <int Max>
 Status iterate(const Problem& p, const NewtonFbOptions& options, Result& r, Workspace<Max>& ws) {
   const Eigen::Index n = p.size();
@@ -236,68 +312,19 @@ Status iterate(const Problem& p, const NewtonFbOptions& options, Result& r, Work
   for (int k = 1; k <= options.max_iterations; ++k) {
     r.iterations = k;
     jacobian_diagonals(p, x, ws);
-    // grad Psi = H^T Phi = D_a Phi + M^T (D_b Phi).
-    ws.rhs = ws.db.cwiseProduct(ws.phi);
-    ws.grad.noalias() = p.M.transpose() * ws.rhs;
-    ws.grad += ws.da.cwiseProduct(ws.phi);
+    bool is_regular = false;
     bool newton = false;
-    const bool is_regular = newton_direction(p, ws);
-    if (is_regular) {
-      newton = ws.d.allFinite() &&
-               ws.grad.dot(ws.d) <= -options.descent_angle * ws.grad.norm() * ws.d.norm();
-    }
-    if (!newton) ws.d = -ws.grad;
+    search_direction(p, options, ws, is_regular, newton);
     if (!(ws.d.norm() > 0.0)) return Status::kSingularJacobian;
-    // Armijo backtracking on Psi; the gradient step is tried when the Newton step fails.
-    bool accepted = false;
     double psi_trial = kInf;
-    for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
-      const double slope = ws.grad.dot(ws.d);
-      double t = 1.0;
-      for (int b = 0; b < options.max_backtracks; ++b) {
-        ws.trial = x + t * ws.d;
-        product(p, ws.trial, ws.w_trial);
-        psi_trial = merit(ws.trial, ws.w_trial, ws.phi_trial);
-        if (b == 0 && attempt == 0) {
-          ws.z_full = ws.trial;
-          ws.w_full = ws.w_trial;
-        }
-        if (psi_trial <= psi + options.armijo * t * slope) {
-          accepted = true;
-          break;
-        }
-        t *= options.backtrack;
-      }
-      if (!accepted && newton) {
-        ws.d = -ws.grad;
-        newton = false;
-      } else {
-        break;
-      }
-    }
-    if (!accepted) return is_regular ? Status::kLineSearchFailed : Status::kSingularJacobian;
+    if (!line_search(p, options, psi, newton, ws, psi_trial))
+      return is_regular ? Status::kLineSearchFailed : Status::kSingularJacobian;
     x = ws.trial;
     ws.w = ws.w_trial;
     ws.phi = ws.phi_trial;
     psi = psi_trial;
     res = natural(x, ws.w, scale);
-    // Active-set points: from the support estimate of the iterate, then from that of the
-    // full (undamped) step, which identifies the support before the damped iterates do.
-    // Either is accepted if it lowers the merit function: the method stays monotone in Psi,
-    // and with the right support the point is the solution.
-    for (int source = 0; source < 2 && options.polish && res > options.tolerance; ++source) {
-      const bool formed = source == 0 ? active_set_trial(p, x, ws.w, ws)
-                                      : active_set_trial(p, ws.z_full, ws.w_full, ws);
-      if (!formed) continue;
-      const double psi_a = merit(ws.trial, ws.w_trial, ws.phi_trial);
-      if (psi_a < psi) {
-        x = ws.trial;
-        ws.w = ws.w_trial;
-        ws.phi = ws.phi_trial;
-        psi = psi_a;
-        res = natural(x, ws.w, scale);
-      }
-    }
+    polish_by_active_set(p, options, scale, ws, psi, res);
     if (options.record_history) r.history.push_back(res);
     if (res <= options.tolerance) return Status::kSolved;
   }

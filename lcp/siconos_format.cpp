@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <new>
@@ -88,12 +89,11 @@ std::uintmax_t min_data_bytes(std::uintmax_t n) { return 2 * n * (n + 1); }
 
 }  // namespace
 
-Problem parse_siconos_lcp(std::istream& in, const std::string& name, std::uintmax_t size) {
-  Reader r(in, name);
-  const Line* l = r.next();
-  if (l == nullptr) r.fail(1, "the file is empty; expected the problem size n on the first line");
+namespace {
 
-  // Header: six integers n, storage, n, n, n, n, possibly over several lines.
+// Header: six integers n, storage, n, n, n, n, possibly over several lines, starting at the
+// first non-blank line l. Returns n.
+long read_header(Reader& r, const Line* l) {
   static const char* const kHeader[] = {"the problem size n", "the storage type (0 = dense)",
                                         "the number of rows n", "the number of columns n",
                                         "the number of rows n", "the number of columns n"};
@@ -126,9 +126,11 @@ Problem parse_siconos_lcp(std::istream& in, const std::string& name, std::uintma
   if (ti != 0)
     r.fail(l->number, "found '" + l->tokens[ti] +
                           "' after the six header integers; expected the end of the line");
+  return header[0];
+}
 
-  // Nothing is allocated for a size the file cannot hold.
-  const auto n = static_cast<Eigen::Index>(header[0]);
+// An n x n M and q of size n, refused before allocation when the file cannot hold them.
+Problem allocate(const Reader& r, Eigen::Index n, std::uintmax_t size) {
   const std::uintmax_t need = min_data_bytes(static_cast<std::uintmax_t>(n));
   if (n > 0 && size < need)
     r.fail(r.last_line(), "n = " + std::to_string(n) + " needs at least " + std::to_string(need) +
@@ -142,30 +144,42 @@ Problem parse_siconos_lcp(std::istream& in, const std::string& name, std::uintma
     r.fail(r.last_line(), "n = " + std::to_string(n) + " does not fit in memory; expected a "
                           "smaller problem");
   }
-  const auto row_count = [&](const Line& line, const std::string& what) {
-    if (static_cast<Eigen::Index>(line.tokens.size()) != n)
-      r.fail(line.number, what + " has " + std::to_string(line.tokens.size()) +
-                              " entries; expected n = " + std::to_string(n));
-  };
+  return p;
+}
+
+// The next non-blank line, which must hold n numbers: `what` (its description in messages)
+// is a column of M or q.
+const Line& read_row(Reader& r, Eigen::Index n, const std::string& what) {
+  const Line* l = r.next();
+  if (l == nullptr)
+    r.fail(r.last_line(), "unexpected end of file; expected " + what + " (" + std::to_string(n) +
+                              " numbers on one line)");
+  if (static_cast<Eigen::Index>(l->tokens.size()) != n)
+    r.fail(l->number, what + " has " + std::to_string(l->tokens.size()) +
+                          " entries; expected n = " + std::to_string(n));
+  return *l;
+}
+
+}  // namespace
+
+Problem parse_siconos_lcp(std::istream& in, const std::string& name, std::uintmax_t size) {
+  Reader r(in, name);
+  const Line* first = r.next();
+  if (first == nullptr)
+    r.fail(1, "the file is empty; expected the problem size n on the first line");
+  const auto n = static_cast<Eigen::Index>(read_header(r, first));
+  Problem p = allocate(r, n, size);
+  // M, one column per line.
   for (Eigen::Index j = 0; j < n; ++j) {
-    const std::string what = "column " + std::to_string(j + 1) + " of M";
-    l = r.next();
-    if (l == nullptr)
-      r.fail(r.last_line(), "unexpected end of file; expected " + what + " (" +
-                                std::to_string(n) + " numbers on one line)");
-    row_count(*l, what);
+    const Line& l = read_row(r, n, "column " + std::to_string(j + 1) + " of M");
     for (Eigen::Index i = 0; i < n; ++i)
-      p.M(i, j) = parse_number(r, l->number, l->tokens[static_cast<std::size_t>(i)],
+      p.M(i, j) = parse_number(r, l.number, l.tokens[static_cast<std::size_t>(i)],
                                "M(" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ")");
   }
   if (n > 0) {
-    l = r.next();
-    if (l == nullptr)
-      r.fail(r.last_line(),
-             "unexpected end of file; expected q (" + std::to_string(n) + " numbers on one line)");
-    row_count(*l, "q");
+    const Line& l = read_row(r, n, "q");
     for (Eigen::Index i = 0; i < n; ++i)
-      p.q(i) = parse_number(r, l->number, l->tokens[static_cast<std::size_t>(i)],
+      p.q(i) = parse_number(r, l.number, l.tokens[static_cast<std::size_t>(i)],
                             "q(" + std::to_string(i + 1) + ")");
   }
   return p;
@@ -183,6 +197,26 @@ Problem read_siconos_lcp(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in || ec) throw FormatError(file.string(), 0, "cannot open the file for reading");
   return parse_siconos_lcp(in, file.string(), size);
+}
+
+void write_siconos_lcp(std::ostream& out, const Problem& p, const std::string& comment) {
+  p.validate();
+  const Eigen::Index n = p.size();
+  out << n << "\n0\n" << n << '\n' << n << '\n' << n << ' ' << n << '\n';
+  // %.17g: 17 significant digits identify every double (IEEE 754-2008, §5.12.2).
+  char buf[32];
+  const auto number = [&](double v) {
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+  };
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (Eigen::Index i = 0; i < n; ++i) out << (i > 0 ? " " : "") << number(p.M(i, j));
+    out << '\n';
+  }
+  for (Eigen::Index i = 0; i < n; ++i) out << (i > 0 ? " " : "") << number(p.q(i));
+  if (n > 0) out << '\n';
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) out << "# " << line << '\n';
 }
 
 }  // namespace nsb::lcp

@@ -1,4 +1,4 @@
-// Reader for LCPs in Siconos Numerics' text format (the files of data/siconos-lcp).
+// Reader and writer for LCPs in Siconos Numerics' text format (the files of data/siconos-lcp).
 //
 // Dense storage, as written by Siconos 4.4:
 //   line 1..: n, the storage type (0 = dense), then the matrix sizes n n, and n n again
@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <istream>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 
@@ -37,5 +38,12 @@ Problem read_siconos_lcp(const std::filesystem::path& file);
 // when known (it bounds n before M is allocated).
 Problem parse_siconos_lcp(std::istream& in, const std::string& name,
                           std::uintmax_t size = UINTMAX_MAX);
+
+// Writes p in the dense format above (header "n", "0", "n", "n", "n n" as Siconos writes it),
+// every number with 17 significant digits, so that read_siconos_lcp returns p bit for bit.
+// `comment` (may be empty) follows q, one "# "-prefixed line per line of it: the reader
+// stops after q and never reads it. Throws std::invalid_argument for a non-finite entry or a
+// non-square M (the reader could not read the file back).
+void write_siconos_lcp(std::ostream& out, const Problem& p, const std::string& comment = {});
 
 }  // namespace nsb::lcp

@@ -164,11 +164,16 @@ void Assembly::build_contacts() {
         .face_point = c.face.point, .face_normal = c.face.normal};
     if (c.obstacle == parts::Obstacle::kPrescribed) {
       seat_contacts_.push_back({.slot = i, .offset = 3 * c.body, .seat = c.obstacle_index,
+                                .rest = parts_.bodies[static_cast<std::size_t>(c.body)].rest,
                                 .geometry = geometry, .restitution = c.restitution,
                                 .friction = c.friction});
     } else {
       body_contacts_.push_back({.slot = i, .offset_a = 3 * c.body,
-                                .offset_b = 3 * c.obstacle_index, .geometry = geometry,
+                                .offset_b = 3 * c.obstacle_index,
+                                .rest_a = parts_.bodies[static_cast<std::size_t>(c.body)].rest,
+                                .rest_b = parts_.bodies[static_cast<std::size_t>(
+                                    c.obstacle_index)].rest,
+                                .geometry = geometry,
                                 .restitution = c.restitution, .friction = c.friction});
     }
   }
@@ -317,15 +322,16 @@ void Assembly::contact_data(double t, const integrators::Vector& q, const integr
   for (const auto& c : seat_contacts_) {
     if (c.offset != body) {
       body = c.offset;
-      qa = q.segment<3>(body);
+      qa = q.segment<3>(body) + c.rest;
       ua = u.segment<3>(body);
     }
     const auto k = corner_contact(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
     parts::write_contact(k, c.offset, c.restitution, c.friction, out[c.slot]);
   }
   for (const auto& c : body_contacts_) {
-    const auto k = parts::corner_on_body(c.geometry, q.segment<3>(c.offset_a),
-                                         u.segment<3>(c.offset_a), q.segment<3>(c.offset_b),
+    const auto k = parts::corner_on_body(c.geometry, q.segment<3>(c.offset_a) + c.rest_a,
+                                         u.segment<3>(c.offset_a),
+                                         q.segment<3>(c.offset_b) + c.rest_b,
                                          u.segment<3>(c.offset_b));
     parts::write_body_contact(k, c.offset_a, c.offset_b, c.restitution, c.friction,
                               out[c.slot]);
@@ -342,7 +348,7 @@ void Assembly::contact_normals(double t, const integrators::Vector& q,
   for (const auto& c : seat_contacts_) {
     if (c.offset != body) {
       body = c.offset;
-      qa = q.segment<3>(body);
+      qa = q.segment<3>(body) + c.rest;
       ua = u.segment<3>(body);
     }
     const auto k =
@@ -351,8 +357,9 @@ void Assembly::contact_normals(double t, const integrators::Vector& q,
   }
   // A body face needs g_T for B's column: the full kinematics, its normal fields kept.
   for (const auto& c : body_contacts_) {
-    const auto k = parts::corner_on_body(c.geometry, q.segment<3>(c.offset_a),
-                                         u.segment<3>(c.offset_a), q.segment<3>(c.offset_b),
+    const auto k = parts::corner_on_body(c.geometry, q.segment<3>(c.offset_a) + c.rest_a,
+                                         u.segment<3>(c.offset_a),
+                                         q.segment<3>(c.offset_b) + c.rest_b,
                                          u.segment<3>(c.offset_b));
     parts::write_body_contact_normal(k, c.offset_a, c.offset_b, out[c.slot]);
   }

@@ -10,7 +10,9 @@
 // Bents join a body to the ground, so K0 and C are block-diagonal, one 3x3 block per body,
 // and us is found body by body. The contacts are listed in the order given; each is a corner
 // against a prescribed face (rheonomic, models/contact_geometry.hpp) or against a face of
-// another body (W_N and W_T span both bodies' DOFs, parts::corner_on_body).
+// another body (W_N and W_T span both bodies' DOFs, parts::corner_on_body). A body's
+// coordinates are its displacement from its rest pose (parts::RigidBody::rest): contacts see
+// rest + q, bents and damping q.
 //
 // Cost: every evaluation is a pass over vectors of concrete part types sized at
 // construction; no allocation and no virtual call per part. Ground motions are evaluated once
@@ -106,15 +108,18 @@ class Assembly final : public integrators::SystemBase {
         phi = parts::MotionTable::kNone;
   };
   // A contact against a prescribed face, or against a body face, with its output slot.
+  // rest*: the rest pose of the body at that offset (RigidBody::rest), added to q for the pose.
   struct SeatContact {
     std::size_t slot = 0;
     int offset = 0, seat = 0;
+    Eigen::Vector3d rest = Eigen::Vector3d::Zero();
     CornerFace geometry;
     double restitution = 0.0, friction = 0.0;
   };
   struct BodyContact {
     std::size_t slot = 0;
     int offset_a = 0, offset_b = 0;
+    Eigen::Vector3d rest_a = Eigen::Vector3d::Zero(), rest_b = Eigen::Vector3d::Zero();
     CornerFace geometry;
     double restitution = 0.0, friction = 0.0;
   };

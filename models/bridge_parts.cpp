@@ -1,7 +1,10 @@
 #include "models/bridge_parts.hpp"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace nsb::models {
 
@@ -45,6 +48,108 @@ Assembly::Parts bridge_parts(const Bridge::Parameters& p, const Bridge::Excitati
                               .face = {.point = c.face_point, .normal = c.face_normal},
                               .restitution = p.restitution, .friction = p.friction});
   }
+  return parts;
+}
+
+namespace {
+
+void require(bool ok, const std::string& field, const std::string& what) {
+  if (!ok) throw std::invalid_argument(field + ": " + what);
+}
+
+double total_length(const SegmentedDeck& d) {
+  double l = 0.0;
+  for (std::size_t i = 0; i < d.segments.size(); ++i) {
+    l += d.segments[i].length + (i == 0 ? 0.0 : d.hinges[i - 1].gap);
+  }
+  return l;
+}
+
+}  // namespace
+
+double SegmentedDeck::rest_position(std::size_t i) const {
+  double x = -0.5 * total_length(*this);  // the left end of segment 0
+  for (std::size_t k = 0; k < i; ++k) x += segments[k].length + hinges[k].gap;
+  return x + 0.5 * segments[i].length;
+}
+
+void SegmentedDeck::validate(const std::vector<Bridge::Bent>& bents) const {
+  require(!segments.empty(), "segments", "at least one segment is needed");
+  require(hinges.size() + 1 == segments.size(), "hinges",
+          "one fewer than the segments (hinge k joins segments k and k + 1)");
+  for (std::size_t i = 1; i < segments.size(); ++i) {
+    require(segments[i].width == segments[0].width, "segments[" + std::to_string(i) + "].width",
+            "must equal segments[0].width (a hinge's two corners lie on the other's end face)");
+  }
+  require(bent_segment.size() == bents.size(), "bent_segment", "one segment index per bent");
+  for (std::size_t j = 0; j < bent_segment.size(); ++j) {
+    const std::string field = "bent_segment[" + std::to_string(j) + "]";
+    require(bent_segment[j] >= 0 && static_cast<std::size_t>(bent_segment[j]) < segments.size(),
+            field, "must name one of the segments");
+    const double half = 0.5 * segments[static_cast<std::size_t>(bent_segment[j])].length;
+    require(std::abs(bents[j].position) <= half, "bents[" + std::to_string(j) + "].position",
+            "must lie on its segment, |s| <= length / 2 [m]");
+  }
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    require(torsionally_restrained(bents, bent_segment, static_cast<int>(i)),
+            "segments[" + std::to_string(i) + "]", kTwoBents);
+  }
+}
+
+bool torsionally_restrained(const std::vector<Bridge::Bent>& bents,
+                            const std::vector<int>& bent_segment, int segment) {
+  const double* first = nullptr;
+  for (std::size_t j = 0; j < bents.size() && j < bent_segment.size(); ++j) {
+    if (bent_segment[j] != segment) continue;
+    if (first == nullptr) {
+      first = &bents[j].position;
+    } else if (bents[j].position != *first) {
+      return true;
+    }
+  }
+  return false;
+}
+
+Assembly::Parts bridge_parts(const Bridge::Parameters& p, const SegmentedDeck& deck,
+                             const Bridge::Excitation& excitation) {
+  deck.validate(p.bents);
+  Bridge::Parameters one = p;  // the one-segment parameters give seats, bents and damping
+  one.mass = deck.segments[0].mass;
+  one.inertia = deck.segments[0].inertia;
+  one.deck.length = total_length(deck);
+  one.deck.width = deck.segments[0].width;
+  one.initial_position = deck.segments[0].initial_position;
+  one.initial_velocity = deck.segments[0].initial_velocity;
+  Assembly::Parts parts = bridge_parts(one, excitation);
+  const std::size_t n = deck.segments.size();
+  parts.bodies.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    parts::RigidBody b = deck.segments[i];
+    b.skew_deg = p.deck.skew_deg;
+    b.rest = Eigen::Vector3d(deck.rest_position(i), 0.0, 0.0);
+    parts.bodies.push_back(b);
+  }
+  for (std::size_t j = 0; j < parts.bents.size(); ++j) {
+    parts.bents[j].body = deck.bent_segment[j];
+    parts.bents[j].position = p.bents[j].position;
+  }
+  // Seat contacts 0, 1 stay on segment 0; 2, 3 go to the last segment, after the hinges.
+  std::vector<parts::CornerContact> contacts(parts.contacts.begin(), parts.contacts.begin() + 2);
+  for (std::size_t k = 1; k < n; ++k) {
+    const parts::Face face = parts::end_face(parts.bodies[k - 1], parts::End::kRight);
+    for (int corner : {0, 1}) {
+      contacts.push_back({.body = static_cast<int>(k), .corner = corner,
+                          .obstacle = parts::Obstacle::kBody,
+                          .obstacle_index = static_cast<int>(k - 1), .face = face,
+                          .restitution = deck.hinges[k - 1].restitution,
+                          .friction = deck.hinges[k - 1].friction});
+    }
+  }
+  for (std::size_t i = 2; i < 4; ++i) {
+    contacts.push_back(parts.contacts[i]);
+    contacts.back().body = static_cast<int>(n - 1);
+  }
+  parts.contacts = std::move(contacts);
   return parts;
 }
 

@@ -10,11 +10,56 @@
 
 #include "models/assembly.hpp"
 #include "models/bridge.hpp"
+#include "models/deck_chain.hpp"
+
+#include <vector>
 
 namespace nsb::models {
 
 // Throws std::invalid_argument as Bridge's constructor does: bad parameters (the field named
 // as in Bridge::Parameters::validate) or a bent excitation of the wrong size.
 Assembly::Parts bridge_parts(const Bridge::Parameters& p, const Bridge::Excitation& excitation);
+
+// A bridge deck cut into segments (frames) joined by hinges (docs/bridge.md, "Bridges in
+// parts"). Layout at rest: the segments lie along global x at y = 0, theta = 0, left to
+// right, hinge k clear distance gap_k along the axis between segments k and k + 1; the whole
+// deck (segments and hinge gaps, total length L_tot) is centred on x = 0, so that one segment
+// is models::Bridge's deck. Segment i's coordinates are its displacement from its rest centre
+// (parts::RigidBody::rest), as the one deck's are: segments[i].initial_position is that
+// displacement at t = 0.
+struct SegmentedDeck {
+  std::vector<parts::RigidBody> segments;  // >= 1; their skew_deg is replaced by the bridge's
+  std::vector<DeckChain::Joint> hinges;    // segments - 1; hinge k joins segments k and k + 1
+  std::vector<int> bent_segment;           // the segment of each Bridge::Parameters bent
+  // Centre x of segment i at rest [m].
+  double rest_position(std::size_t i) const;
+  // Throws std::invalid_argument naming the field ("hinges: ...", "bent_segment[2]: ...",
+  // "segments[1]: ..." for a segment without two bents at distinct positions).
+  void validate(const std::vector<Bridge::Bent>& bents) const;
+};
+
+// Whether the segment carries bents at two distinct positions at least: the bents' initial
+// stiffness K0 of one body, [[sum kx, 0, 0], [0, sum ky, sum ky s], [0, sum ky s,
+// sum ky s^2]], is then positive definite (Cauchy-Schwarz is strict), so the segment has
+// torsional stiffness, the Rayleigh damping C = a0 M + a1 K0 and the quasi-static support
+// motion K0^-1 (...) exist. One bent leaves the rotation about its position free.
+bool torsionally_restrained(const std::vector<Bridge::Bent>& bents,
+                            const std::vector<int>& bent_segment, int segment);
+inline constexpr const char* kTwoBents =
+    "needs bents at two distinct positions at least (torsional stiffness; the bents' K0 is "
+    "singular otherwise, and Rayleigh damping needs it)";
+
+// The bridge of p with its deck in segments: p's deck.skew_deg, gaps, seats' contact law,
+// damping and bents (bent j at position p.bents[j].position from the centre of segment
+// deck.bent_segment[j]) apply; p's mass, inertia, length and width are replaced by the
+// segments'. Contacts in output order, two per joint (y_b = +W/2 first), as DeckChain:
+//   left seat: corners 0, 1 of segment 0;
+//   hinge k (1 <= k < N): corners 0, 1 (left end) of segment k against the right end face of
+//     segment k - 1 (models/deck_chain.hpp: why only this pair);
+//   right seat: corners 2, 3 of segment N - 1.
+// With one segment at its rest centre this is bridge_parts(p, excitation): the same parts in
+// the same order. Throws std::invalid_argument for bad parameters.
+Assembly::Parts bridge_parts(const Bridge::Parameters& p, const SegmentedDeck& deck,
+                             const Bridge::Excitation& excitation);
 
 }  // namespace nsb::models

@@ -4,6 +4,8 @@
 #include "models/scene_builders.hpp"
 
 #include "models/bridge.hpp"
+#include "models/bridge_parts.hpp"
+#include "models/excitation_scaling.hpp"
 #include "models/ground_motion.hpp"
 #include "models/scene_schema.hpp"
 
@@ -11,6 +13,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <optional>
 
@@ -150,14 +153,22 @@ takeda::Parameters bent_spring(const Section& s, const BentSettings& b, const ch
                                       b.design.unloading_exponent);
 }
 
-// [[model.bents]]: the bents and the wave-passage delay of each [s].
-std::vector<double> read_bents(const Section& m, Bridge::Parameters& p) {
+// [[model.bents]]: the bents, the segment each carries and their wave-passage delays [s].
+// lengths: the length of each segment ({deck length} with [model.deck]).
+struct BentsRead {
   std::vector<double> delays;
+  std::vector<int> segments;
+};
+
+BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridge::Parameters& p) {
+  BentsRead out;
+  const bool one = !m.has("segments");
   const auto* bents = m.array_of_tables("bents");
-  if (bents == nullptr || bents->size() < 2) {
+  if (one && (bents == nullptr || bents->size() < 2)) {
     m.fail(bents == nullptr ? "kind" : "bents",
            "a bridge needs at least 2 [[model.bents]] (torsional stiffness)");
   }
+  if (bents == nullptr) m.fail_table("missing [[model.bents]] (two per segment at least)");
   for (std::size_t j = 0; j < bents->size(); ++j) {
     Section s(m.context(), *(*bents)[j].as_table(),
               m.key_path("bents") + "[" + std::to_string(j) + "]");
@@ -167,16 +178,26 @@ std::vector<double> read_bents(const Section& m, Bridge::Parameters& p) {
     if (!s.has("position")) {
       s.fail_table("missing key position (bent position along the deck axis [m])");
     }
-    if (std::abs(b.position) > 0.5 * p.deck.length) {
-      s.fail("position", "must lie on the deck, |position| <= length / 2 = " +
-                             config::format_value(0.5 * p.deck.length) + " m (got " +
+    if (static_cast<std::size_t>(b.segment) >= lengths.size()) {
+      s.fail("segment", one ? "must be 0: [model.deck] is one segment"
+                            : "must name one of the " + std::to_string(lengths.size()) +
+                                  " [[model.segments]], 0 .. " +
+                                  std::to_string(lengths.size() - 1) + " (0-based)");
+    }
+    const double half = 0.5 * lengths[static_cast<std::size_t>(b.segment)];
+    if (std::abs(b.position) > half) {
+      s.fail("position", (one ? std::string("must lie on the deck, |position| <= length / 2 = ")
+                              : "must lie on segment " + std::to_string(b.segment) +
+                                    ", |position| <= its length / 2 = ") +
+                             config::format_value(half) + " m (got " +
                              config::format_value(b.position) + ")");
     }
     p.bents.push_back({b.position, bent_spring(s, b, "longitudinal"),
                        bent_spring(s, b, "transverse")});
-    delays.push_back(b.delay);
+    out.delays.push_back(b.delay);
+    out.segments.push_back(b.segment);
   }
-  return delays;
+  return out;
 }
 
 // [model.seats]: the seats' motion.
@@ -216,6 +237,10 @@ struct ExcitationRecords {
   std::optional<Record> longitudinal, transverse;
   double longitudinal_factor = 1.0, transverse_factor = 1.0;  // amplitude factors
   GroundMotionOptions options;                                // time scale, baseline
+  ScaleTo scale_to = ScaleTo::kPga;
+  double sa_period = 0.0;    // [s] of the reported (and, for "sa", the target) PSA; 0: the
+                             //   bridge's first natural period, found once the bridge is built
+  double sa_damping = 0.05;  // zeta of the reported PSA
 };
 
 // The factor that scales record r to target [g]; fails at key when the record is all zeros.
@@ -242,7 +267,82 @@ void scale_to_targets(const Section& s, const ExcitationSettings& e, ExcitationR
   }
 }
 
-ExcitationRecords read_excitation(const Section& m, double& time_scale) {
+// The first (longest) natural period [s] of a bridge, built on demand: scale_to = "sa" needs
+// it before the bridge with its support motions exists.
+using FirstPeriod = std::function<double()>;
+
+// The factor that scales record r to a PSA of target [g] at out.sa_period; fails at key when
+// the record's PSA there is zero.
+double factor_to_sa(const Section& s, const std::string& key, const Record& r, double target,
+                    const ExcitationRecords& out) {
+  const double sa = spectral_acceleration_g(time_scaled(r, out.options.time_scale), out.sa_period,
+                                            out.sa_damping);
+  if (!(sa > 0)) {
+    s.fail(key, "the record's spectral acceleration at sa_period = " +
+                    config::format_value(out.sa_period) + " s is zero: cannot scale it");
+  }
+  return target / sa;
+}
+
+// scale_to = "sa": target_sa scales the transverse component (or the longitudinal one when it
+// is alone) to PSA(sa_period, sa_damping), in place of target_pga; the other component takes
+// the same factor unless longitudinal_pga or longitudinal_sa gives it its own target
+// (docs/bridge.md, "Target spectral accelerations").
+void scale_to_spectra(const Section& s, const ExcitationSettings& e,
+                      const FirstPeriod& first_period, ExcitationRecords& out) {
+  const Record* ref = out.transverse ? &*out.transverse
+                                     : (out.longitudinal ? &*out.longitudinal : nullptr);
+  if (ref == nullptr) s.fail("scale_to", "\"sa\" needs a transverse_record or longitudinal_record");
+  if (e.longitudinal_pga > 0 && e.longitudinal_sa > 0) {
+    s.fail("longitudinal_sa", "give longitudinal_pga or longitudinal_sa, not both");
+  }
+  out.sa_period = s.has("sa_period") ? e.sa_period : first_period();
+  if (!(std::isfinite(out.sa_period) && out.sa_period > 0)) {
+    s.fail("sa_period", "the bridge has no finite first natural period; give sa_period (> 0 s)");
+  }
+  double common = 1.0;
+  if (e.target_sa > 0) common = factor_to_sa(s, "target_sa", *ref, e.target_sa, out);
+  out.transverse_factor = e.scale * common;
+  out.longitudinal_factor = e.scale * common;
+  if (e.longitudinal_pga > 0) {
+    if (!out.longitudinal) s.fail("longitudinal_pga", "needs a longitudinal_record to scale");
+    out.longitudinal_factor =
+        e.scale * factor_to(s, "longitudinal_pga", *out.longitudinal, e.longitudinal_pga);
+  }
+  if (e.longitudinal_sa > 0) {
+    if (!out.longitudinal) s.fail("longitudinal_sa", "needs a longitudinal_record to scale");
+    out.longitudinal_factor =
+        e.scale * factor_to_sa(s, "longitudinal_sa", *out.longitudinal, e.longitudinal_sa, out);
+  }
+}
+
+// The scaling of each component as summary.json reports it, at out.sa_period or else the
+// built bridge's first natural period.
+InputMotion describe_excitation(const ExcitationRecords& e, integrators::System& bridge) {
+  double period = e.sa_period;
+  if (period == 0.0) {
+    const std::vector<double> periods = integrators::natural_periods(bridge);
+    period = periods.empty() ? NAN : periods.front();
+  }
+  const auto describe = [&](const Record& r, double factor) {
+    if (!(std::isfinite(period) && period > 0)) {
+      InputComponent c;
+      c.pga_g = std::abs(factor) * peak_acceleration_g(r);
+      c.sa_g = c.sa_period = NAN;
+      c.sa_damping = e.sa_damping;
+      c.scale_factor = factor;
+      return c;
+    }
+    return describe_input(time_scaled(r, e.options.time_scale), factor, period, e.sa_damping);
+  };
+  InputMotion in;
+  if (e.transverse) in.transverse = describe(*e.transverse, e.transverse_factor);
+  if (e.longitudinal) in.longitudinal = describe(*e.longitudinal, e.longitudinal_factor);
+  return in;
+}
+
+ExcitationRecords read_excitation(const Section& m, const FirstPeriod& first_period,
+                                  double& time_scale) {
   ExcitationRecords out;
   ExcitationSettings e;
   const auto s = read_table(m, "excitation", ExcitationSettings::fields(), e);
@@ -256,7 +356,17 @@ ExcitationRecords read_excitation(const Section& m, double& time_scale) {
   }
   out.options.time_scale = e.time_scale;
   out.options.baseline_correction = e.baseline_correction;
-  scale_to_targets(*s, e, out);
+  out.scale_to = e.scale_to;
+  out.sa_damping = e.sa_damping;
+  if (e.scale_to == ScaleTo::kSa) {
+    scale_to_spectra(*s, e, first_period, out);
+  } else {
+    if (s->has("target_sa") || s->has("longitudinal_sa")) {
+      s->fail(s->has("target_sa") ? "target_sa" : "longitudinal_sa", "needs scale_to = \"sa\"");
+    }
+    if (s->has("sa_period")) out.sa_period = e.sa_period;
+    scale_to_targets(*s, e, out);
+  }
   out.options.target_pga = 0.0;
   return out;
 }
@@ -292,26 +402,81 @@ Bridge::Excitation support_motions(const ExcitationRecords& e, const SeatMotions
   return exc;
 }
 
+// [[model.segments]] and [[model.hinges]] with [model] skew_deg; or the one segment of
+// [model.deck], which must not be given with them.
+SegmentedDeck read_segments(const Section& m, Bridge::Parameters& p) {
+  if (m.has("deck")) {
+    m.fail("deck", "give either [model.deck] (one segment) or [[model.segments]], not both");
+  }
+  LayoutSettings layout;
+  m.read_all(LayoutSettings::fields(), layout);
+  p.deck.skew_deg = layout.skew_deg;
+  SegmentedDeck d;
+  d.segments = read_bodies(m, "segments");
+  d.hinges = read_joints(m, "hinges", d.segments.size() - 1,
+                         "one between each two neighbouring segments");
+  return d;
+}
+
+// The bridge of [[model.segments]]: an assembly of parts (models/bridge_parts.hpp).
+std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::Parameters& p,
+                                                      SegmentedDeck& d, const BentsRead& bents,
+                                                      Bridge::Excitation exc) {
+  d.bent_segment = bents.segments;
+  for (std::size_t i = 0; i < d.segments.size(); ++i) {
+    if (!torsionally_restrained(p.bents, d.bent_segment, static_cast<int>(i))) {
+      m.fail("bents", "segment " + std::to_string(i) + " " + kTwoBents);
+    }
+  }
+  try {
+    return std::make_unique<Assembly>(bridge_parts(p, d, exc));
+  } catch (const std::invalid_argument& e) {
+    m.rethrow(e);
+  }
+}
+
 }  // namespace
 
 BridgeScene build_bridge(Section& m) {
-  m.only({"kind", "deck", "gaps", "damping", "bents", "seats", "excitation"});
+  m.only({"kind", "skew_deg", "deck", "segments", "hinges", "gaps", "damping", "bents", "seats",
+          "excitation"});
+  const bool segmented = m.has("segments");
+  if (!segmented) {
+    for (const char* key : {"skew_deg", "hinges"}) {
+      if (m.has(key)) m.fail(key, "belongs to a bridge in [[model.segments]]");
+    }
+  }
   Bridge::Parameters p = Bridge::Parameters::benchmark();
   p.bents.clear();
-  const auto deck = read_table(m, "deck", bridge_deck_fields(), p);
+  SegmentedDeck segments;
+  if (segmented) segments = read_segments(m, p);
+  const std::optional<Section> deck =
+      segmented ? std::nullopt : read_table(m, "deck", bridge_deck_fields(), p);
+  std::vector<double> lengths;
+  for (const auto& b : segments.segments) lengths.push_back(b.length);
+  if (!segmented) lengths.push_back(p.deck.length);
   read_table(m, "gaps", bridge_gap_fields(), p);
   read_damping(m, p);
-  const std::vector<double> bent_delays = read_bents(m, p);
+  const BentsRead bents = read_bents(m, lengths, p);
   const SeatMotions seats = read_seats(m, p);
   BridgeScene out;
-  const ExcitationRecords excitation = read_excitation(m, out.time_scale);
-  Bridge::Excitation exc = support_motions(excitation, seats, bent_delays, out.motion_end);
-  try {
-    out.system = std::make_unique<Bridge>(p, std::move(exc));
-  } catch (const std::invalid_argument& e) {
-    if (deck && std::string(e.what()).rfind("initial_position", 0) == 0) deck->rethrow(e);
-    m.rethrow(e);
-  }
+  // The system for a set of support motions: the one-deck bridge, or the segmented one.
+  const auto make = [&](Bridge::Excitation exc) -> std::unique_ptr<integrators::System> {
+    if (segmented) return segmented_bridge(m, p, segments, bents, std::move(exc));
+    try {
+      return std::make_unique<Bridge>(p, std::move(exc));
+    } catch (const std::invalid_argument& e) {
+      if (deck && std::string(e.what()).rfind("initial_position", 0) == 0) deck->rethrow(e);
+      m.rethrow(e);
+    }
+  };
+  const FirstPeriod first_period = [&] {
+    const std::vector<double> periods = integrators::natural_periods(*make({}));
+    return periods.empty() ? NAN : periods.front();
+  };
+  const ExcitationRecords excitation = read_excitation(m, first_period, out.time_scale);
+  out.system = make(support_motions(excitation, seats, bents.delays, out.motion_end));
+  out.input = describe_excitation(excitation, *out.system);
   return out;
 }
 

@@ -34,6 +34,7 @@ void RigidBody::validate(const std::string& prefix) const {
   require(finite_positive(mass), prefix + "mass", "must be > 0 [t]");
   require(finite_positive(inertia), prefix + "inertia", "must be > 0 [t m^2]");
   plan(*this).validate(prefix);
+  require(rest.allFinite(), prefix + "rest", "must be finite [m, m, rad]");
   require(initial_position.allFinite(), prefix + "initial_position",
           "must be finite [m, m, rad]");
   require(initial_velocity.allFinite(), prefix + "initial_velocity",

@@ -39,6 +39,11 @@ struct RigidBody {
   double skew_deg = 0.0;   // alpha of both end faces [deg], |alpha| < 80
   Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();  // (x, y, theta) [m, m, rad]
   Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();  // (vx, vy, omega)
+  // The rest pose the coordinates are measured from: the body's pose is rest + q, so that q
+  // is the displacement from the rest layout of several bodies (a bridge in segments). The
+  // contacts see the pose; the bents act on q (their springs are unstretched at q = 0).
+  // Zero: q is the pose itself (models::Bridge's deck, whose rest centre is the origin).
+  Eigen::Vector3d rest = Eigen::Vector3d::Zero();  // [m, m, rad]
   // Throws std::invalid_argument naming the field, prefixed with `prefix`.
   void validate(const std::string& prefix) const;
   // Corner 0..3 in the body frame (models/deck_geometry.hpp numbering) [m].
@@ -67,8 +72,9 @@ struct PrescribedBody {
 };
 
 // A bent between a body and the ground: two Takeda springs (models/takeda.hpp) at the position
-// s along the body axis, acting on the displacement of that point relative to the bent's own
-// support motion (small rotations, as models::Bridge):
+// s along the body axis, acting on the displacement of that point from rest (q = (x, y,
+// theta), RigidBody::rest) relative to the bent's own support motion (small rotations, as
+// models::Bridge):
 //   F_x = Takeda_x(x - u_gx(t)),   F_y = Takeda_y(y + s theta - u_gy(t)),
 //   f_b -= F_x (1, 0, 0) + F_y (0, 1, s).
 struct Bent {

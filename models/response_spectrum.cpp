@@ -193,4 +193,20 @@ Spectrum response_spectrum(const Record& record, const SpectrumOptions& options)
   return out;
 }
 
+double asce7_design_spectrum(double sds, double sd1, double tl, double period) {
+  const auto bad = [](const char* name, double v, const char* what) {
+    throw std::invalid_argument(std::string("asce7_design_spectrum: ") + name + " = " +
+                                text(v) + ": " + what);
+  };
+  if (!(std::isfinite(sds) && sds > 0)) bad("sds", sds, "S_DS must be finite and > 0 [g]");
+  if (!(std::isfinite(sd1) && sd1 > 0)) bad("sd1", sd1, "S_D1 must be finite and > 0 [g]");
+  const double t0 = 0.2 * sd1 / sds, ts = sd1 / sds;
+  if (!(std::isfinite(tl) && tl >= ts)) bad("tl", tl, "T_L must be finite and >= S_D1 / S_DS [s]");
+  if (!(std::isfinite(period) && period >= 0)) bad("period", period, "must be finite and >= 0 [s]");
+  if (period < t0) return sds * (0.4 + 0.6 * period / t0);
+  if (period <= ts) return sds;
+  if (period <= tl) return sd1 / period;
+  return sd1 * tl / (period * period);
+}
+
 }  // namespace nsb::models

@@ -70,4 +70,14 @@ double spectral_displacement(const Record& record, double period, double zeta);
 // record (validate_record).
 Spectrum response_spectrum(const Record& record, const SpectrumOptions& options = {});
 
+// The design response spectrum of ASCE/SEI 7-16 §11.4.6 (Fig. 11.4-1), Sa [g] at period T [s]:
+//   T < T0:        Sa = S_DS (0.4 + 0.6 T / T0)        (eq. 11.4-5)
+//   T0 <= T <= Ts: Sa = S_DS
+//   Ts < T <= T_L: Sa = S_D1 / T                        (eq. 11.4-6)
+//   T > T_L:       Sa = S_D1 T_L / T^2                  (eq. 11.4-7)
+// with T0 = 0.2 S_D1 / S_DS and Ts = S_D1 / S_DS. sds = S_DS [g] > 0, sd1 = S_D1 [g] > 0,
+// tl = T_L [s] >= Ts, period >= 0, all finite; throws std::invalid_argument naming the
+// argument otherwise.
+double asce7_design_spectrum(double sds, double sd1, double tl, double period);
+
 }  // namespace nsb::models

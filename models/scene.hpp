@@ -10,6 +10,7 @@
 
 #include "integrators/run.hpp"
 #include "integrators/system.hpp"
+#include "models/excitation_scaling.hpp"
 #include "models/scene_schema.hpp"
 
 #include <filesystem>
@@ -28,6 +29,8 @@ struct Scene {
   OutputSettings output;
   double record_step = 0.0;            // shortest sampling interval of the scene's ground-motion
                                        //   records after time scaling [s]; 0 without a record
+  InputMotion input;                   // PGA, PSA and factor of each excitation component
+                                       //   (summary.json "input"); empty without a record
 };
 
 // Reads, validates and builds a scene. overrides: "section.key=value" strings (e.g.

@@ -4,10 +4,15 @@
 
 #include "integrators/run.hpp"
 #include "integrators/system.hpp"
+#include "models/deck_chain.hpp"
+#include "models/parts.hpp"
+#include "models/excitation_scaling.hpp"
 #include "models/scene_reader.hpp"
 
 #include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace nsb::models {
 
@@ -26,12 +31,23 @@ void check_solver(const Section& s, const integrators::RunConfig& config);
 std::unique_ptr<integrators::System> build_simple_system(const std::string& kind, Section& m);
 
 // The bridge of [model] kind = "bridge", the end of its longest bent support motion [s] (0
-// without an excitation) and the time scale of its records.
+// without an excitation), the time scale of its records and their scaling.
 struct BridgeScene {
   std::unique_ptr<integrators::System> system;
+  InputMotion input;  // the scaling of each excitation component
   double motion_end = 0.0;
   double time_scale = 1.0;
 };
 BridgeScene build_bridge(Section& m);
+
+// The deck bodies of [[model.<key>]] (models/scene_schema.hpp, segment_fields): at least one,
+// mass, inertia, length and width required, every width equal to the first.
+std::vector<parts::RigidBody> read_bodies(const Section& m, std::string_view key);
+// Exactly `count` [[model.<key>]] joints (joint_fields; gap required); `rule` says why.
+std::vector<DeckChain::Joint> read_joints(const Section& m, std::string_view key,
+                                          std::size_t count, const std::string& rule);
+
+// The deck chain of [model] kind = "deck_chain" (models/deck_chain.hpp).
+std::unique_ptr<integrators::System> build_deck_chain(Section& m);
 
 }  // namespace nsb::models

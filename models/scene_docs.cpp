@@ -98,6 +98,13 @@ void add_bridge_tables(std::vector<DocTable>& out) {
   out.push_back({"model.seats", kHeader + rows(bridge_seat_fields(), bridge) +
                                     rows(SeatMotionSettings::fields(), SeatMotionSettings{})});
   out.push_back(table("model.excitation", ExcitationSettings::fields(), ExcitationSettings{}));
+  // A deck in several bodies: the bridge's [[model.segments]] and [[model.hinges]], the deck
+  // chain's [[model.decks]] and [[model.joints]] (the same keys).
+  out.push_back(table("model.layout", LayoutSettings::fields(), LayoutSettings{}));
+  const DefaultNotes required{
+      {"mass", "required"}, {"inertia", "required"}, {"length", "required"}, {"width", "required"}};
+  out.push_back(table("model.segments", segment_fields(), parts::RigidBody{}, required));
+  out.push_back(table("model.hinges", joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}));
 }
 
 // The marker comments around a generated table.

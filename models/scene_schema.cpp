@@ -34,8 +34,8 @@ std::vector<std::string_view> kind_names() {
 }  // namespace
 
 const std::vector<std::string>& scene_kinds() {
-  static const std::vector<std::string> k{"bridge", "rigid_deck", "bouncing_ball",
-                                          "impact_oscillator", "sliding_block"};
+  static const std::vector<std::string> k{"bridge",        "deck_chain",        "rigid_deck",
+                                          "bouncing_ball", "impact_oscillator", "sliding_block"};
   return k;
 }
 
@@ -232,6 +232,9 @@ std::span<const c::Field<BentSettings>> BentSettings::fields() {
                                             "whole bent along y (default: from the design)"),
       c::number<&S::delay>("delay", "s", c::non_negative(),
                            "wave-passage delay of this bent's ground motion"),
+      c::integer<&S::segment>("segment", c::non_negative(),
+                              "0-based index of the [[model.segments]] element the bent "
+                              "carries (0 with [model.deck]); position is measured on it"),
   };
   return f;
 }
@@ -278,6 +281,61 @@ std::span<const c::Field<ExcitationSettings>> ExcitationSettings::fields() {
                                 "t → time_scale · t (0.5 for the 1/4-scale similitude)"),
       c::boolean<&S::baseline_correction>("baseline_correction",
                                           "remove the drift of velocity and displacement"),
+      c::choice<&kScaleToNames, &S::scale_to>(
+          "scale_to", "what target_pga / target_sa set: \"pga\" the peak ground acceleration, "
+                      "\"sa\" the pseudo-spectral acceleration PSA(sa_period, sa_damping)"),
+      c::number<&S::target_sa>("target_sa", "g", c::non_negative(),
+                               "scale_to = \"sa\": PSA of the transverse record (or of the "
+                               "longitudinal one when it is alone); without longitudinal_pga "
+                               "or longitudinal_sa the other component takes the same factor; "
+                               "0 keeps the recorded amplitude"),
+      c::number<&S::longitudinal_sa>("longitudinal_sa", "g", c::non_negative(),
+                                     "scale_to = \"sa\": PSA of the longitudinal record on its "
+                                     "own (needs longitudinal_record); 0: the common factor"),
+      c::number<&S::sa_period>("sa_period", "s", c::positive(),
+                               "oscillator period of target_sa and of the reported Sa; "
+                               "absent: the bridge's first natural period (K₀ φ = ω² M φ)"),
+      c::number<&S::sa_damping>("sa_damping", "-", c::closed_open(0, 1),
+                                "oscillator damping ratio ζ of target_sa and the reported Sa"),
+  };
+  return f;
+}
+
+std::span<const c::Field<LayoutSettings>> LayoutSettings::fields() {
+  using S = LayoutSettings;
+  static const c::Field<S> f[] = {
+      c::number<&S::skew_deg>("skew_deg", "deg", c::open(-80, 80),
+                              "skew angle α of every end face and abutment face"),
+  };
+  return f;
+}
+
+std::span<const c::Field<parts::RigidBody>> segment_fields() {
+  using P = parts::RigidBody;
+  static const c::Field<P> f[] = {
+      c::number<&P::mass>("mass", "t", c::positive(), "mass of the body (required)"),
+      c::number<&P::inertia>("inertia", "t m^2", c::positive(),
+                             "rotational inertia about its centre (required)"),
+      c::number<&P::length>("length", "m", c::positive(), "L along the axis (required)"),
+      c::number<&P::width>("width", "m", c::positive(),
+                           "W (required); every body of a scene has the same width"),
+      c::vector3<&P::initial_position>("initial_position", "m, m, rad",
+                                       "(x, y, θ) at t = 0 from the rest layout; no corner "
+                                       "may penetrate"),
+      c::vector3<&P::initial_velocity>("initial_velocity", "m/s, m/s, rad/s", "(vx, vy, ω)"),
+  };
+  return f;
+}
+
+std::span<const c::Field<DeckChain::Joint>> joint_fields() {
+  using P = DeckChain::Joint;
+  static const c::Field<P> f[] = {
+      c::number<&P::gap>("gap", "m", c::non_negative(),
+                         "clear distance along the axis between the two faces at rest"),
+      c::number<&P::restitution>("restitution", "-", c::closed(0, 1),
+                                 "Newton's ε_N of the joint's two corner contacts"),
+      c::number<&P::friction>("friction", "-", c::non_negative(),
+                              "Coulomb's μ of the joint's two corner contacts"),
   };
   return f;
 }

@@ -8,9 +8,12 @@
 
 #include "config/schema.hpp"
 #include "models/bridge.hpp"
+#include "models/deck_chain.hpp"
+#include "models/parts.hpp"
 #include "models/rigid_deck.hpp"
 #include "models/simple_systems.hpp"
 
+#include <array>
 #include <span>
 #include <string>
 
@@ -47,6 +50,7 @@ struct BentSettings {
   double stiffness_transverse = 0.0;
   double yield_force_transverse = 0.0;
   double delay = 0.0;                     // [s]
+  int segment = 0;                        // 0-based [[model.segments]] index it carries
   static std::span<const config::Field<BentSettings>> fields();
 };
 
@@ -62,6 +66,13 @@ struct SeatMotionSettings {
   static std::span<const config::Field<SeatMotionSettings>> fields();
 };
 
+// How [model.excitation] scales its records: to a peak ground acceleration, or to a 5 %-damped
+// (sa_damping) pseudo-spectral acceleration at a period (docs/bridge.md, "Target spectral
+// accelerations").
+enum class ScaleTo { kPga, kSa };
+inline constexpr std::array<config::Name<ScaleTo>, 2> kScaleToNames{
+    {{"pga", ScaleTo::kPga}, {"sa", ScaleTo::kSa}}};
+
 // [model.excitation]: the two records, their scaling and the shared options.
 struct ExcitationSettings {
   std::string longitudinal_record;  // record file of the x component ("" none)
@@ -72,6 +83,11 @@ struct ExcitationSettings {
   double scale = 1.0;
   double time_scale = 1.0;
   bool baseline_correction = true;
+  ScaleTo scale_to = ScaleTo::kPga;
+  double target_sa = 0.0;           // [g], scale_to = "sa": PSA of the transverse record
+  double longitudinal_sa = 0.0;     // [g], scale_to = "sa": of the longitudinal one; 0: same factor
+  double sa_period = 0.0;           // [s], > 0; absent: the bridge's first (longest) period
+  double sa_damping = 0.05;         // zeta of the oscillator, in [0, 1)
   static std::span<const config::Field<ExcitationSettings>> fields();
 };
 
@@ -86,6 +102,21 @@ std::span<const config::Field<Bridge::Parameters>> bridge_deck_fields();     // 
 std::span<const config::Field<Bridge::Parameters>> bridge_gap_fields();      // [model.gaps]
 std::span<const config::Field<Bridge::Parameters>> bridge_damping_fields();  // [model.damping]
 std::span<const config::Field<Bridge::Parameters>> bridge_seat_fields();     // [model.seats]
+
+// [model] keys of a deck in several bodies (a bridge in [[model.segments]], a deck chain):
+// the skew of every end face.
+struct LayoutSettings {
+  double skew_deg = 0.0;  // alpha [deg], |alpha| < 80
+  static std::span<const config::Field<LayoutSettings>> fields();
+};
+
+// One rigid deck body: an element of [[model.segments]] (bridge) or [[model.decks]] (deck
+// chain); skew_deg comes from LayoutSettings. initial_position is the displacement from the
+// rest layout (docs/bridge.md, "Bridges in parts").
+std::span<const config::Field<parts::RigidBody>> segment_fields();
+// One joint between two deck bodies or a deck and an abutment: an element of
+// [[model.hinges]] (bridge) or [[model.joints]] (deck chain).
+std::span<const config::Field<DeckChain::Joint>> joint_fields();
 
 // The model kinds a scene may name in [model] kind.
 const std::vector<std::string>& scene_kinds();

@@ -253,100 +253,114 @@ void Spring::move_on_line(State& s, double d_new, double f_new) {
   s.f = f_new;
 }
 
+// Each step below moves s towards d (direction m = +-1) on its current branch. It returns
+// true when d is reached on that branch, and false after it has moved s to the end of the
+// branch and switched s to the next one, from where advance() continues.
+
+// Rule 1: linear up to the elastic limit (cracking, or yield for the bilinear variant).
+bool Spring::move_on_elastic(State& s, double d, int m) const {
+  const double d_end = m * d_crack_;
+  if ((d - d_end) * m <= 0.0) {
+    move_on_line(s, d, k_elastic_ * d);
+    return true;
+  }
+  move_on_line(s, d_end, k_elastic_ * d_end);
+  s.branch = Branch::kBackbone;
+  s.side = m;
+  return false;
+}
+
+bool Spring::move_on_backbone(State& s, double d, int m) const {
+  if (m == s.side) {
+    // Rules 2-3: loading along the backbone; the peak of the side follows.
+    // With D = side x on this side, integral F dD = integral b(x) dx.
+    s.work += backbone_integral(std::abs(d)) - backbone_integral(std::abs(s.d));
+    s.d = d;
+    s.f = backbone(d);
+    if (s.side > 0 && d > s.peak_pos_d) s.peak_pos_d = d;
+    if (s.side < 0 && d < s.peak_neg_d) s.peak_neg_d = d;
+    return true;
+  }
+  // Rules 4-5: reversal on the backbone starts an unloading line.
+  s.branch = Branch::kUnloading;
+  s.line_d = s.d;
+  s.line_f = s.f;
+  s.line_k = unloading_stiffness(s.side, s.side > 0 ? s.peak_pos_d : s.peak_neg_d);
+  s.parent_reloading = false;
+  return false;
+}
+
+bool Spring::move_on_unloading(State& s, double d, int m) const {
+  auto line = [&](double x) { return s.line_f + s.line_k * (x - s.line_d); };
+  if (m != s.side) {
+    // Towards zero force; past it, rule 6 reloads towards the other side.
+    const double d_zero = s.line_d - s.line_f / s.line_k;
+    if ((d - d_zero) * m <= 0.0) {
+      move_on_line(s, d, line(d));
+      return true;
+    }
+    move_on_line(s, d_zero, 0.0);
+    start_reloading(s, -s.side);
+    return false;
+  }
+  // Rule 9: back along the same line to its anchor, then to the branch it came from.
+  if ((d - s.line_d) * m <= 0.0) {
+    move_on_line(s, d, line(d));
+    return true;
+  }
+  move_on_line(s, s.line_d, s.line_f);
+  if (s.parent_reloading) {
+    s.branch = Branch::kReloading;
+    s.line_d = s.parent_d;
+    s.line_f = s.parent_f;
+    s.line_k = s.parent_k;
+    s.line_end_d = s.parent_end_d;
+    s.parent_reloading = false;
+  } else {
+    s.branch = Branch::kBackbone;
+  }
+  return false;
+}
+
+bool Spring::move_on_reloading(State& s, double d, int m) const {
+  if (m == s.side) {
+    auto line = [&](double x) { return s.line_f + s.line_k * (x - s.line_d); };
+    if ((d - s.line_end_d) * m <= 0.0) {
+      move_on_line(s, d, line(d));
+      return true;
+    }
+    // Rule 6: the target reached, loading continues on the backbone.
+    move_on_line(s, s.line_end_d, backbone(s.line_end_d));
+    s.branch = Branch::kBackbone;
+    if (s.side > 0 && s.d > s.peak_pos_d) s.peak_pos_d = s.d;
+    if (s.side < 0 && s.d < s.peak_neg_d) s.peak_neg_d = s.d;
+    return false;
+  }
+  // Rule 9: reversal on a reloading line (an inner loop) unloads at k_u of this side and
+  // remembers the line, to which it returns past the reversal point.
+  s.parent_reloading = true;
+  s.parent_d = s.line_d;
+  s.parent_f = s.line_f;
+  s.parent_k = s.line_k;
+  s.parent_end_d = s.line_end_d;
+  s.branch = Branch::kUnloading;
+  s.line_d = s.d;
+  s.line_f = s.f;
+  s.line_k = unloading_stiffness(s.side, s.side > 0 ? s.peak_pos_d : s.peak_neg_d);
+  return false;
+}
+
 void Spring::advance(State& s, double d) const {
   for (int it = 0; it < kMaxBranchTransitions; ++it) {
     const int m = d > s.d ? 1 : -1;  // direction of motion (d != s.d here)
+    bool reached = false;
     switch (s.branch) {
-      case Branch::kElastic: {
-        // Rule 1: linear up to the elastic limit (cracking, or yield for the bilinear variant).
-        const double d_end = m * d_crack_;
-        if ((d - d_end) * m <= 0.0) {
-          move_on_line(s, d, k_elastic_ * d);
-          return;
-        }
-        move_on_line(s, d_end, k_elastic_ * d_end);
-        s.branch = Branch::kBackbone;
-        s.side = m;
-        break;
-      }
-      case Branch::kBackbone: {
-        if (m == s.side) {
-          // Rules 2-3: loading along the backbone; the peak of the side follows.
-          // With D = side x on this side, integral F dD = integral b(x) dx.
-          s.work += backbone_integral(std::abs(d)) - backbone_integral(std::abs(s.d));
-          s.d = d;
-          s.f = backbone(d);
-          if (s.side > 0 && d > s.peak_pos_d) s.peak_pos_d = d;
-          if (s.side < 0 && d < s.peak_neg_d) s.peak_neg_d = d;
-          return;
-        }
-        // Rules 4-5: reversal on the backbone starts an unloading line.
-        s.branch = Branch::kUnloading;
-        s.line_d = s.d;
-        s.line_f = s.f;
-        s.line_k = unloading_stiffness(s.side, s.side > 0 ? s.peak_pos_d : s.peak_neg_d);
-        s.parent_reloading = false;
-        break;
-      }
-      case Branch::kUnloading: {
-        auto line = [&](double x) { return s.line_f + s.line_k * (x - s.line_d); };
-        if (m != s.side) {
-          // Towards zero force; past it, rule 6 reloads towards the other side.
-          const double d_zero = s.line_d - s.line_f / s.line_k;
-          if ((d - d_zero) * m <= 0.0) {
-            move_on_line(s, d, line(d));
-            return;
-          }
-          move_on_line(s, d_zero, 0.0);
-          start_reloading(s, -s.side);
-          break;
-        }
-        // Rule 9: back along the same line to its anchor, then to the branch it came from.
-        if ((d - s.line_d) * m <= 0.0) {
-          move_on_line(s, d, line(d));
-          return;
-        }
-        move_on_line(s, s.line_d, s.line_f);
-        if (s.parent_reloading) {
-          s.branch = Branch::kReloading;
-          s.line_d = s.parent_d;
-          s.line_f = s.parent_f;
-          s.line_k = s.parent_k;
-          s.line_end_d = s.parent_end_d;
-          s.parent_reloading = false;
-        } else {
-          s.branch = Branch::kBackbone;
-        }
-        break;
-      }
-      case Branch::kReloading: {
-        if (m == s.side) {
-          auto line = [&](double x) { return s.line_f + s.line_k * (x - s.line_d); };
-          if ((d - s.line_end_d) * m <= 0.0) {
-            move_on_line(s, d, line(d));
-            return;
-          }
-          // Rule 6: the target reached, loading continues on the backbone.
-          move_on_line(s, s.line_end_d, backbone(s.line_end_d));
-          s.branch = Branch::kBackbone;
-          if (s.side > 0 && s.d > s.peak_pos_d) s.peak_pos_d = s.d;
-          if (s.side < 0 && s.d < s.peak_neg_d) s.peak_neg_d = s.d;
-          break;
-        }
-        // Rule 9: reversal on a reloading line (an inner loop) unloads at k_u of this side and
-        // remembers the line, to which it returns past the reversal point.
-        s.parent_reloading = true;
-        s.parent_d = s.line_d;
-        s.parent_f = s.line_f;
-        s.parent_k = s.line_k;
-        s.parent_end_d = s.line_end_d;
-        s.branch = Branch::kUnloading;
-        s.line_d = s.d;
-        s.line_f = s.f;
-        s.line_k = unloading_stiffness(s.side, s.side > 0 ? s.peak_pos_d : s.peak_neg_d);
-        break;
-      }
+      case Branch::kElastic: reached = move_on_elastic(s, d, m); break;
+      case Branch::kBackbone: reached = move_on_backbone(s, d, m); break;
+      case Branch::kUnloading: reached = move_on_unloading(s, d, m); break;
+      case Branch::kReloading: reached = move_on_reloading(s, d, m); break;
     }
+    if (reached) return;
   }
   throw std::logic_error("takeda::Spring: too many branch changes in one move");
 }

@@ -102,6 +102,12 @@ class Spring {  // one uniaxial Takeda spring with committed and trial state
   // branch (initial elastic, unloading or reloading line); f is then the force at d.
   bool stays_on_branch(double d, double& f) const;
   void advance(State& s, double d) const;
+  // One move of advance() on the branch of s in direction m = +-1: true if d is reached there,
+  // false if s has moved to the end of the branch and switched to the next one.
+  bool move_on_elastic(State& s, double d, int m) const;    // rule 1
+  bool move_on_backbone(State& s, double d, int m) const;   // rules 2-5
+  bool move_on_unloading(State& s, double d, int m) const;  // rules 6, 9
+  bool move_on_reloading(State& s, double d, int m) const;  // rules 6-9
   double tangent_of(const State& s) const;
 
   Parameters p_;

@@ -1,9 +1,11 @@
 // What a run's history says in a few numbers, computed once after the run and read by every
-// caller: summary.json's "peaks", "events" and "contact_events", the sweep's results.csv row,
-// the terminal summary of `nsbridge run`, and the trust checks (runs/trust.hpp).
+// caller: summary.json's "peaks", "events", "contact_events" and "input", the sweep's
+// results.csv row, the terminal summary of `nsbridge run`, and the trust checks
+// (runs/trust.hpp).
 #pragma once
 
 #include "integrators/recorder.hpp"
+#include "models/excitation_scaling.hpp"
 
 #include <array>
 #include <cstdint>
@@ -47,6 +49,9 @@ struct Digest {
   // (runs/trust.hpp); the first integrator_warnings entries are the integrator's.
   std::vector<std::string> warnings;
   std::size_t integrator_warnings = 0;
+  // summary.json "input": the scene's excitation as scaled (models::Scene::input), which
+  // runs::run copies from the scene; empty for a digest of a history alone.
+  models::InputMotion input;
 
   std::int64_t count(integrators::EventKind kind) const;  // events of a kind, in total
 };

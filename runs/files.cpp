@@ -133,6 +133,32 @@ void write_peaks(JsonText& j, const Digest& d) {
   j.o += first ? "},\n" : "\n  },\n";
 }
 
+// The scaling of each excitation component present: "transverse", then "longitudinal".
+void write_input(JsonText& j, const models::InputMotion& in) {
+  j.key("input");
+  j.o += "{";
+  bool first = true;
+  for (const auto& [name, c] : {std::pair{"transverse", &in.transverse},
+                                std::pair{"longitudinal", &in.longitudinal}}) {
+    if (!*c) continue;
+    j.o += first ? "" : ", ";
+    first = false;
+    const std::pair<const char*, double> fields[] = {{"pga_g", (*c)->pga_g},
+                                                     {"sa_g", (*c)->sa_g},
+                                                     {"sa_period", (*c)->sa_period},
+                                                     {"sa_damping", (*c)->sa_damping},
+                                                     {"scale_factor", (*c)->scale_factor}};
+    j.o += io::json_string(name) + ": {";
+    for (std::size_t i = 0; i < std::size(fields); ++i) {
+      j.o += i ? ", " : "";
+      j.o += io::json_string(fields[i].first) + ": ";
+      io::append_json_number(j.o, fields[i].second);
+    }
+    j.o += "}";
+  }
+  j.o += "},\n";
+}
+
 }  // namespace
 
 std::string history_csv(const integrators::Recorder& history) {
@@ -173,6 +199,7 @@ std::string summary_json(const RunRecord& record) {
   JsonText j;
   j.text("scene", record.scene_name);
   write_result(j, record.result, record.history.rows());
+  write_input(j, record.digest.input);
   write_energy(j, record.digest.energy);
   write_events(j, record.digest);
   write_peaks(j, record.digest);

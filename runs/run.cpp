@@ -1,8 +1,11 @@
 #include "runs/run.hpp"
 
 #include "integrators/run.hpp"
+#include "io/files.hpp"
+#include "runs/lcp_dump.hpp"
 #include "runs/trust.hpp"
 
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -20,15 +23,29 @@ PreparedRun prepare(const RunRequest& request) {
     throw std::invalid_argument(file + ": " + e.what());
   }
   p.warnings = step_warnings(*p.scene.system, p.scene.run, p.scene.record_step);
+  if (!request.dump_lcp.empty()) {
+    try {
+      io::prepare_output_dir(request.dump_lcp);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("dump_lcp " + request.dump_lcp.string() + ": " + e.what());
+    }
+    p.dump_lcp = request.dump_lcp;
+  }
   return p;
 }
 
 RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
   models::Scene& scene = prepared.scene;
   integrators::Recorder history(*scene.system, scene.output.sample_dt);
-  integrators::RunResult result =
-      integrators::integrate(*scene.system, scene.run, history, progress);
+  std::optional<LcpDump> dump;
+  if (!prepared.dump_lcp.empty()) dump.emplace(prepared.dump_lcp);
+  integrators::RunResult result = integrators::integrate(
+      *scene.system,
+      dump ? integrators::with_contact_observer(scene.run, &*dump) : scene.run, history,
+      progress);
+  if (dump) dump->write_manifest();
   Digest digest = make_digest(history, result);
+  digest.input = scene.input;
   std::vector<std::string> warnings = std::move(prepared.warnings);
   for (auto& w : result_warnings(history, digest, result)) warnings.push_back(std::move(w));
   result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());

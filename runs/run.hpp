@@ -27,6 +27,9 @@ struct RunRequest {
   std::string method;                  // an integrators::method_names() entry; empty: the
                                        //   scene's solver.method
   integrators::Progress progress;      // called with the simulated time reached; may be empty
+  std::filesystem::path dump_lcp{};    // a folder that receives every contact problem of the
+                                       //   run and manifest.csv (runs/lcp_dump.hpp); empty:
+                                       //   none
 };
 
 struct RunRecord {
@@ -40,17 +43,20 @@ struct RunRecord {
 struct PreparedRun {
   models::Scene scene;
   std::vector<std::string> warnings;  // step warnings (runs/trust.hpp), found before the run
+  std::filesystem::path dump_lcp{};    // RunRequest::dump_lcp, created and checked writable
 };
 
 // Loads the scene with the overrides (and "solver.method=<method>" last when a method is
-// given), checks its initial state and finds the step warnings. Throws std::invalid_argument
-// for bad input, naming the file and key ("<file>:<line>:<col>: <key>: ..."), before any
-// integration.
+// given), checks its initial state and finds the step warnings, and creates the dump_lcp
+// folder when one is asked for. Throws std::invalid_argument for bad input, naming the file
+// and key ("<file>:<line>:<col>: <key>: ...") or the folder, before any integration.
 PreparedRun prepare(const RunRequest& request);
 
 // Integrates a prepared scene and digests the run: the trust checks' warnings follow the
 // integrator's own in result.warnings and digest.warnings. A numerical failure is the
-// record's result.status, never an exception.
+// record's result.status, never an exception. With prepared.dump_lcp, every contact problem
+// is written there as it is solved and manifest.csv at the end; throws std::runtime_error
+// naming the file when they cannot be written.
 RunRecord run(PreparedRun prepared, const integrators::Progress& progress = {});
 
 // prepare(request), then run(..., request.progress).

@@ -2,11 +2,8 @@
 
 #include "io/csv.hpp"
 
-#include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 namespace nsb::runs {
@@ -34,21 +31,8 @@ void TrustLimits::validate() const {
 }
 
 double shortest_period(integrators::System& system) {
-  const int n = system.dofs();
-  integrators::Matrix K = integrators::Matrix::Zero(n, n);
-  integrators::Matrix C = integrators::Matrix::Zero(n, n);
-  system.tangent(system.initial_time(), system.initial_position(), system.initial_velocity(), K,
-                 C);
-  system.revert();
-  const integrators::Matrix Ks = 0.5 * (K + K.transpose());
-  if (!Ks.allFinite()) return 0.0;
-  // K phi = omega^2 M phi, M symmetric positive definite (checked by every integrator).
-  Eigen::GeneralizedSelfAdjointEigenSolver<integrators::Matrix> eig(Ks, system.mass(),
-                                                                    Eigen::EigenvaluesOnly);
-  if (eig.info() != Eigen::Success) return 0.0;
-  const double omega2 = eig.eigenvalues().maxCoeff();
-  if (!(omega2 > 0.0)) return INFINITY;
-  return 2.0 * std::numbers::pi / std::sqrt(omega2);
+  const std::vector<double> periods = integrators::natural_periods(system);
+  return periods.empty() ? 0.0 : periods.back();
 }
 
 void check_initial_state(const integrators::System& system) {

@@ -4,6 +4,7 @@
 #include "sweep/csv.hpp"
 #include "sweep/expand.hpp"
 #include "sweep/fragility_sweep.hpp"
+#include "sweep/suites.hpp"
 
 #include <toml++/toml.h>
 
@@ -176,6 +177,47 @@ Level record_level(const Context& c, const toml::node& r, const std::string& rw,
   return level;
 }
 
+// The levels of `suite` (a CSV whose `components` columns, default file_1 then file_2, hold the
+// transverse and the longitudinal file) or `folder` (its .AT2 files, transverse), one per record
+// (docs/sweep.md, "Record suites").
+std::vector<Level> suite_levels(const Context& c, const toml::table& t, const std::string& where,
+                                const fs::path& dir) {
+  const auto* suite = t.get("suite");
+  const auto* comp = t.get("components");
+  if (comp != nullptr && suite == nullptr) c.fail(comp, where + ".components", "only with suite");
+  std::vector<std::string> columns{"file_1", "file_2"};
+  if (comp != nullptr) {
+    columns.clear();
+    const auto& a = array_of(c, *comp, where + ".components");
+    if (a.size() > record_components().size()) {
+      c.fail(comp, where + ".components", "at most 2 columns: transverse, then longitudinal");
+    }
+    for (const auto& n : a) {
+      if (!n.is_string()) c.fail(&n, where + ".components", "must hold column names");
+      columns.push_back(*n.value<std::string>());
+    }
+  }
+  const toml::node* n = suite != nullptr ? suite : t.get("folder");
+  const std::string key = where + (suite != nullptr ? ".suite" : ".folder");
+  if (!n->is_string()) c.fail(n, key, suite != nullptr ? "must be a CSV file" : "must be a folder");
+  const fs::path path = dir / *n->value<std::string>();
+  std::vector<SuiteRecord> records;
+  try {
+    records = suite != nullptr ? read_suite(path, columns) : read_folder(path);
+  } catch (const std::invalid_argument& e) {
+    c.fail(n, key, e.what());
+  }
+  std::vector<Level> levels;
+  for (const auto& r : records) {
+    Level level{r.name, {}};
+    for (std::size_t i = 0; i < r.files.size(); ++i) {
+      level.overrides.push_back(record_components()[i].second + "=" + toml_string(r.files[i]));
+    }
+    levels.push_back(std::move(level));
+  }
+  return levels;
+}
+
 // A level of `levels`: {name, set}, a named list of overrides.
 Level named_level(const Context& c, const toml::node& l, const std::string& lw) {
   const auto* lt = l.as_table();
@@ -196,7 +238,9 @@ Level named_level(const Context& c, const toml::node& l, const std::string& lw) 
 Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, std::size_t index,
                    Mode mode) {
   const std::string where = "factor[" + std::to_string(index) + "]";
-  check_keys(c, t, where, {"key", "values", "linspace", "logspace", "range", "records", "levels"});
+  check_keys(c, t, where,
+             {"key", "values", "linspace", "logspace", "range", "records", "levels", "suite",
+              "folder", "components"});
   Factor f;
   f.line = static_cast<int>(t.source().begin.line);
   const auto* key = t.get("key");
@@ -205,11 +249,14 @@ Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, 
   }
   f.key = *key->value<std::string>();
   int given = 0;
-  for (const char* k : {"values", "linspace", "logspace", "range", "records", "levels"}) {
+  for (const char* k :
+       {"values", "linspace", "logspace", "range", "records", "levels", "suite", "folder"}) {
     given += t.get(k) != nullptr ? 1 : 0;
   }
   if (given != 1) {
-    c.fail(&t, where, "give exactly one of values, linspace, logspace, range, records, levels");
+    c.fail(&t, where,
+           "give exactly one of values, linspace, logspace, range, records, levels, suite, "
+           "folder");
   }
   if (const auto* n = t.get("values")) {
     for (const auto& v : array_of(c, *n, where + ".values")) {
@@ -242,6 +289,9 @@ Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, 
     for (const auto& l : array_of(c, *n, where + ".levels")) {
       f.levels.push_back(named_level(c, l, where + ".levels"));
     }
+  }
+  if (t.get("suite") != nullptr || t.get("folder") != nullptr) {
+    f.levels = suite_levels(c, t, where, dir);
   }
   std::set<std::string> labels;
   for (const auto& l : f.levels) {

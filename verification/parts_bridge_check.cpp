@@ -79,9 +79,11 @@ void check_scene(const std::string& name) {
   ni::System& bridge = *p.scene.system;
   const double dt = p.scene.output.sample_dt;
   {
-    // The scene's own Moreau–Jean options (its step and theta), to kEnd.
-    ni::MoreauJeanOptions o = std::get<ni::MoreauJeanOptions>(p.scene.run);
+    ni::MoreauJeanOptions o;
     o.end_time = kEnd;
+    const auto& scene_mj = std::get<ni::MoreauJeanOptions>(p.scene.run);  // [solver] moreau
+    o.step = scene_mj.step;
+    o.theta = scene_mj.theta;
     ni::Recorder rb(bridge, dt), rp(p.parts, dt);
     const auto a = ni::moreau_jean(bridge, o, rb);
     const auto b = ni::moreau_jean(p.parts, o, rp);
@@ -93,8 +95,10 @@ void check_scene(const std::string& name) {
   Pair q = load(name);  // fresh springs
   ni::System& bridge2 = *q.scene.system;
   {
-    ni::EventDrivenOptions o;  // the scenes set no event-driven key: the defaults
+    ni::EventDrivenOptions o;
     o.end_time = kEnd;
+    // The scenes set no tolerance: the event-driven method's default.
+    o.tolerance = ni::EventDrivenOptions{}.tolerance;
     ni::Recorder rb(bridge2, dt), rp(q.parts, dt);
     const auto a = ni::event_driven(bridge2, o, rb);
     const auto b = ni::event_driven(q.parts, o, rp);

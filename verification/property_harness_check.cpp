@@ -132,6 +132,13 @@ std::vector<SceneCase> scene_cases() {
     s.push_back(from_file("bridge-exc" + std::to_string(exc) + ".toml", kBridgeWindow, 1e-4,
                           false, kBridgeNormalLoad));
   }
+  // Bridges in parts (the same window, step and load bound as the one-deck benchmark: the
+  // deck's mass and bents are shared among the frames) and the free two-deck chain (no
+  // smooth force on a contact: load 0).
+  for (const char* file : {"bridge-two-frame.toml", "bridge-skew-three-span.toml"}) {
+    s.push_back(from_file(file, kBridgeWindow, 1e-4, false, kBridgeNormalLoad));
+  }
+  s.push_back(from_file("deck-chain-two.toml", 1.0, 1e-4, false, 0.0));
   for (auto& c : moving_obstacle_scenes()) s.push_back(std::move(c));
   return s;
 }

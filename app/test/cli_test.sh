@@ -103,6 +103,15 @@ check "--out \"\" writes nothing" test ! -e "$tmp/out"
 limit=5
 expect 2 "^nsbridge: --out $tmp/a-file/sub: cannot create the directory '$tmp/a-file/sub': Not a directory" \
   -- run "$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/a-file/sub"
+# --dump-lcp: a folder that cannot be made is refused before the run, as --out is; "" too.
+expect 2 "^nsbridge: dump_lcp $tmp/a-file/sub: cannot create the directory" \
+  -- run "$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/d" --dump-lcp "$tmp/a-file/sub"
+expect 2 '^nsbridge: --dump-lcp: empty path' -- run "$root/scenes/bouncing-ball.toml" --out "$tmp/d" --dump-lcp ""
+# One .dat file per contact problem, listed in manifest.csv; `nsbridge lcp` reads each.
+expect 0 'impact-oscillator' -- run "$root/scenes/impact-oscillator.toml" --out "$tmp/io" \
+  --method event_driven --dump-lcp "$tmp/io-lcp"
+check "the manifest lists the 4 impacts" test "$(grep -c ',impact,' "$tmp/io-lcp/manifest.csv")" = 4
+expect 0 'status: +solved' -- lcp "$tmp/io-lcp/lcp-000001.dat"
 limit=20
 # Outputs are replaced as a set: a directory that held an older set holds the new one, and
 # nothing else is left beside it; a directory with the user's own files keeps them.
@@ -211,6 +220,23 @@ if command -v script >/dev/null; then
   script -qec "'$nsb' run ${slow[*]} --quiet" /dev/null > "$tmp/tty-quiet.txt" 2>&1
   check "--quiet silences it" bash -c "! grep -q 'real time .* left' '$tmp/tty-quiet.txt'"
 fi
+
+# --- scaling to a spectral acceleration (docs/bridge.md, "Target spectral accelerations") ---
+expect 0 'status     completed' -- run "$root/scenes/bridge-exc5.toml" --set model.excitation.scale_to=sa \
+  --set model.excitation.target_sa=0.5 --out "$tmp/sa" --quiet
+check "summary.json reports input.transverse.sa_g = 0.5" \
+  grep -Eq '"input": \{"transverse": \{"pga_g": [0-9.e+-]+, "sa_g": 0\.5, "sa_period": 0\.354[0-9]*, "sa_damping": 0\.05, "scale_factor": [0-9.e+-]+\}, "longitudinal": \{"pga_g": 1, ' \
+  "$tmp/sa/summary.json"
+expect 2 'bridge-exc5\.toml: model\.excitation\.target_sa \(override\): must be >= 0' -- run \
+  "$root/scenes/bridge-exc5.toml" --set model.excitation.scale_to=sa --set model.excitation.target_sa=-1
+
+# The suite's spectra scaled to one PSA: every record passes through it, the mean too.
+expect 0 '20 records scaled to PSA\(0\.5 s\) = 0\.8 g' -- suite-spectra \
+  "$root/data/ground-motions/asce7-suite/records.csv" --period 0.5 --sa 0.8 --out "$tmp/suite"
+check "suite-spectra.csv: at T = 0.5 s every record and the mean are 0.8 g" \
+  awk -F, '$1 == "0.5" { for (k = 2; k <= 22; ++k) if ($k < 0.8 - 1e-12 || $k > 0.8 + 1e-12) exit 1; found = 1 } END { exit !found }' \
+  "$tmp/suite/suite-spectra.csv"
+expect 2 'give either --scene' -- suite-spectra "$root/data/ground-motions/asce7-suite/records.csv" --out "$tmp/suite"
 
 echo "cli: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

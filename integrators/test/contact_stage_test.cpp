@@ -157,3 +157,70 @@ TEST_CASE("round-off tolerances scale with the problem") {
 
 }  // namespace
 }  // namespace nsb::integrators
+
+namespace nsb::integrators {
+namespace {
+
+// Keeps what the stage shows it, copied (the references die with the next solve).
+class Recording final : public ContactObserver {
+ public:
+  struct Seen {
+    ProblemOrigin origin;
+    ContactStatus status;
+    bool closed_form;
+    lcp::Solver solver;
+    Eigen::Index contacts;
+    double gdot_n_minus0;
+  };
+  void solved(const SolvedProblem& s) override {
+    seen.push_back({s.origin, s.status, s.closed_form, s.result.solver_used,
+                    s.problem.contacts(), s.problem.gdot_n_minus[0]});
+  }
+  std::vector<Seen> seen;
+};
+
+}  // namespace
+
+TEST_CASE("an observer is shown every problem once, after the chain, with its origin") {
+  Recording observer;
+  ContactStageOptions o;
+  o.solver = lcp::Solver::kPgs;
+  o.observer = &observer;
+  ContactStage stage(2, 2, o);
+  // 1. One frictionless contact (the closed form of the test above), edited before solve():
+  //    the observer sees the problem as solved, gdot_N- = -2.
+  auto c = two_contacts(0.0);
+  lcp::FrictionalProblem& p =
+      stage.build(c, {0}, false, Matrix::Identity(2, 2), Vector::Zero(2), ContactLevel::kVelocity);
+  p.gdot_n_minus[0] = -2.0;
+  CHECK(stage.solve({ProblemKind::kImpact, 0.25, 7}) == ContactStatus::kSolved);
+  // 2. The zero-diagonal problem that PGS refuses and Lemke solves (test above).
+  c[0].w_normal.setZero();
+  c[1].w_normal << 0.5, 0.5;
+  c[1].what_normal = -1.25;
+  stage.build(c, {0, 1}, false, Matrix::Identity(2, 2), Vector::Zero(2), ContactLevel::kVelocity);
+  CHECK(stage.solve({ProblemKind::kStep, 0.5, 8}) == ContactStatus::kSolvedByFallback);
+  // 3. Non-finite data: shown too, with nothing solved.
+  c[1].what_normal = std::numeric_limits<double>::quiet_NaN();
+  stage.build(c, {0, 1}, false, Matrix::Identity(2, 2), Vector::Zero(2), ContactLevel::kVelocity);
+  CHECK(stage.solve() == ContactStatus::kNonFiniteInput);
+
+  REQUIRE(observer.seen.size() == 3);
+  CHECK(static_cast<std::int64_t>(observer.seen.size()) == stage.counts().solves);
+  const auto& a = observer.seen[0];
+  CHECK(a.origin.kind == ProblemKind::kImpact);
+  CHECK(a.origin.t == 0.25);
+  CHECK(a.origin.step == 7);
+  CHECK(a.closed_form);
+  CHECK(a.contacts == 1);
+  CHECK(a.gdot_n_minus0 == -2.0);
+  const auto& b = observer.seen[1];
+  CHECK(b.origin.kind == ProblemKind::kStep);
+  CHECK(b.status == ContactStatus::kSolvedByFallback);
+  CHECK_FALSE(b.closed_form);
+  CHECK(b.solver == lcp::Solver::kLemke);
+  CHECK(b.contacts == 2);
+  CHECK(observer.seen[2].status == ContactStatus::kNonFiniteInput);
+}
+
+}  // namespace nsb::integrators

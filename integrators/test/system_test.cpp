@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -93,5 +94,26 @@ TEST_CASE("contact_normals defaults to contact_data") {
       CHECK(normal[i].friction == full[i].friction);
       CHECK(normal[i].far == full[i].far);
     }
+  }
+}
+
+TEST_CASE("natural_periods: 2 pi / omega of K phi = omega^2 M phi, longest first") {
+  // Two masses on their own springs, uncoupled: omega^2 = k / m for each.
+  // m = 2 t, k = 8 kN/m: omega^2 = 4, T = pi s; m = 1 t, k = 100 kN/m: omega^2 = 100, T = pi / 5 s.
+  nsb::testsupport::TwoMasses::Parameters p;
+  p.mass1 = 1.0;
+  p.stiffness1 = 100.0;
+  p.mass2 = 2.0;
+  p.stiffness2 = 8.0;
+  nsb::testsupport::TwoMasses s(p);
+  const std::vector<double> t = nsb::integrators::natural_periods(s);
+  REQUIRE(t.size() == 2);
+  const double pi = 3.14159265358979323846;
+  CHECK(t[0] == doctest::Approx(pi).epsilon(1e-14));
+  CHECK(t[1] == doctest::Approx(pi / 5).epsilon(1e-14));
+  // No stiffness: every mode is a mechanism, of infinite period.
+  nsb::testsupport::FreeMass free(2);
+  for (const double period : nsb::integrators::natural_periods(free)) {
+    CHECK(period == std::numeric_limits<double>::infinity());
   }
 }

@@ -202,3 +202,27 @@ TEST_CASE("response_spectrum: bad periods and damping are refused by name") {
   CHECK(message_of([&] { nsb::models::response_spectrum(two, SpectrumOptions{}); })
             .find("sampled") != std::string::npos);
 }
+
+TEST_CASE("asce7_design_spectrum: the four branches of ASCE 7-16 Fig. 11.4-1 by hand") {
+  // S_DS = 1.0 g, S_D1 = 0.6 g, T_L = 8 s: T0 = 0.2 * 0.6 / 1.0 = 0.12 s, Ts = 0.6 s.
+  const double sds = 1.0, sd1 = 0.6, tl = 8.0;
+  using nsb::models::asce7_design_spectrum;
+  CHECK(asce7_design_spectrum(sds, sd1, tl, 0.0) == doctest::Approx(0.4));           // 0.4 S_DS
+  CHECK(asce7_design_spectrum(sds, sd1, tl, 0.06) == doctest::Approx(0.7));          // 0.4 + 0.6/2
+  CHECK(asce7_design_spectrum(sds, sd1, tl, 0.12) == doctest::Approx(1.0));          // T0: plateau
+  CHECK(asce7_design_spectrum(sds, sd1, tl, 0.6) == doctest::Approx(1.0));           // Ts
+  CHECK(asce7_design_spectrum(sds, sd1, tl, 1.2) == doctest::Approx(0.5));           // 0.6 / 1.2
+  CHECK(asce7_design_spectrum(sds, sd1, tl, 8.0) == doctest::Approx(0.075));         // 0.6 / 8
+  CHECK(asce7_design_spectrum(sds, sd1, tl, 10.0) == doctest::Approx(0.048));        // 0.6*8/100
+  // Continuous at T0, Ts and T_L.
+  for (const double t : {0.12, 0.6, 8.0}) {
+    CHECK(asce7_design_spectrum(sds, sd1, tl, t * (1 - 1e-12)) ==
+          doctest::Approx(asce7_design_spectrum(sds, sd1, tl, t * (1 + 1e-12))));
+  }
+  CHECK_THROWS_WITH_AS(asce7_design_spectrum(0.0, sd1, tl, 1.0),
+                       doctest::Contains("sds"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(asce7_design_spectrum(sds, sd1, 0.3, 1.0),
+                       doctest::Contains("tl"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(asce7_design_spectrum(sds, sd1, tl, -1.0),
+                       doctest::Contains("period"), std::invalid_argument);
+}

@@ -113,14 +113,18 @@ TEST_CASE("every scene in scenes/ loads and builds its system") {
     CHECK(scene.name == entry.path().stem().string());
     CHECK(ni::end_time(scene.run) > 0);
     if (scene.kind == "bridge") {
-      CHECK(scene.system->dofs() == 3);
-      CHECK(scene.system->contacts() == 4);
+      // N deck segments (N = 1: [model.deck]): 3 N coordinates, two contacts per joint (two
+      // seats, N - 1 hinges); one deck has 3 and 4.
+      const int segments = scene.system->dofs() / 3;
+      CHECK(scene.system->dofs() == 3 * segments);
+      CHECK(scene.system->contacts() == 2 * (segments + 1));
+      if (scene.name.rfind("bridge-exc", 0) == 0) CHECK(scene.system->dofs() == 3);
       // The record is covered: RSN 1084 (43.9 s) compressed by 0.5, or RSN 988 (39.98 s).
       CHECK(ni::end_time(scene.run) >= 21.9);
     }
     ++count;
   }
-  CHECK(count >= 13);  // 8 bridge runs, 2 rigid decks, 3 simple systems
+  CHECK(count >= 16);  // 8 bridge runs, 2 rigid decks, 3 simple systems, 3 bridges in parts
 }
 
 TEST_CASE("the bridge runs scale each component to its own target PGA") {
@@ -164,6 +168,58 @@ TEST_CASE("longitudinal_pga without a longitudinal record is an error naming the
   CHECK(contains(e, "lpga.toml:16:"));  // the line after the 15 of bridge_scene
   CHECK(contains(e, "model.excitation.longitudinal_pga"));
   CHECK(contains(e, "longitudinal_record"));
+}
+
+TEST_CASE("scale_to = \"sa\": errors name the file, the line and the key") {
+  const std::string record = std::string(NSB_DATA_DIR) + "/ground-motions/RSN988_NORTHR_CCN360.AT2";
+  const std::string sa = "scale_to = \"sa\"\ntarget_sa = 0.5\n";  // lines 16 and 17
+  struct Case {
+    std::string text, line, key, what;
+  };
+  // A record of zeros: its PSA is zero at every period.
+  const fs::path zero = scratch().write("zero.txt", "0 0\n0.01 0\n0.02 0\n0.03 0\n");
+  std::string no_record = bridge_scene(record);
+  no_record.replace(no_record.find("transverse_record"), 17, "# transverse_record");
+  const std::vector<Case> cases = {
+      {no_record + sa, ":16:", "model.excitation.scale_to", "needs a transverse_record"},
+      {bridge_scene(zero.string()) + sa, ":17:", "model.excitation.target_sa",
+       "spectral acceleration at sa_period"},
+      {bridge_scene(record) + sa + "sa_period = 0\n", ":18:", "model.excitation.sa_period", "> 0"},
+      {bridge_scene(record) + sa + "sa_period = -1\n", ":18:", "model.excitation.sa_period", "> 0"},
+      {bridge_scene(record) + "scale_to = \"sa\"\ntarget_sa = -0.5\n", ":17:",
+       "model.excitation.target_sa", ">= 0"},
+      {bridge_scene(record) + "target_sa = 0.5\n", ":16:", "model.excitation.target_sa",
+       "needs scale_to = \"sa\""},
+      {bridge_scene(record) + "scale_to = \"spectral\"\n", ":16:", "model.excitation.scale_to",
+       "pga"},
+      {bridge_scene(record) + sa + "longitudinal_sa = 0.5\n", ":18:",
+       "model.excitation.longitudinal_sa", "needs a longitudinal_record"},
+  };
+  for (const auto& c : cases) {
+    const auto e = error_of("sa.toml", c.text);
+    INFO(c.text);
+    CHECK(contains(e, "sa.toml" + c.line));
+    CHECK(contains(e, c.key));
+    CHECK(contains(e, c.what));
+  }
+}
+
+TEST_CASE("the scene reports each component's PGA, PSA and factor; none without a record") {
+  // bridge-exc7 scales RSN 988 360 to 1.0 g transverse and 090 to 1.2 g longitudinal.
+  const auto scene = load_scene(fs::path(NSB_SCENES_DIR) / "bridge-exc7.toml");
+  REQUIRE(scene.input.transverse);
+  REQUIRE(scene.input.longitudinal);
+  const auto& t = *scene.input.transverse;
+  CHECK(t.pga_g == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(scene.input.longitudinal->pga_g == doctest::Approx(1.2).epsilon(1e-12));
+  // PGA 0.2216674 g in the file (RSN988_NORTHR_CCN360.AT2): the factor is 1.0 / 0.2216674.
+  CHECK(t.scale_factor == doctest::Approx(1.0 / 0.2216674).epsilon(1e-6));
+  CHECK(t.sa_damping == 0.05);
+  CHECK(t.sa_period == nsb::integrators::natural_periods(*scene.system).front());
+  CHECK(t.sa_g > 0);
+  const auto ball = load_scene(fs::path(NSB_SCENES_DIR) / "bouncing-ball.toml");
+  CHECK(!ball.input.transverse);
+  CHECK(!ball.input.longitudinal);
 }
 
 TEST_CASE("overrides apply before validation") {

@@ -62,4 +62,24 @@ TEST_CASE("a record's digest is the digest of its history; its warnings are in s
   }
 }
 
+TEST_CASE("summary.json carries the scene's input: each component's PGA, PSA and factor") {
+  const RunRecord r = execute({kScenes + "/bridge-exc5.toml",
+                               {"solver.end_time=0.5", "model.excitation.scale_to=sa",
+                                "model.excitation.target_sa=0.5", "model.excitation.sa_period=1"},
+                               {},
+                               {}});
+  REQUIRE(r.digest.input.transverse);
+  CHECK(r.digest.input.transverse->sa_g == doctest::Approx(0.5).epsilon(1e-12));
+  CHECK(r.digest.input.transverse->sa_period == 1.0);
+  const std::string json = summary_json(r);
+  // The documented key set (docs/outputs.md), transverse first.
+  CHECK(json.find("\"input\": {\"transverse\": {\"pga_g\": ") != std::string::npos);
+  CHECK(json.find("\"sa_g\": 0.5, \"sa_period\": 1, \"sa_damping\": 0.05, "
+                  "\"scale_factor\": ") != std::string::npos);
+  CHECK(json.find("}, \"longitudinal\": {\"pga_g\": 1, ") != std::string::npos);
+  // Without a record the object is empty.
+  const RunRecord ball = execute({kScenes + "/bouncing-ball.toml", {"solver.end_time=0.1"}, {}, {}});
+  CHECK(summary_json(ball).find("\"input\": {},") != std::string::npos);
+}
+
 }  // namespace nsb::runs

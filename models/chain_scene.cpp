@@ -1,0 +1,98 @@
+// The deck bodies and joints of a scene ([[model.segments]] and [[model.hinges]] of a bridge,
+// [[model.decks]] and [[model.joints]] of a deck chain) and the deck chain of [model]
+// kind = "deck_chain" (models/deck_chain.hpp, docs/bridge.md "Bridges in parts").
+#include "models/scene_builders.hpp"
+
+#include "models/assembly.hpp"
+#include "models/deck_chain.hpp"
+#include "models/scene_schema.hpp"
+
+namespace nsb::models {
+
+namespace {
+
+// The element `i` of the array of tables `key` of m, as a section restricted to fields.
+template <class S>
+Section element(const Section& m, const toml::array& a, std::string_view key, std::size_t i,
+                std::span<const config::Field<S>> fields) {
+  const toml::table* t = a[i].as_table();
+  Section s(m.context(), *t, m.key_path(key) + "[" + std::to_string(i) + "]");
+  s.only(keys_of(fields));
+  return s;
+}
+
+}  // namespace
+
+std::vector<parts::RigidBody> read_bodies(const Section& m, std::string_view key) {
+  const toml::array* a = m.array_of_tables(key);
+  if (a == nullptr || a->empty()) {
+    m.fail_table("missing [[" + m.key_path(key) + "]] (at least one deck body)");
+  }
+  std::vector<parts::RigidBody> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const Section s = element(m, *a, key, i, segment_fields());
+    parts::RigidBody b;
+    s.read_all(segment_fields(), b);
+    for (const char* required : {"mass", "inertia", "length", "width"}) {
+      if (!s.has(required)) s.fail_table(std::string("missing key ") + required);
+    }
+    if (i > 0 && b.width != out[0].width) {
+      s.fail("width", "must equal the width of element 0 (" + config::format_value(out[0].width) +
+                          " m): a joint's two corners lie on the other body's end face");
+    }
+    out.push_back(b);
+  }
+  return out;
+}
+
+std::vector<DeckChain::Joint> read_joints(const Section& m, std::string_view key,
+                                          std::size_t count, const std::string& rule) {
+  const toml::array* a = m.array_of_tables(key);
+  const std::size_t given = a == nullptr ? 0 : a->size();
+  if (given != count) {
+    const std::string what = "needs " + std::to_string(count) + " [[" + m.key_path(key) +
+                             "]] (" + rule + "), got " + std::to_string(given);
+    if (a == nullptr) m.fail_table(what);
+    m.fail(key, what);
+  }
+  std::vector<DeckChain::Joint> out;
+  for (std::size_t i = 0; i < given; ++i) {
+    const Section s = element(m, *a, key, i, joint_fields());
+    DeckChain::Joint j;
+    s.read_all(joint_fields(), j);
+    if (!s.has("gap")) s.fail_table("missing key gap (clear distance along the axis [m])");
+    out.push_back(j);
+  }
+  return out;
+}
+
+std::unique_ptr<integrators::System> build_deck_chain(Section& m) {
+  m.only({"kind", "skew_deg", "decks", "joints"});
+  LayoutSettings layout;
+  m.read_all(LayoutSettings::fields(), layout);
+  const std::vector<parts::RigidBody> bodies = read_bodies(m, "decks");
+  DeckChain::Parameters p;
+  p.skew_deg = layout.skew_deg;
+  p.width = bodies[0].width;
+  for (const auto& b : bodies) {
+    p.decks.push_back({.mass = b.mass, .inertia = b.inertia, .length = b.length,
+                       .initial_displacement = b.initial_position,
+                       .initial_velocity = b.initial_velocity});
+  }
+  p.joints = read_joints(m, "joints", bodies.size() + 1,
+                         "one per deck plus one: left abutment, hinges, right abutment");
+  try {
+    // The coordinates of the outputs: each deck's displacement from its rest position.
+    Assembly::Parts parts = DeckChain::parts(p);
+    for (std::size_t i = 0; i < parts.bodies.size(); ++i) {
+      parts.bodies[i].rest = Eigen::Vector3d(DeckChain::rest_position(p, static_cast<int>(i)),
+                                             0.0, 0.0);
+      parts.bodies[i].initial_position = p.decks[i].initial_displacement;
+    }
+    return std::make_unique<Assembly>(std::move(parts));
+  } catch (const std::invalid_argument& e) {
+    m.rethrow(e);
+  }
+}
+
+}  // namespace nsb::models
