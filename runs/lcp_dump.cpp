@@ -16,14 +16,6 @@ namespace nsb::runs {
 
 namespace {
 
-template <class E, std::size_t N>
-std::string_view name_of(const std::array<config::Name<E>, N>& names, E value) {
-  for (const auto& n : names) {
-    if (n.value == value) return n.name;
-  }
-  return "unknown";
-}
-
 // "lcp-000001.dat": six digits keep the files of a 40 s run (< 1e6 problems) in order.
 std::string file_name(std::int64_t index) {
   char buf[32];
@@ -41,12 +33,12 @@ std::string solver_name(const integrators::SolvedProblem& s) {
 std::string comment(const integrators::SolvedProblem& s, std::int64_t index,
                     const std::string& solver) {
   return "nsbridge contact problem " + std::to_string(index) + ": " +
-         std::string(name_of(integrators::kProblemKindNames, s.origin.kind)) + " at t = " +
+         std::string(config::name_of(integrators::kProblemKindNames, s.origin.kind)) + " at t = " +
          io::csv_number(s.origin.t) + " s, step " + std::to_string(s.origin.step) + ", " +
          std::to_string(s.problem.contacts()) + " contacts\n" +
          "LCP of eq. (6), Shi & Dimitrakopoulos 2017 (lcp::build_eq6)\n" + "solved by " +
          solver + ": " + std::string(lcp::to_string(s.result.status)) + " (" +
-         std::string(name_of(integrators::kContactStatusNames, s.status)) + ")";
+         std::string(config::name_of(integrators::kContactStatusNames, s.status)) + ")";
 }
 
 }  // namespace
@@ -60,10 +52,10 @@ void LcpDump::solved(const integrators::SolvedProblem& s) {
   const lcp::FrictionalProblem& fp = s.problem;
   const bool finite = s.status != integrators::ContactStatus::kNonFiniteInput;
   const std::string file = finite ? file_name(problems_) : std::string();
-  const std::string_view kind = name_of(integrators::kProblemKindNames, s.origin.kind);
+  const std::string_view kind = config::name_of(integrators::kProblemKindNames, s.origin.kind);
   const std::string solver = solver_name(s);
   const std::string_view status = lcp::to_string(s.result.status);
-  const std::string_view stage = name_of(integrators::kContactStatusNames, s.status);
+  const std::string_view stage = config::name_of(integrators::kContactStatusNames, s.status);
   const auto size = finite ? lcp::eq6_size(fp) : Eigen::Index{0};
   if (finite && failure_.empty()) {
     const std::filesystem::path path = dir_ / file;
