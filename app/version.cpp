@@ -4,10 +4,6 @@
 #include "io/build_info.hpp"
 
 #include <CLI/Version.hpp>
-#include <Eigen/Core>
-#include <boost/version.hpp>
-#include <gsl/gsl_version.h>
-#include <toml++/toml.h>
 
 #include <string>
 
@@ -15,25 +11,22 @@ namespace nsb::app {
 
 namespace {
 
-std::string dotted(int major, int minor, int patch) {
-  return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(patch);
+// "<name>" padded to the width of the other labels, then the value.
+std::string line(const std::string& name, const std::string& value) {
+  constexpr std::size_t kWidth = 11;
+  return name + std::string(name.size() < kWidth ? kWidth - name.size() : 1, ' ') + value;
 }
 
 }  // namespace
 
 std::string version_text() {
   const io::BuildInfo& b = io::build_info();
-  return "nsbridge " + b.version + "\n" +
-         "revision   " + b.revision + " (git, at build time)\n" +
-         "build      " + b.build_type + "\n" +
-         "compiler   " + b.compiler + "\n" +
-         "Eigen      " + dotted(EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION) +
-         "\n" +
-         "Boost      " + dotted(BOOST_VERSION / 100000, BOOST_VERSION / 100 % 1000,
-                                BOOST_VERSION % 100) + "\n" +
-         "GSL        " + GSL_VERSION + "\n" +
-         "toml++     " + dotted(TOML_LIB_MAJOR, TOML_LIB_MINOR, TOML_LIB_PATCH) + "\n" +
-         "CLI11      " + CLI11_VERSION;
+  std::string text = "nsbridge " + b.version + "\n" + line("revision", b.revision) +
+                     " (git, at build time)\n" + line("build", b.build_type) + "\n" +
+                     line("compiler", b.compiler) + "\n";
+  // The engine's libraries (io::build_info), then the command line's own.
+  for (const auto& [name, version] : b.libraries) text += line(name, version) + "\n";
+  return text + line("CLI11", CLI11_VERSION);
 }
 
 }  // namespace nsb::app

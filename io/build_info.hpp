@@ -3,6 +3,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace nsb::io {
 
@@ -12,6 +14,9 @@ struct BuildInfo {
                            //   "unknown" outside git), taken at build time
   std::string build_type;  // CMAKE_BUILD_TYPE ("none" when empty)
   std::string compiler;    // "gcc <version>" or "clang <version>"
+  // The libraries the engine is compiled against, (name, version), in this order: Eigen,
+  // Boost, GSL, toml++ (their headers' version macros).
+  std::vector<std::pair<std::string, std::string>> libraries;
 };
 
 const BuildInfo& build_info();

@@ -2,6 +2,8 @@
 # Installs the Debian packages nsbridge needs to build, test and plot. Idempotent: when every
 # package is present it prints nothing and changes nothing. OpenMPI is optional for the build
 # (without it `nsbridge sweep` runs on threads only); CI installs it to test sweeps under mpirun.
+# The Python packages build and test the module `nsbridge` for Debian's /usr/bin/python3
+# (docs/python.md), pip route included.
 #   --with-siconos   also install Siconos Numerics, the optional reference for benchmarks
 set -euo pipefail
 
@@ -13,6 +15,8 @@ packages=(
   gnuplot-nox
   libopenmpi-dev openmpi-bin
   clang libfuzzer-14-dev libclang-rt-14-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  python3-venv python3-pip python3-setuptools
 )
 if [[ "${1:-}" == "--with-siconos" ]]; then
   packages+=(libsiconos-numerics-dev)

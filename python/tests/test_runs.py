@@ -1,0 +1,106 @@
+"""nsbridge.run against `nsbridge run`: the same scene gives the same numbers, bit for bit, in
+the arrays as in history.csv and events.csv, and the same summary.json; Scene and Result."""
+import json
+import pathlib
+
+import numpy as np
+import pytest
+
+import nsbridge
+from conftest import equal_bits, read_csv_columns
+
+# (scene, method, overrides): every method on the bridge (shortened), the other model kinds
+# with their own method, and a run that stalls (a status, the files still written).
+CASES = [
+    ("scenes/bridge-exc5.toml", "moreau", ["solver.end_time=10"]),
+    ("scenes/bridge-exc5.toml", "event_driven", ["solver.end_time=10"]),
+    ("scenes/bridge-exc5.toml", "compliance", ["solver.end_time=10"]),
+    ("scenes/bouncing-ball.toml", None, []),
+    ("scenes/impact-oscillator.toml", None, []),
+    ("scenes/sliding-block.toml", None, []),
+    ("scenes/rigid-deck-skew.toml", None, []),
+    ("scenes/bouncing-ball.toml", "compliance", ["solver.max_steps=10"]),
+]
+
+
+def without_wall_time(summary):
+    return {k: v for k, v in summary.items() if k != "wall_time"}
+
+
+@pytest.mark.parametrize("scene,method,overrides", CASES)
+def test_a_run_equals_the_command_lines_files_bit_for_bit(source, run_cli, tmp_path,
+                                                          scene, method, overrides):
+    out = run_cli(scene, tmp_path / "cli", method, overrides)
+    r = nsbridge.run(source / scene, method=method, overrides=overrides)
+
+    history = read_csv_columns(out / "history.csv")
+    assert list(r.history) == list(history)
+    for name, fields in history.items():
+        column = r.history[name]
+        assert column.dtype == np.float64 and column.flags.c_contiguous, name
+        assert equal_bits(column, fields), name
+
+    events = read_csv_columns(out / "events.csv")
+    assert list(r.events) == ["t", "contact", "kind", "note"]
+    assert equal_bits(r.events["t"], events["t"])
+    assert r.events["contact"].tolist() == [int(c) for c in events["contact"]]
+    assert r.events["kind"] == events["kind"]
+    assert r.events["note"] == events["note"]
+
+    expected = json.loads((out / "summary.json").read_text())
+    assert without_wall_time(r.summary) == without_wall_time(expected)
+    assert r.status == expected["status"]
+    assert r.summary["wall_time"] >= 0
+
+
+def test_result_write_gives_the_command_lines_files(source, run_cli, tmp_path):
+    out = run_cli("scenes/bridge-exc5.toml", tmp_path / "cli", "event_driven", ["solver.end_time=5"])
+    r = nsbridge.run(str(source / "scenes/bridge-exc5.toml"), method="event_driven",
+                     overrides=["solver.end_time=5"])
+    r.write(tmp_path / "py")
+    for name in ("history.csv", "events.csv"):
+        assert (tmp_path / "py" / name).read_bytes() == (out / name).read_bytes(), name
+    written = json.loads((tmp_path / "py" / "summary.json").read_text())
+    assert written == r.summary  # the dict is the file, wall_time included
+    assert without_wall_time(written) == without_wall_time(json.loads((out / "summary.json").read_text()))
+
+
+def test_a_numerical_failure_is_a_status_not_an_exception(source):
+    r = nsbridge.run(source / "scenes/bouncing-ball.toml", method="compliance",
+                     overrides=["solver.max_steps=10"])
+    assert r.status == "stalled"
+    assert r.summary["failure_time"] > 0
+    assert len(r.history["t"]) >= 1
+
+
+def test_scene_loads_and_runs_with_its_overrides(source):
+    s = nsbridge.load_scene(source / "scenes/bridge-exc5.toml", ["solver.end_time=2"])
+    assert (s.name, s.kind, s.method, s.end_time) == ("bridge-exc5", "bridge", "moreau", 2.0)
+    assert isinstance(s.path, pathlib.Path) and s.overrides == ["solver.end_time=2"]
+    t = s.with_overrides(["solver.end_time=1", "solver.method=event_driven"])
+    assert (t.method, t.end_time, s.end_time) == ("event_driven", 1.0, 2.0)
+    r = nsbridge.run(t)
+    assert (r.method, r.summary["end_time"], r.status) == ("event_driven", 1.0, "completed")
+    # run's own method and overrides come after the scene's
+    r = nsbridge.run(s, method="compliance", overrides=["solver.end_time=0.5"])
+    assert (r.method, r.summary["end_time"]) == ("compliance", 0.5)
+
+
+def test_progress_reports_the_simulated_time(source, capsys):
+    times = []
+    nsbridge.run(source / "scenes/bouncing-ball.toml", progress=times.append)
+    assert times and times[-1] == pytest.approx(4.0) and times == sorted(times)
+    nsbridge.run(source / "scenes/bouncing-ball.toml", progress=True)
+    assert "t = 4 / 4 s" in capsys.readouterr().err
+
+    def fails(t):
+        raise KeyError("from the callback")
+    with pytest.raises(KeyError, match="from the callback"):
+        nsbridge.run(source / "scenes/bouncing-ball.toml", progress=fails)
+
+
+def test_version_and_build_info():
+    info = nsbridge.build_info()
+    assert nsbridge.__version__ == info["version"]
+    assert info["revision"] and info["compiler"].split()[0] in ("gcc", "clang")
+    assert set(info["libraries"]) >= {"Eigen", "Boost", "GSL", "toml++", "pybind11", "Python"}
