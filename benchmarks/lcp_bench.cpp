@@ -8,6 +8,7 @@
 //
 // Usage: lcp_bench [--quick] [--csv FILE]   (CSV default: lcp_bench.csv in the working dir)
 #include "benchmarks/lcp_bench_timing.hpp"
+#include "benchmarks/siconos_lcp.hpp"
 #include "io/build_info.hpp"
 #include "lcp/frictional.hpp"
 #include "lcp/lemke.hpp"
@@ -16,13 +17,6 @@
 #include "lcp/siconos_format.hpp"
 #include "lcp/test/problems.hpp"
 
-#ifdef NSB_HAVE_SICONOS
-#include <siconos/numerics/LCP_Solvers.h>
-#include <siconos/numerics/LinearComplementarityProblem.h>
-#include <siconos/numerics/NumericsMatrix.h>
-#include <siconos/numerics/SolverOptions.h>
-#include <siconos/numerics/lcp_cst.h>
-#endif
 
 #include <algorithm>
 #include <chrono>
@@ -71,45 +65,6 @@ std::map<std::string, std::vector<std::pair<double, bool>>> body_times;
 using namespace nsb::bench;  // median, median_time, Silence
 
 #ifdef NSB_HAVE_SICONOS
-// One Siconos problem and solver options, owning their memory.
-struct SiconosRun {
-  LinearComplementarityProblem problem{};
-  SolverOptions* options = nullptr;
-  std::vector<double> z, w;
-  int info = 0;
-  int solver_id = 0;
-
-  SiconosRun(const Problem& p, int id) : solver_id(id) {
-    const int n = static_cast<int>(p.size());
-    problem.size = n;
-    problem.M = NM_create(NM_DENSE, n, n);
-    std::memcpy(problem.M->matrix0, p.M.data(), sizeof(double) * static_cast<std::size_t>(n * n));
-    problem.q = static_cast<double*>(std::malloc(sizeof(double) * static_cast<std::size_t>(n)));
-    std::memcpy(problem.q, p.q.data(), sizeof(double) * static_cast<std::size_t>(n));
-    options = solver_options_create(id);
-    options->dparam[SICONOS_DPARAM_TOL] = kTolerance;
-    z.assign(static_cast<std::size_t>(n), 0.0);
-    w.assign(static_cast<std::size_t>(n), 0.0);
-  }
-  SiconosRun(const SiconosRun&) = delete;
-  SiconosRun& operator=(const SiconosRun&) = delete;
-  ~SiconosRun() {
-    solver_options_delete(options);
-    NM_free(problem.M);
-    std::free(problem.q);
-  }
-  void solve() {
-    std::fill(z.begin(), z.end(), 0.0);
-    std::fill(w.begin(), w.end(), 0.0);
-    if (solver_id == SICONOS_LCP_LEMKE)
-      lcp_lexicolemke(&problem, z.data(), w.data(), &info, options);
-    else if (solver_id == SICONOS_LCP_PGS)
-      lcp_pgs(&problem, z.data(), w.data(), &info, options);
-    else
-      lcp_newton_FB(&problem, z.data(), w.data(), &info, options);
-  }
-  int iterations() const { return options->iparam[SICONOS_IPARAM_ITER_DONE]; }
-};
 
 // Siconos's dense LU (its Newton-FB step) calls LAPACK; an OpenBLAS build spreads a
 // factorization of n >= 100 over helper threads, whose CPU time the thread clock does not
@@ -162,7 +117,7 @@ void run_all(const std::string& set, const std::string& name, const Problem& p, 
 #ifdef NSB_HAVE_SICONOS
   for (const auto& [id, label] : kSiconosSolvers) {
     const Silence quiet;
-    SiconosRun run(p, id);
+    SiconosRun run(p, id, kTolerance);
     run.solve();
     r.z = Eigen::Map<const Vector>(run.z.data(), p.size());
     evaluate(p, r);
@@ -434,7 +389,7 @@ void time_eq6_siconos(const Eq6Set& set, bool quick) {
   for (const auto& [id, label] : kSiconosSolvers) {
     const Silence quiet;
     std::vector<std::unique_ptr<SiconosRun>> runs;
-    for (const auto& p : lcps) runs.push_back(std::make_unique<SiconosRun>(p, id));
+    for (const auto& p : lcps) runs.push_back(std::make_unique<SiconosRun>(p, id, kTolerance));
     const bool refusal = id == SICONOS_LCP_PGS;
     measure_bodies(
         set, quick, label, [&](std::size_t k) { runs[k]->solve(); },

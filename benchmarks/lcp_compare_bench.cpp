@@ -23,6 +23,7 @@
 //   --every K           keep every K-th problem of each harvested collection (default 1)
 //   --quick             excitation 3, every 8th problem, shorter timing (the CTest smoke run)
 #include "benchmarks/performance_profile.hpp"
+#include "benchmarks/siconos_lcp.hpp"
 #include "io/build_info.hpp"
 #include "io/csv.hpp"
 #include "lcp/enumeration.hpp"
@@ -32,13 +33,6 @@
 #include "lcp/siconos_format.hpp"
 #include "runs/run.hpp"
 
-#ifdef NSB_HAVE_SICONOS
-#include <siconos/numerics/LCP_Solvers.h>
-#include <siconos/numerics/LinearComplementarityProblem.h>
-#include <siconos/numerics/NumericsMatrix.h>
-#include <siconos/numerics/SolverOptions.h>
-#include <siconos/numerics/lcp_cst.h>
-#endif
 
 #include <unistd.h>
 
@@ -191,43 +185,7 @@ Outcome run_ours(const SolverEntry& s, const lcp::Problem& p, double tol, bool q
 }
 
 #ifdef NSB_HAVE_SICONOS
-// One Siconos problem and solver options, owning their memory (as in lcp_bench).
-struct SiconosRun {
-  LinearComplementarityProblem problem{};
-  SolverOptions* options = nullptr;
-  std::vector<double> z, w;
-  int info = 0;
-  int id = 0;
-  SiconosRun(const lcp::Problem& p, int solver_id, double tol) : id(solver_id) {
-    const int n = static_cast<int>(p.size());
-    problem.size = n;
-    problem.M = NM_create(NM_DENSE, n, n);
-    std::memcpy(problem.M->matrix0, p.M.data(), sizeof(double) * static_cast<std::size_t>(n * n));
-    problem.q = static_cast<double*>(std::malloc(sizeof(double) * static_cast<std::size_t>(n)));
-    std::memcpy(problem.q, p.q.data(), sizeof(double) * static_cast<std::size_t>(n));
-    options = solver_options_create(id);
-    options->dparam[SICONOS_DPARAM_TOL] = tol;
-    z.assign(static_cast<std::size_t>(n), 0.0);
-    w.assign(static_cast<std::size_t>(n), 0.0);
-  }
-  SiconosRun(const SiconosRun&) = delete;
-  SiconosRun& operator=(const SiconosRun&) = delete;
-  ~SiconosRun() {
-    solver_options_delete(options);
-    NM_free(problem.M);
-    std::free(problem.q);
-  }
-  void solve() {
-    std::fill(z.begin(), z.end(), 0.0);
-    std::fill(w.begin(), w.end(), 0.0);
-    if (id == SICONOS_LCP_LEMKE)
-      lcp_lexicolemke(&problem, z.data(), w.data(), &info, options);
-    else if (id == SICONOS_LCP_PGS)
-      lcp_pgs(&problem, z.data(), w.data(), &info, options);
-    else
-      lcp_newton_FB(&problem, z.data(), w.data(), &info, options);
-  }
-};
+using bench::SiconosRun;
 
 const std::pair<int, const char*> kSiconosSolvers[] = {
     {SICONOS_LCP_LEMKE, "siconos_lexicolemke"},
