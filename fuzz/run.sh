@@ -35,7 +35,7 @@ seed() {  # seed TARGET: fills $build/corpus/TARGET (kept between runs)
       { echo "solver.step=1e-3"; cat scenes/bouncing-ball.toml; } > "$dir/seed-override" ;;
     fuzz_records)
       for f in data/ground-motions/*; do
-        [[ -f $f ]] || continue  # the record suites' folders: their files are records too
+        [[ -f $f ]] || continue  # a folder (a record suite) is not itself a record
         case ${f,,} in
           *.at2) { printf '\x00'; head -c 4096 "$f"; } > "$dir/seed-$i" ;;
           *.csv) { printf '\x01'; head -c 4096 "$f"; } > "$dir/seed-$i" ;;
