@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,6 +52,39 @@ struct PowerTerms {
 struct EnergyState {
   double stored = 0.0;      // recoverable potential: elastic springs, gravity
   double hysteretic = 0.0;  // energy dissipated by hysteresis since t0 (>= 0)
+};
+
+// The end of an accepted step, as every integrator hands it to System::accept_step.
+struct AcceptedStep {
+  double t = 0.0;                      // time at the end of the step [s]
+  double h = 0.0;                      // the step's length [s]
+  const Vector* q = nullptr;           // q and u at t (sizes dofs())
+  const Vector* u = nullptr;
+  // The normal contact impulse of each contact over the step [kN s] (size contacts()):
+  // Moreau–Jean's P_N of the step; event-driven: the impacts' impulses plus the integral of
+  // the closed phases' lambda_N; compliance: the integral of the law's force. Divided by h it
+  // is the step's mean contact force.
+  const Vector* normal_impulse = nullptr;
+};
+
+// What the structure did in an accepted step (System::accept_step).
+enum class StepVerdict {
+  kContinue,         // nothing that changes the problem
+  kContactsRemoved,  // a contact is gone for the rest of the run (a broken shear key): it is
+                     //   far from now on, and an integrator that keeps a contact set rebuilds it
+  kUnseated,         // a deck end lost its seat: the run stops here (RunStatus::kUnseated)
+};
+
+// One limit state the system watches (docs/limit-states.md): a result of the run, not a
+// failure. margin > 0 while the limit is not reached, in `unit`.
+struct LimitStateValue {
+  std::string name;            // summary.json "limit_states" key, e.g. "unseating_left"
+  std::string unit;            // unit of margin ("m", "kN", "-", "rad")
+  bool exceeded = false;
+  double time = std::numeric_limits<double>::quiet_NaN();    // first time exceeded [s]
+  double margin = std::numeric_limits<double>::quiet_NaN();  // smallest margin over the run
+  int removes_contact = 0;     // 1-based contact this limit state removes once exceeded (a
+                               //   broken key's contact); 0 for none
 };
 
 class System {
@@ -97,6 +131,13 @@ class System {
                                std::vector<ContactData>& out) const {
     contact_data(t, q, u, out);
   }
+
+  // Called by every integrator once per accepted step, after commit(): the system updates its
+  // limit states (a key that breaks, a seat that is lost) and says whether the problem
+  // changed or the run must stop. The default watches nothing.
+  virtual StepVerdict accept_step(const AcceptedStep& /*step*/) { return StepVerdict::kContinue; }
+  // The limit states as they stand (after a run: over the whole run). The default: none.
+  virtual std::vector<LimitStateValue> limit_states() const { return {}; }
 
   // Energy bookkeeping at the trial state.
   virtual PowerTerms power(double t, const Vector& q, const Vector& u) const = 0;
