@@ -29,8 +29,9 @@ max |difference| / peak |nsbridge| over the run, per column; it passes when the 
 most --tolerance (default 1e-3, 0.1 % of the peak).
 
 Usage: siconos_two_frame.py --nsbridge build/app/nsbridge [--scene ...] [--tolerance 1e-3]
-       [--perturb-stiffness 1.01]   (scales frame 1's first bent on the Siconos side only:
+       [--perturb-stiffness 1.01]   (scales frame 2's first bent on the Siconos side only:
                                      the deliberate break the check must catch)
+       [--jacobian-at-start]        (diagnostic: Siconos's W_N at q_k, see StepStart)
 Exit status 0 pass, 1 fail, 77 Siconos not importable (CTest SKIP_RETURN_CODE).
 """
 import argparse
@@ -139,6 +140,7 @@ class CornerOnFace(sk.LagrangianScleronomousR):
         # A SimpleMatrix owned here: Siconos keeps a pointer to it between calls.
         self.jac = sk.SimpleMatrix(1, 6)
         self.setJachqPtr(self.jac)
+        self.step = None  # a StepStart: W_N at q_k in place of Siconos's prediction
 
     def pose(self, q, i):
         return np.array([self.rest[i] + q[3 * i], q[3 * i + 1]]), q[3 * i + 2]
@@ -161,6 +163,8 @@ class CornerOnFace(sk.LagrangianScleronomousR):
         y[0] = self.gap(q)
 
     def computeJachq(self, q, z):
+        if self.step is not None and self.step.predicted(q):
+            q = self.step.q_start
         _, n, r, d = self.kinematics(q)
         row = np.zeros(6)
         o = 3 * self.body
@@ -202,6 +206,25 @@ def contacts(scene):
     return out
 
 
+class StepStart:
+    """The diagnostic --jacobian-at-start: MoreauJeanOSI evaluates the relations at its
+    predicted position q_k + h u_k before the step's LCP; this hands them q_k instead, where
+    nsbridge takes W_N (docs/moreau-jean.md). A Jacobian asked at the prediction (to round-off)
+    is evaluated at q_k; every other call, at the q Siconos gives."""
+
+    def __init__(self, h):
+        self.h, self.q_start, self.q_predicted = h, np.zeros(6), np.zeros(6)
+
+    def begin(self, q, u):
+        self.q_start, self.q_predicted = q, q + self.h * u
+
+    def predicted(self, q):
+        q = np.asarray(q)
+        scale = 1e-15 * (1.0 + np.max(np.abs(q)))
+        return (np.max(np.abs(q - self.q_predicted)) <= scale
+                and np.max(np.abs(q - self.q_start)) > 0.0)
+
+
 class Frames(sk.LagrangianLinearTIDS):
     """M dv + C v + K0 q = F_ext(t) + p, F_ext = K0 e_y u_g(t) + C e_y v_g(t)."""
 
@@ -218,11 +241,11 @@ class Frames(sk.LagrangianLinearTIDS):
         f[:] = self.k_e * d + self.c_e * v
 
 
-def run_siconos(scene, scene_dir, perturb):
-    """Siconos's history: t, the 6 coordinates and the 6 gaps after every step. TimeStepping
-    keeps its Newton loop: with nonlinear relations it iterates the step and evaluates W_N at
-    the iterates of q_k+1, where nsbridge takes W_N at q_k (docs/moreau-jean.md); that is the
-    difference the check measures (docs/verification.md)."""
+def run_siconos(scene, scene_dir, perturb, jacobian_at_start=False):
+    """Siconos's history: t, the 6 coordinates and the 6 gaps after every step.
+    MoreauJeanOSI evaluates the relations' W_N at its prediction q_k + h u_k, nsbridge at q_k
+    (docs/moreau-jean.md): the difference the check measures (docs/verification.md), unless
+    jacobian_at_start hands Siconos's relations q_k there (StepStart)."""
     M, K, C = matrices(scene, perturb)
     t_rec, a_rec = read_record(os.path.join(scene_dir,
                                             scene["model"]["excitation"]["transverse_record"]))
@@ -232,7 +255,9 @@ def run_siconos(scene, scene_dir, perturb):
     nsds = sk.NonSmoothDynamicalSystem(0.0, end)
     nsds.insertDynamicalSystem(frames)
     keep = []  # the relations, laws and interactions must outlive the simulation
+    step = StepStart(h) if jacobian_at_start else None
     for relation, e in contacts(scene):
+        relation.step = step
         law = sk.NewtonImpactNSL(e)
         inter = sk.Interaction(law, relation)
         nsds.link(inter, frames)
@@ -244,6 +269,8 @@ def run_siconos(scene, scene_dir, perturb):
     rows = [[0.0] + [0.0] * 6 + [r.gap(np.zeros(6)) for r, _, _ in keep]]
     steps = round(end / h)
     for k in range(1, steps + 1):
+        if step is not None:
+            step.begin(np.array(frames.q()), np.array(frames.velocity()))
         sim.computeOneStep()
         q = np.array(frames.q())
         rows.append([k * h] + list(q) + [r.gap(q) for r, _, _ in keep])
@@ -279,6 +306,8 @@ def main():
                         help="largest allowed max |difference| / peak, per column")
     parser.add_argument("--perturb-stiffness", type=float, default=1.0,
                         help="factor on frame 2's first bent, Siconos side only")
+    parser.add_argument("--jacobian-at-start", action="store_true",
+                        help="diagnostic: Siconos's W_N at q_k, not at its prediction")
     args = parser.parse_args()
     with open(args.scene, "rb") as f:
         scene = tomllib.load(f)
@@ -287,7 +316,7 @@ def main():
         ours = run_nsbridge(args.nsbridge, args.scene, out_dir)
         middle = time.perf_counter()
     theirs = run_siconos(scene, os.path.dirname(os.path.abspath(args.scene)),
-                         args.perturb_stiffness)
+                         args.perturb_stiffness, args.jacobian_at_start)
     end = time.perf_counter()
     result = compare(ours, theirs)
     print(f"siconos_two_frame: h = {scene['solver']['step']} s, theta = "
