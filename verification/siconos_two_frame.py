@@ -43,16 +43,15 @@ import tempfile
 import time
 import tomllib
 
-import numpy as np
-
-try:
+try:  # the check needs Siconos (python3-siconos) and scipy; nothing else does
+    import numpy as np
     import siconos.kernel as sk
     import siconos.numerics as sn
-except ImportError as error:  # the check needs Siconos; nothing else does
-    print(f"siconos_two_frame: skipped, Siconos not importable ({error})")
+    from scipy.interpolate import CubicSpline
+    from scipy.linalg import eigh
+except ImportError as error:
+    print(f"siconos_two_frame: skipped, Siconos or scipy not importable ({error})")
     sys.exit(77)
-from scipy.interpolate import CubicSpline
-from scipy.linalg import eigh
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_SCENE = os.path.join(HERE, "..", "data", "siconos-two-frame", "scene.toml")
