@@ -1,6 +1,6 @@
 # Stability maps of every method (docs/benchmarks/stability.md). The full maps are
 #   benchmarks/stability/run.sh build/app/nsbridge out/stability
-# (about 630 runs of `nsbridge sweep`); CI runs the reduced grid of benchmarks/stability/ci/
+# (1134 runs of `nsbridge sweep`, about 4 min on 2 cores); CI runs the reduced grid of benchmarks/stability/ci/
 # and checks that every untrustworthy point of the maps carries its trust warning, and that
 # the check fails when its thresholds differ from the code's (runs::TrustLimits).
 find_program(NSB_PYTHON3 python3)
