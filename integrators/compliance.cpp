@@ -470,6 +470,7 @@ class ComplianceRun {
     accepted_.h = h;
     const StepVerdict verdict = system_.accept_step(accepted_);
     if (verdict == StepVerdict::kContactsRemoved) {
+      record_removed_contacts(system_, t_, recorder_);
       core_.evaluate(t_, x_, false, ContactFields::kAll);
       for (int i = 0; i < m_; ++i) {
         const auto ii = static_cast<std::size_t>(i);

@@ -278,7 +278,10 @@ StepVerdict EventDriven::accept_step() {
   const StepVerdict verdict = sys_.accept_step(accepted_);
   step_impulse_.setZero();
   t_start_ = t_;
-  if (verdict == StepVerdict::kContactsRemoved) drop_removed_contacts();
+  if (verdict == StepVerdict::kContactsRemoved) {
+    record_removed_contacts(sys_, t_, rec_);
+    drop_removed_contacts();
+  }
   if (verdict == StepVerdict::kUnseated) {
     book_.unseat(t_);
     book_.result().message = "unseated at t = " + format_number(t_) + " s";

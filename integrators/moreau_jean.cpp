@@ -363,6 +363,7 @@ bool MoreauJean::accept(double h, double t1) {
   accepted_.t = t1;
   accepted_.h = h;
   const StepVerdict verdict = system_.accept_step(accepted_);
+  if (verdict == StepVerdict::kContactsRemoved) record_removed_contacts(system_, t1, recorder_);
   // Only the normal part: the index set of the next step, Newton's law's gdot_N- and the
   // events read nothing else at t_k (the contact problem uses the full data of t_k+1).
   system_.contact_normals(t_, q_, u_, contacts_);

@@ -28,6 +28,15 @@ bool succeeded(RunStatus s) {
   return s == RunStatus::kCompleted || s == RunStatus::kCompletedWithFallbacks;
 }
 
+void record_removed_contacts(const System& system, double t, Recorder& recorder) {
+  for (const LimitStateValue& v : system.limit_states()) {
+    if (v.removes_contact > 0 && v.exceeded && v.time == t) {
+      recorder.event(t, v.removes_contact, EventKind::kWarning,
+                     v.name + " exceeded: contact removed");
+    }
+  }
+}
+
 bool is_result(RunStatus s) { return succeeded(s) || s == RunStatus::kUnseated; }
 
 void finish_status(RunResult& r, bool diverged, bool stalled, bool unseated) {

@@ -204,4 +204,10 @@ class Recorder {
   std::vector<Event> events_;
 };
 
+// After System::accept_step returned StepVerdict::kContactsRemoved at t: one "warning" event
+// at t on each contact that a limit state exceeded at t removes (LimitStateValue::
+// removes_contact), its note "<name> exceeded: contact removed" (a broken shear key). Only
+// then, so its allocations do not recur per step.
+void record_removed_contacts(const System& system, double t, Recorder& recorder);
+
 }  // namespace nsb::integrators

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace nsb::integrators {
 namespace {
@@ -56,6 +57,16 @@ class Breakable final : public SystemBase {
       return StepVerdict::kUnseated;
     }
     return StepVerdict::kContinue;
+  }
+
+  std::vector<LimitStateValue> limit_states() const override {
+    std::vector<LimitStateValue> out(1);
+    out[0].name = "floor";
+    out[0].unit = "kN";
+    out[0].exceeded = removed_;
+    out[0].time = removed_at;
+    out[0].removes_contact = 1;
+    return out;
   }
 
   int calls = 0, calls_after_stop = 0;
@@ -125,6 +136,16 @@ TEST_CASE("a removed contact is never active again, and the impulses before are 
     // Resting, the floor carries the weight: the impulses up to the removal sum to m g t.
     CHECK(s.impulse_before_removal == doctest::Approx(kGravity * s.removed_at).epsilon(2e-2));
     CHECK(s.impulse_after_removal == 0.0);
+    // The removal is an event on the contact, at its time.
+    int removals = 0;
+    for (const Event& e : rec.events()) {
+      if (e.kind != EventKind::kWarning) continue;
+      ++removals;
+      CHECK(e.t == s.removed_at);
+      CHECK(e.contact == 1);
+      CHECK(e.note == "floor exceeded: contact removed");
+    }
+    CHECK(removals == 1);
     // Free fall from the removal on.
     const double fall = 0.5 * kGravity * (end_time - s.removed_at) * (end_time - s.removed_at);
     const std::size_t y = rec.column("y"), lambda = rec.column("lambdaN1");
