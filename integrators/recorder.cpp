@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace nsb::integrators {
@@ -33,6 +34,7 @@ void record_removed_contacts(const System& system, double t, Recorder& recorder)
     if (v.removes_contact > 0 && v.exceeded && v.time == t) {
       recorder.event(t, v.removes_contact, EventKind::kWarning,
                      v.name + " exceeded: contact removed");
+      recorder.remove_contact(v.removes_contact - 1, t);
     }
   }
 }
@@ -77,6 +79,7 @@ Recorder::Recorder(const System& system, double sample_dt)
   if (!(sample_dt >= 0.0) || !std::isfinite(sample_dt)) {
     throw std::invalid_argument("output.sample_dt must be a finite number >= 0 [s]");
   }
+  removed_at_.assign(static_cast<std::size_t>(ncontacts_), std::numeric_limits<double>::infinity());
   column_info_.push_back({"t", ColumnKind::kTime, 0});
   int i = 0;
   for (auto& n : system.coordinate_names()) column_info_.push_back({n, ColumnKind::kCoordinate, i++});

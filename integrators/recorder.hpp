@@ -191,6 +191,11 @@ class Recorder {
   // One column as a vector.
   std::vector<double> series(std::string_view name) const;
   const std::vector<Event>& events() const { return events_; }
+  // Contact i (0-based) is gone from t on (System::accept_step removed it: a broken shear
+  // key); its gap columns after t are no contact's (record_removed_contacts).
+  void remove_contact(int i, double t) { removed_at_[static_cast<std::size_t>(i)] = t; }
+  // The time contact i (0-based) was removed; +infinity while it was not.
+  double removed_at(int i) const { return removed_at_[static_cast<std::size_t>(i)]; }
   std::size_t count(EventKind kind) const;
 
  private:
@@ -202,6 +207,7 @@ class Recorder {
   std::vector<Column> column_info_;
   std::vector<double> data_;
   std::vector<Event> events_;
+  std::vector<double> removed_at_;  // per contact [s]
 };
 
 // After System::accept_step returned StepVerdict::kContactsRemoved at t: one "warning" event
