@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace nsb::integrators {
@@ -28,13 +29,27 @@ bool succeeded(RunStatus s) {
   return s == RunStatus::kCompleted || s == RunStatus::kCompletedWithFallbacks;
 }
 
-void finish_status(RunResult& r, bool diverged, bool stalled) {
+void record_removed_contacts(const System& system, double t, Recorder& recorder) {
+  for (const LimitStateValue& v : system.limit_states()) {
+    if (v.removes_contact > 0 && v.exceeded && v.time == t) {
+      recorder.event(t, v.removes_contact, EventKind::kWarning,
+                     v.name + " exceeded: contact removed");
+      recorder.remove_contact(v.removes_contact - 1, t);
+    }
+  }
+}
+
+bool is_result(RunStatus s) { return succeeded(s) || s == RunStatus::kUnseated; }
+
+void finish_status(RunResult& r, bool diverged, bool stalled, bool unseated) {
   if (diverged) {
     r.status = RunStatus::kDiverged;
   } else if (stalled) {
     r.status = RunStatus::kStalled;
   } else if (r.lcp_unsolved > 0) {
     r.status = RunStatus::kContactUnsolved;
+  } else if (unseated) {
+    r.status = RunStatus::kUnseated;
   } else if (r.lcp_fallbacks > 0) {
     r.status = RunStatus::kCompletedWithFallbacks;
   } else {
@@ -64,6 +79,7 @@ Recorder::Recorder(const System& system, double sample_dt)
   if (!(sample_dt >= 0.0) || !std::isfinite(sample_dt)) {
     throw std::invalid_argument("output.sample_dt must be a finite number >= 0 [s]");
   }
+  removed_at_.assign(static_cast<std::size_t>(ncontacts_), std::numeric_limits<double>::infinity());
   column_info_.push_back({"t", ColumnKind::kTime, 0});
   int i = 0;
   for (auto& n : system.coordinate_names()) column_info_.push_back({n, ColumnKind::kCoordinate, i++});

@@ -46,6 +46,7 @@ Assembly::Assembly(Parts parts)
                  names(parts.bodies.size(), {"vx", "vy", "omega"})),
       parts_(std::move(parts)) {
   validate_parts();
+  build_keys();
   const auto n = static_cast<Eigen::Index>(3 * parts_.bodies.size());
   integrators::Matrix mass = integrators::Matrix::Zero(n, n);
   integrators::Vector q0(n), u0(n);
@@ -336,6 +337,7 @@ void Assembly::contact_data(double t, const integrators::Vector& q, const integr
     parts::write_body_contact(k, c.offset_a, c.offset_b, c.restitution, c.friction,
                               out[c.slot]);
   }
+  mark_broken(out);
 }
 
 void Assembly::contact_normals(double t, const integrators::Vector& q,
@@ -363,6 +365,7 @@ void Assembly::contact_normals(double t, const integrators::Vector& q,
                                          u.segment<3>(c.offset_b));
     parts::write_body_contact_normal(k, c.offset_a, c.offset_b, out[c.slot]);
   }
+  mark_broken(out);
 }
 
 integrators::PowerTerms Assembly::power(double t, const integrators::Vector&,

@@ -32,6 +32,7 @@
 #include "models/rayleigh.hpp"
 #include "models/takeda.hpp"
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,6 +47,7 @@ class Assembly final : public integrators::SystemBase {
     std::vector<parts::Bent> bents;
     std::vector<parts::CornerContact> contacts;    // output order (gN1, gN2, ...)
     std::optional<parts::RayleighParts> damping;   // needs a bent on every body (K0 > 0)
+    std::vector<parts::ShearKey> shear_keys;       // breakable contacts (models/shear_keys.hpp)
   };
 
   // Throws std::invalid_argument naming the part and field ("bodies[1].mass: ...") for bad
@@ -83,6 +85,19 @@ class Assembly final : public integrators::SystemBase {
                                 const integrators::Vector& u) const override;
   // stored: elastic energy of the bents; hysteretic: dissipated by them (trial state).
   integrators::EnergyState energy(double t, const integrators::Vector& q) const override;
+
+  // The shear keys (models/shear_keys.cpp): watch_keys updates each key's peak mean force
+  // over the accepted step (normal impulse / h) and breaks it when that exceeds its capacity
+  // (kContactsRemoved: the key's contact is far from then on); key_limit_states() reports one
+  // "shear_key_..." limit state per key.
+  integrators::StepVerdict watch_keys(const integrators::AcceptedStep& step);
+  std::vector<integrators::LimitStateValue> key_limit_states() const;
+  integrators::StepVerdict accept_step(const integrators::AcceptedStep& step) override {
+    return watch_keys(step);
+  }
+  std::vector<integrators::LimitStateValue> limit_states() const override {
+    return key_limit_states();
+  }
 
  private:
   // One bent with its two springs, its body's DOF offset and its motions in motions_.
@@ -124,7 +139,23 @@ class Assembly final : public integrators::SystemBase {
     double restitution = 0.0, friction = 0.0;
   };
 
+  // One shear key as the run goes: its contact's slot, the peak mean force [kN], and whether
+  // and when it broke.
+  struct KeyState {
+    std::size_t slot = 0;
+    double capacity = 0.0, peak = 0.0;
+    bool broken = false;
+    double time = std::numeric_limits<double>::quiet_NaN();
+  };
+
   void validate_parts() const;
+  void build_keys();  // keys_ from parts_.shear_keys, checked
+  // Marks the contacts of broken keys far in `out` (after their kinematics were written).
+  void mark_broken(std::vector<integrators::ContactData>& out) const {
+    for (const auto& k : keys_) {
+      if (k.broken) out[k.slot].far = true;
+    }
+  }
   void build_bents(const integrators::Matrix& mass);
   void build_damping(const integrators::Matrix& mass);
   void build_contacts();
@@ -147,6 +178,7 @@ class Assembly final : public integrators::SystemBase {
   std::vector<SeatContact> seat_contacts_;
   std::vector<BodyContact> body_contacts_;
   RayleighDamping rayleigh_;
+  std::vector<KeyState> keys_;
   // Workspaces of the const evaluations, sized at construction.
   mutable std::vector<Eigen::Vector3d> us_dot_;  // us_dot per body at the motions' time
   mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time

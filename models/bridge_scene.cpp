@@ -418,28 +418,42 @@ SegmentedDeck read_segments(const Section& m, Bridge::Parameters& p) {
   return d;
 }
 
+// The assembly of `parts`, with the shear keys of [model.shear_keys] when given.
+std::unique_ptr<integrators::System> assemble(const Section& m, Assembly::Parts parts,
+                                              const std::optional<ShearKeyParameters>& keys) {
+  try {
+    if (keys) add_shear_keys(parts, *keys);
+    return std::make_unique<Assembly>(std::move(parts));
+  } catch (const std::invalid_argument& e) {
+    m.rethrow(e);
+  }
+}
+
 // The bridge of [[model.segments]]: an assembly of parts (models/bridge_parts.hpp).
 std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::Parameters& p,
                                                       SegmentedDeck& d, const BentsRead& bents,
-                                                      Bridge::Excitation exc) {
+                                                      Bridge::Excitation exc,
+                                                      const std::optional<ShearKeyParameters>& keys) {
   d.bent_segment = bents.segments;
   for (std::size_t i = 0; i < d.segments.size(); ++i) {
     if (!torsionally_restrained(p.bents, d.bent_segment, static_cast<int>(i))) {
       m.fail("bents", "segment " + std::to_string(i) + " " + kTwoBents);
     }
   }
+  Assembly::Parts parts;
   try {
-    return std::make_unique<Assembly>(bridge_parts(p, d, exc));
+    parts = bridge_parts(p, d, exc);
   } catch (const std::invalid_argument& e) {
     m.rethrow(e);
   }
+  return assemble(m, std::move(parts), keys);
 }
 
 }  // namespace
 
 BridgeScene build_bridge(Section& m) {
   m.only({"kind", "skew_deg", "deck", "segments", "hinges", "gaps", "damping", "bents", "seats",
-          "excitation"});
+          "excitation", "shear_keys"});
   const bool segmented = m.has("segments");
   if (!segmented) {
     for (const char* key : {"skew_deg", "hinges"}) {
@@ -459,11 +473,17 @@ BridgeScene build_bridge(Section& m) {
   read_damping(m, p);
   const BentsRead bents = read_bents(m, lengths, p);
   const SeatMotions seats = read_seats(m, p);
+  std::optional<ShearKeyParameters> keys;
+  if (m.subtable("shear_keys") != nullptr) {
+    read_table(m, "shear_keys", shear_key_fields(), keys.emplace());
+  }
   BridgeScene out;
   // The system for a set of support motions: the one-deck bridge, or the segmented one.
   const auto make = [&](Bridge::Excitation exc) -> std::unique_ptr<integrators::System> {
-    if (segmented) return segmented_bridge(m, p, segments, bents, std::move(exc));
+    if (segmented) return segmented_bridge(m, p, segments, bents, std::move(exc), keys);
     try {
+      // A part the benchmark bridge has not (shear keys): the same bridge as an assembly.
+      if (keys) return assemble(m, bridge_parts(p, exc), keys);
       return std::make_unique<Bridge>(p, std::move(exc));
     } catch (const std::invalid_argument& e) {
       if (deck && std::string(e.what()).rfind("initial_position", 0) == 0) deck->rethrow(e);

@@ -109,6 +109,15 @@ struct CornerContact {
   double friction = 0.0;        // Coulomb's mu >= 0
 };
 
+// A shear key (models/shear_keys.hpp): contact `contact` (0-based, among the assembly's
+// contacts) is a key that breaks when the mean contact force of an accepted step, normal
+// impulse / h, exceeds `capacity`; from then on the contact is far for good.
+struct ShearKey {
+  int contact = 0;          // >= 0, the key's contact
+  std::string name;         // the limit state's name, e.g. "shear_key_left_plus"
+  double capacity = 0.0;    // [kN], >= 0; 0: unbreakable
+};
+
 // Kinematics of a corner of body A against a face of body B (both free). corner_contact()
 // (models/contact_geometry.hpp) with B as an obstacle moving at u_B gives g_N, g_T, the columns
 // of A and the relative rates; its rheonomic terms are the part of the rates linear in u_B,

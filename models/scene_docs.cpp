@@ -88,6 +88,7 @@ void add_bridge_tables(std::vector<DocTable>& out) {
   out.push_back(table("model.deck", bridge_deck_fields(), bridge));
   out.push_back(table("model.gaps", bridge_gap_fields(), bridge));
   out.push_back(table("model.damping", bridge_damping_fields(), bridge));
+  out.push_back(table("model.shear_keys", shear_key_fields(), ShearKeyParameters{}));
   const DefaultNotes derived{{"position", "required"},
                              {"height", "none"},
                              {"stiffness_longitudinal", "derived"},

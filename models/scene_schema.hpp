@@ -11,6 +11,7 @@
 #include "models/deck_chain.hpp"
 #include "models/parts.hpp"
 #include "models/rigid_deck.hpp"
+#include "models/shear_keys.hpp"
 #include "models/simple_systems.hpp"
 
 #include <array>
@@ -102,6 +103,9 @@ std::span<const config::Field<Bridge::Parameters>> bridge_deck_fields();     // 
 std::span<const config::Field<Bridge::Parameters>> bridge_gap_fields();      // [model.gaps]
 std::span<const config::Field<Bridge::Parameters>> bridge_damping_fields();  // [model.damping]
 std::span<const config::Field<Bridge::Parameters>> bridge_seat_fields();     // [model.seats]
+
+// [model.shear_keys]: the four exterior shear keys at the abutments (models/shear_keys.hpp).
+std::span<const config::Field<ShearKeyParameters>> shear_key_fields();
 
 // [model] keys of a deck in several bodies (a bridge in [[model.segments]], a deck chain):
 // the skew of every end face.

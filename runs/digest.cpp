@@ -75,7 +75,9 @@ Digest make_digest(const Recorder& history, const integrators::RunResult& result
     if (info[c].kind == ColumnKind::kCoordinate) {
       d.coordinates.push_back(coordinate_peak(history, c));
     } else if (info[c].kind == ColumnKind::kGap) {
-      for (std::size_t r = 0; r < history.rows(); ++r) {
+      // A removed contact (a broken shear key) counts up to its removal only.
+      const double until = history.removed_at(info[c].index);
+      for (std::size_t r = 0; r < history.rows() && history.at(r, 0) <= until; ++r) {
         d.max_penetration = std::max(d.max_penetration, -history.at(r, c));
       }
     }

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace nsb::runs {
 
@@ -16,6 +18,19 @@ constexpr double kRoundoffDepth = 1e-9;
 
 // Three significant digits for messages (printf's %.3g).
 std::string brief(double x) { return integrators::format_number(x); }
+
+// The smallest and largest value of column c over the rows at times up to `until` [s].
+ColumnPeak peak_until(const integrators::Recorder& history, std::size_t c, double until) {
+  ColumnPeak p;
+  bool first = true;
+  for (std::size_t r = 0; r < history.rows() && history.at(r, 0) <= until; ++r) {
+    const double v = history.at(r, c), t = history.at(r, 0);
+    if (first || v < p.min) std::tie(p.min, p.t_min) = std::pair(v, t);
+    if (first || v > p.max) std::tie(p.max, p.t_max) = std::pair(v, t);
+    first = false;
+  }
+  return p;
+}
 
 }  // namespace
 
@@ -100,14 +115,18 @@ std::vector<std::string> result_warnings(const integrators::Recorder& history,
   const auto& info = history.column_info();
   for (std::size_t c = 1; c < info.size(); ++c) {
     if (info[c].kind != integrators::ColumnKind::kGap) continue;
-    // peaks[c - 1]: the peaks skip the time column.
-    const ColumnPeak& gap = digest.peaks[c - 1];
+    // peaks[c - 1]: the peaks skip the time column. A removed contact (a broken shear key)
+    // is checked up to its removal only: after it, its gap is no contact's.
+    const int contact = info[c].index;
+    const ColumnPeak gap = std::isinf(history.removed_at(contact))
+                               ? digest.peaks[c - 1]
+                               : peak_until(history, c, history.removed_at(contact));
     const double lo = gap.min, hi = gap.max;
     if (!(lo < -kRoundoffDepth)) continue;
     const double depth = -lo;
     const double range = hi - lo;
     if (depth > limits.penetration * range) {
-      w.push_back("penetration: contact " + std::to_string(info[c].index + 1) + " penetrates " +
+      w.push_back("penetration: contact " + std::to_string(contact + 1) + " penetrates " +
                   brief(depth) + " m at t = " + brief(gap.t_min) + " s, " +
                   brief(100.0 * depth / range) + " % of its range of gaps " + brief(range) +
                   " m; the method is trusted up to " + brief(100.0 * limits.penetration) +

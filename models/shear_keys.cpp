@@ -1,0 +1,99 @@
+#include "models/shear_keys.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace nsb::models {
+
+namespace {
+
+void require(bool ok, const std::string& field, const std::string& what) {
+  if (!ok) throw std::invalid_argument(field + ": " + what);
+}
+
+// One key: corner `corner` of body `body` against a face of seat `seat` on side s = +-1.
+void add_key(Assembly::Parts& parts, const ShearKeyParameters& keys, int body, int corner,
+             int seat, double side, const std::string& name) {
+  const parts::RigidBody& b = parts.bodies[static_cast<std::size_t>(body)];
+  const Eigen::Vector2d at_rest = b.rest.head<2>() + b.corner(corner);
+  const Eigen::Vector2d reference = parts.prescribed[static_cast<std::size_t>(seat)].reference;
+  const Eigen::Vector2d point(at_rest.x(), side * (0.5 * b.width + keys.gap));
+  parts.shear_keys.push_back({.contact = static_cast<int>(parts.contacts.size()), .name = name,
+                              .capacity = keys.capacity});
+  parts.contacts.push_back({.body = body, .corner = corner, .obstacle = parts::Obstacle::kPrescribed,
+                            .obstacle_index = seat,
+                            .face = {.point = point - reference,
+                                     .normal = Eigen::Vector2d(0.0, -side)},
+                            .restitution = keys.restitution, .friction = keys.friction});
+}
+
+}  // namespace
+
+void ShearKeyParameters::validate(const std::string& prefix) const {
+  require(std::isfinite(gap) && gap >= 0.0, prefix + "gap", "must be >= 0 [m]");
+  require(restitution >= 0.0 && restitution <= 1.0, prefix + "restitution",
+          "must be in [0, 1]");
+  require(std::isfinite(friction) && friction >= 0.0, prefix + "friction", "must be >= 0");
+  require(std::isfinite(capacity) && capacity >= 0.0, prefix + "capacity",
+          "must be >= 0 [kN] (0: unbreakable)");
+}
+
+void add_shear_keys(Assembly::Parts& parts, const ShearKeyParameters& keys) {
+  keys.validate("shear_keys.");
+  require(!parts.bodies.empty() && parts.prescribed.size() >= 2, "shear_keys",
+          "need a deck and the two abutment seats (prescribed bodies 0 and 1)");
+  const int last = static_cast<int>(parts.bodies.size()) - 1;
+  add_key(parts, keys, 0, 0, 0, 1.0, "shear_key_left_plus");
+  add_key(parts, keys, 0, 1, 0, -1.0, "shear_key_left_minus");
+  add_key(parts, keys, last, 2, 1, 1.0, "shear_key_right_plus");
+  add_key(parts, keys, last, 3, 1, -1.0, "shear_key_right_minus");
+}
+
+void Assembly::build_keys() {
+  for (std::size_t k = 0; k < parts_.shear_keys.size(); ++k) {
+    const parts::ShearKey& key = parts_.shear_keys[k];
+    const std::string prefix = "shear_keys[" + std::to_string(k) + "].";
+    require(key.contact >= 0 && key.contact < contacts(), prefix + "contact",
+            "must name one of the contacts");
+    require(std::isfinite(key.capacity) && key.capacity >= 0.0, prefix + "capacity",
+            "must be >= 0 [kN] (0: unbreakable)");
+    keys_.push_back({.slot = static_cast<std::size_t>(key.contact), .capacity = key.capacity});
+  }
+}
+
+// The step's mean force of each key, normal impulse / h: a key with a capacity breaks at the
+// first step where it exceeds it. Under rigid impacts (Moreau–Jean, event-driven) an impact's
+// impulse over one step gives a mean force that grows as h shrinks (docs/bridge.md).
+integrators::StepVerdict Assembly::watch_keys(const integrators::AcceptedStep& step) {
+  auto verdict = integrators::StepVerdict::kContinue;
+  for (KeyState& k : keys_) {
+    if (k.broken) continue;
+    const double force = (*step.normal_impulse)[static_cast<Eigen::Index>(k.slot)] / step.h;
+    k.peak = std::max(k.peak, force);
+    if (k.capacity > 0.0 && force > k.capacity) {
+      k.broken = true;
+      k.time = step.t;
+      verdict = integrators::StepVerdict::kContactsRemoved;
+    }
+  }
+  return verdict;
+}
+
+std::vector<integrators::LimitStateValue> Assembly::key_limit_states() const {
+  std::vector<integrators::LimitStateValue> out;
+  for (std::size_t k = 0; k < keys_.size(); ++k) {
+    const KeyState& s = keys_[k];
+    integrators::LimitStateValue v;
+    v.name = parts_.shear_keys[k].name;
+    v.unit = "kN";
+    v.exceeded = s.broken;
+    v.time = s.time;
+    // An unbreakable key has no margin: NaN, as a limit state that is not watched.
+    if (s.capacity > 0.0) v.margin = s.capacity - s.peak;
+    v.removes_contact = static_cast<int>(s.slot) + 1;
+    out.push_back(v);
+  }
+  return out;
+}
+
+}  // namespace nsb::models
