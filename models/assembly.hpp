@@ -28,6 +28,7 @@
 
 #include "integrators/system.hpp"
 #include "models/contact_geometry.hpp"
+#include "models/limit_watch.hpp"
 #include "models/parts.hpp"
 #include "models/rayleigh.hpp"
 #include "models/takeda.hpp"
@@ -46,6 +47,7 @@ class Assembly final : public integrators::SystemBase {
     std::vector<parts::Bent> bents;
     std::vector<parts::CornerContact> contacts;    // output order (gN1, gN2, ...)
     std::optional<parts::RayleighParts> damping;   // needs a bent on every body (K0 > 0)
+    LimitSpec limits;                              // the limit states watched (none: empty)
   };
 
   // Throws std::invalid_argument naming the part and field ("bodies[1].mass: ...") for bad
@@ -83,6 +85,13 @@ class Assembly final : public integrators::SystemBase {
                                 const integrators::Vector& u) const override;
   // stored: elastic energy of the bents; hysteretic: dissipated by them (trial state).
   integrators::EnergyState energy(double t, const integrators::Vector& q) const override;
+
+  // The limit states of Parts::limits (models/limit_watch.hpp, docs/limit-states.md).
+  integrators::StepVerdict accept_step(const integrators::AcceptedStep& step) override;
+  std::vector<integrators::LimitStateValue> limit_states() const override;
+  // Updates the watched limit states with an accepted step: kUnseated when a seat is lost.
+  integrators::StepVerdict watch_limits(const integrators::AcceptedStep& step);
+  std::vector<integrators::LimitStateValue> watched_limit_states() const;
 
  private:
   // One bent with its two springs, its body's DOF offset and its motions in motions_.
@@ -150,6 +159,10 @@ class Assembly final : public integrators::SystemBase {
   // Workspaces of the const evaluations, sized at construction.
   mutable std::vector<Eigen::Vector3d> us_dot_;  // us_dot per body at the motions' time
   mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time
+  // The watched limit states and the contact gaps they read, sized at construction.
+  LimitWatch watch_;
+  std::vector<integrators::ContactData> watch_gaps_;
+  void build_limits();
 };
 
 }  // namespace nsb::models

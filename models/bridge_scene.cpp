@@ -155,12 +155,16 @@ takeda::Parameters bent_spring(const Section& s, const BentSettings& b, const ch
 
 // [[model.bents]]: the bents, the segment each carries and their wave-passage delays [s].
 // lengths: the length of each segment ({deck length} with [model.deck]).
+// heights: each bent's `height` [m], 0 where absent; need_height: [model.limit_states]
+// drift_ratio is given, so every bent must give its height.
 struct BentsRead {
   std::vector<double> delays;
   std::vector<int> segments;
+  std::vector<double> heights;
 };
 
-BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridge::Parameters& p) {
+BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridge::Parameters& p,
+                     bool need_height) {
   BentsRead out;
   const bool one = !m.has("segments");
   const auto* bents = m.array_of_tables("bents");
@@ -196,6 +200,11 @@ BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridg
                        bent_spring(s, b, "transverse")});
     out.delays.push_back(b.delay);
     out.segments.push_back(b.segment);
+    if (need_height && !s.has("height")) {
+      s.fail_table("missing key height (bent height H [m], needed by [model.limit_states] "
+                   "drift_ratio)");
+    }
+    out.heights.push_back(s.has("height") ? b.design.height : 0.0);
   }
   return out;
 }
@@ -414,13 +423,14 @@ SegmentedDeck read_segments(const Section& m, Bridge::Parameters& p) {
   SegmentedDeck d;
   d.segments = read_bodies(m, "segments");
   d.hinges = read_joints(m, "hinges", d.segments.size() - 1,
-                         "one between each two neighbouring segments");
+                         "one between each two neighbouring segments", {"seat_length"});
   return d;
 }
 
 // The bridge of [[model.segments]]: an assembly of parts (models/bridge_parts.hpp).
 std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::Parameters& p,
                                                       SegmentedDeck& d, const BentsRead& bents,
+                                                      const BridgeLimits& limits,
                                                       Bridge::Excitation exc) {
   d.bent_segment = bents.segments;
   for (std::size_t i = 0; i < d.segments.size(); ++i) {
@@ -429,7 +439,23 @@ std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::
     }
   }
   try {
-    return std::make_unique<Assembly>(bridge_parts(p, d, exc));
+    Assembly::Parts parts = bridge_parts(p, d, exc);
+    parts.limits = bridge_limit_spec(limits, d.segments.size());
+    return std::make_unique<Assembly>(std::move(parts));
+  } catch (const std::invalid_argument& e) {
+    m.rethrow(e);
+  }
+}
+
+// The one-deck bridge with limit states watched: the benchmark bridge's parts
+// (bridge_parts(p, excitation), the same operations as models::Bridge) and their LimitSpec.
+std::unique_ptr<integrators::System> watched_bridge(const Section& m, const Bridge::Parameters& p,
+                                                    const BridgeLimits& limits,
+                                                    Bridge::Excitation exc) {
+  try {
+    Assembly::Parts parts = bridge_parts(p, exc);
+    parts.limits = bridge_limit_spec(limits, 1);
+    return std::make_unique<Assembly>(std::move(parts));
   } catch (const std::invalid_argument& e) {
     m.rethrow(e);
   }
@@ -439,7 +465,7 @@ std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::
 
 BridgeScene build_bridge(Section& m) {
   m.only({"kind", "skew_deg", "deck", "segments", "hinges", "gaps", "damping", "bents", "seats",
-          "excitation"});
+          "excitation", "abutments", "limit_states"});
   const bool segmented = m.has("segments");
   if (!segmented) {
     for (const char* key : {"skew_deg", "hinges"}) {
@@ -457,12 +483,15 @@ BridgeScene build_bridge(Section& m) {
   if (!segmented) lengths.push_back(p.deck.length);
   read_table(m, "gaps", bridge_gap_fields(), p);
   read_damping(m, p);
-  const BentsRead bents = read_bents(m, lengths, p);
+  BridgeLimitKeys limits = read_bridge_limits(m);
+  const BentsRead bents = read_bents(m, lengths, p, limits.limits.drift_ratio > 0);
+  limits.limits.bent_heights = bents.heights;
   const SeatMotions seats = read_seats(m, p);
   BridgeScene out;
   // The system for a set of support motions: the one-deck bridge, or the segmented one.
   const auto make = [&](Bridge::Excitation exc) -> std::unique_ptr<integrators::System> {
-    if (segmented) return segmented_bridge(m, p, segments, bents, std::move(exc));
+    if (segmented) return segmented_bridge(m, p, segments, bents, limits.limits, std::move(exc));
+    if (limits.requested) return watched_bridge(m, p, limits.limits, std::move(exc));
     try {
       return std::make_unique<Bridge>(p, std::move(exc));
     } catch (const std::invalid_argument& e) {

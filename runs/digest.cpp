@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace nsb::runs {
 
@@ -67,15 +68,26 @@ void count_events(const Recorder& h, Digest& d) {
 
 }  // namespace
 
-Digest make_digest(const Recorder& history, const integrators::RunResult& result) {
+double removal_time(const std::vector<integrators::LimitStateValue>& limit_states, int index) {
+  double t = INFINITY;
+  for (const auto& v : limit_states) {
+    if (v.exceeded && v.removes_contact == index + 1) t = std::min(t, v.time);
+  }
+  return t;
+}
+
+Digest make_digest(const Recorder& history, const integrators::RunResult& result,
+                   std::vector<integrators::LimitStateValue> limit_states) {
   Digest d;
+  d.limit_states = std::move(limit_states);
   const auto& info = history.column_info();
   for (std::size_t c = 1; c < info.size(); ++c) d.peaks.push_back(column_peak(history, c));
   for (std::size_t c = 0; c < info.size(); ++c) {
     if (info[c].kind == ColumnKind::kCoordinate) {
       d.coordinates.push_back(coordinate_peak(history, c));
     } else if (info[c].kind == ColumnKind::kGap) {
-      for (std::size_t r = 0; r < history.rows(); ++r) {
+      const double removed = removal_time(d.limit_states, info[c].index);
+      for (std::size_t r = 0; r < history.rows() && !(history.at(r, 0) > removed); ++r) {
         d.max_penetration = std::max(d.max_penetration, -history.at(r, c));
       }
     }

@@ -17,6 +17,20 @@ constexpr double kRoundoffDepth = 1e-9;
 // Three significant digits for messages (printf's %.3g).
 std::string brief(double x) { return integrators::format_number(x); }
 
+// min, max and their times of column c over the samples at t <= until.
+ColumnPeak peak_until(const integrators::Recorder& h, std::size_t c, double until) {
+  ColumnPeak p;
+  p.max = -INFINITY;
+  p.min = INFINITY;
+  for (std::size_t r = 0; r < h.rows() && !(h.at(r, 0) > until); ++r) {
+    const double v = h.at(r, c);
+    if (!std::isfinite(v)) continue;
+    if (v > p.max) p.max = v, p.t_max = h.at(r, 0);
+    if (v < p.min) p.min = v, p.t_min = h.at(r, 0);
+  }
+  return p;
+}
+
 }  // namespace
 
 void TrustLimits::validate() const {
@@ -100,8 +114,11 @@ std::vector<std::string> result_warnings(const integrators::Recorder& history,
   const auto& info = history.column_info();
   for (std::size_t c = 1; c < info.size(); ++c) {
     if (info[c].kind != integrators::ColumnKind::kGap) continue;
-    // peaks[c - 1]: the peaks skip the time column.
-    const ColumnPeak& gap = digest.peaks[c - 1];
+    // peaks[c - 1]: the peaks skip the time column. A contact removed during the run (a
+    // broken key) is checked over its samples up to its removal only.
+    ColumnPeak gap = digest.peaks[c - 1];
+    const double removed = removal_time(digest.limit_states, info[c].index);
+    if (removed < INFINITY) gap = peak_until(history, c, removed);
     const double lo = gap.min, hi = gap.max;
     if (!(lo < -kRoundoffDepth)) continue;
     const double depth = -lo;
