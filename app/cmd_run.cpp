@@ -117,7 +117,9 @@ void print_summary(const runs::RunRecord& record, const std::filesystem::path& o
   std::cout << "scene      " << record.scene_name << " (" << record.kind << "), method "
             << stats.method << '\n';
   std::cout << "status     " << integrators::to_string(stats.status);
-  if (!integrators::succeeded(stats.status)) {
+  if (stats.status == integrators::RunStatus::kUnseated) {
+    std::cout << " at t = " << stats.failure_time << " s";
+  } else if (!integrators::succeeded(stats.status)) {
     std::cout << " at t = " << stats.failure_time << " s (" << stats.lcp_unsolved
               << " contact problems unsolved)";
   }
@@ -195,7 +197,7 @@ void run(const RunArgs& args) {
   const auto& warnings = record.digest.warnings;
   for (std::size_t i = record.digest.integrator_warnings; i < warnings.size(); ++i)
     std::cerr << "nsbridge: warning: " << warnings[i] << '\n';
-  if (!integrators::succeeded(stats.status)) {
+  if (!integrators::is_result(stats.status)) {
     exit_code() = 1;
   } else if (args.strict && !stats.warnings.empty()) {
     std::cerr << "nsbridge: --strict: " << stats.warnings.size()

@@ -273,7 +273,7 @@ class ComplianceRun {
         ++stats.rejected_steps;
         continue;
       }
-      accept_step(t_new, landed, closure.at_start);
+      if (!accept_step(t_new, landed, closure.at_start)) break;
       book_.progress_at_interval(t_);
     }
     const bool completed = t_ >= options_.end_time;
@@ -323,6 +323,11 @@ class ComplianceRun {
     energy_.initial = energy_.kinetic + energy_.stored;
     energy_.close();
     p_old_ = powers();
+    impulse_ = Vector::Zero(m_);
+    lambda_start_ = core_.lambda_n_;
+    accepted_.q = &core_.q_;
+    accepted_.u = &core_.u_;
+    accepted_.normal_impulse = &impulse_;
     recorder_.sample(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
                      0.0);
   }
@@ -427,8 +432,9 @@ class ComplianceRun {
     return closed_now;
   }
 
-  // Accepts the step to t_new: events, commit, energy, sample.
-  void accept_step(double t_new, bool landed, bool close_at_start) {
+  // Accepts the step to t_new: events, commit, energy, the step handed to the system
+  // (watch()), sample. False when the system stopped the run (unseated).
+  bool accept_step(double t_new, bool landed, bool close_at_start) {
     record_openings(t_new);
     const double h = t_new - t_;
     x_ = xnew_;
@@ -443,9 +449,38 @@ class ComplianceRun {
     }
     // The forces with the new v_minus, for the record.
     if (closed_now) core_.evaluate(t_, x_, false, ContactFields::kAll);
+    const StepVerdict verdict = watch(h);
     accumulate_energy(h);
     recorder_.sample(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
                      energy_.error);
+    if (verdict != StepVerdict::kUnseated) return true;
+    book_.unseat(t_);
+    book_.result().message = "unseated at t = " + format_number(t_) + " s";
+    return false;
+  }
+
+  // System::accept_step with the step's normal impulses: the law's force (eq. 9) integrated
+  // by the trapezoidal rule over the step of length h. A contact the system removed is far
+  // from now on: its gap element opens (an "open" event) and carries no force.
+  StepVerdict watch(double h) {
+    for (int i = 0; i < m_; ++i) {
+      impulse_[i] = 0.5 * h * (lambda_start_[i] + core_.lambda_n_[i]);
+    }
+    accepted_.t = t_;
+    accepted_.h = h;
+    const StepVerdict verdict = system_.accept_step(accepted_);
+    if (verdict == StepVerdict::kContactsRemoved) {
+      core_.evaluate(t_, x_, false, ContactFields::kAll);
+      for (int i = 0; i < m_; ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        if (!core_.contacts_[ii].far) continue;
+        pending_[ii] = 0;
+        if (closed_[ii]) recorder_.event(t_, i + 1, EventKind::kOpen);
+        closed_[ii] = 0;
+      }
+    }
+    lambda_start_ = core_.lambda_n_;
+    return verdict;
   }
 
   // Energy stored in the Hertz springs: integral of k delta^1.5 = 0.4 k delta^2.5.
@@ -513,6 +548,9 @@ class ComplianceRun {
   double target_ = std::numeric_limits<double>::infinity();  // closure time to land on
   State x_, xnew_;
   Vector momentum_;
+  // The step's normal impulses [kN s] and lambda_N at the step's start [kN] (watch()).
+  Vector impulse_, lambda_start_;
+  AcceptedStep accepted_;
 };
 
 }  // namespace

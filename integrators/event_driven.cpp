@@ -74,6 +74,11 @@ EventDriven::EventDriven(System& system, const EventDrivenOptions& options, Reco
   q_event_ = Vector::Zero(n_);
   u_event_ = Vector::Zero(n_);
   a_free_ = Vector::Zero(n_);
+  step_impulse_ = Vector::Zero(m_);
+  lambda_start_ = Vector::Zero(m_);
+  accepted_.q = &q_;
+  accepted_.u = &u_;
+  accepted_.normal_impulse = &step_impulse_;
 }
 
 RunResult EventDriven::run() {
@@ -122,6 +127,7 @@ void EventDriven::restart_phase(double dt) {
   dense_.initialize(x_, t_, dt);
   indicators(t_, x_);
   h_prev_ = h_;
+  lambda_start_ = lambda_n_;
 }
 
 // One step of the dense-output stepper, cut at the earliest event in it: samples up to there,
@@ -138,6 +144,7 @@ EventDriven::StepEnd EventDriven::step() {
   sample_until(t_stop);
   t_ = t_stop;
   dense_.calc_state(t_, x_);
+  phase_impulse(ta, t_stop);
   if (rec_.sample_dt() == 0.0) record_sample(t_, x_, false);
   if (k_event >= 0 && t_event <= tb) return after_event(k_event);
   return after_smooth_step();
@@ -207,6 +214,7 @@ EventDriven::StepEnd EventDriven::after_event(int k_event) {
     return StepEnd::kStop;
   }
   sys_.commit();
+  if (accept_step() == StepVerdict::kUnseated) return StepEnd::kStop;
   const double t_end = opt_.end_time;
   double dt = std::max(dense_.current_time_step(), 1e3 * kMinStep * std::max(1.0, std::abs(t_)));
   dt = std::min(dt, std::max(t_end - t_, kMinStep));
@@ -221,8 +229,14 @@ EventDriven::StepEnd EventDriven::after_smooth_step() {
   unpack(x_, q_, u_);
   sys_.forces(t_, q_, u_, f_);
   sys_.commit();
+  const StepVerdict verdict = accept_step();
+  if (verdict == StepVerdict::kUnseated) return StepEnd::kStop;
   h_prev_ = h_end_;
   if (t_ >= opt_.end_time) return StepEnd::kEndTime;
+  if (verdict == StepVerdict::kContactsRemoved) {
+    restart_phase(dense_.current_time_step());
+    return StepEnd::kGoOn;
+  }
   bool drift = false;
   sys_.contact_data(t_, q_, u_, cbuf_);
   for (int i = 0; i < m_; ++i) {
@@ -239,6 +253,48 @@ EventDriven::StepEnd EventDriven::after_smooth_step() {
     restart_phase(dense_.current_time_step());
   }
   return StepEnd::kGoOn;
+}
+
+// The closed phase's contact forces over the step [ta, tb] by the trapezoidal rule, in the
+// phase's modes: lambda_N at tb (indicators() there, as a sample at tb would) with
+// lambda_start_ at ta. Nothing when no contact is closed (the phase's lambda_N are zero).
+void EventDriven::phase_impulse(double ta, double tb) {
+  bool any_closed = false;
+  for (const auto& md : modes_) any_closed = any_closed || closed(md);
+  if (!any_closed) return;
+  indicators(tb, x_);
+  const double half = 0.5 * (tb - ta);
+  for (int i = 0; i < m_; ++i) step_impulse_[i] += half * (lambda_start_[i] + lambda_n_[i]);
+  lambda_start_ = lambda_n_;
+}
+
+// Hands the accepted step ending at t_ (state x_) to the system with its normal impulses,
+// then clears them. On kContactsRemoved the removed contacts (far from now on) leave the
+// phase's modes; the caller restarts the phase. On kUnseated the run stops here.
+StepVerdict EventDriven::accept_step() {
+  unpack(x_, q_, u_);
+  accepted_.t = t_;
+  accepted_.h = t_ - t_start_;
+  const StepVerdict verdict = sys_.accept_step(accepted_);
+  step_impulse_.setZero();
+  t_start_ = t_;
+  if (verdict == StepVerdict::kContactsRemoved) drop_removed_contacts();
+  if (verdict == StepVerdict::kUnseated) {
+    book_.unseat(t_);
+    book_.result().message = "unseated at t = " + format_number(t_) + " s";
+  }
+  return verdict;
+}
+
+// A contact the system removed is far: a closed one opens (an "open" event) and is never
+// part of a phase again, as an open far contact has no indicator that could close it.
+void EventDriven::drop_removed_contacts() {
+  sys_.contact_normals(t_, q_, u_, cbuf_);
+  for (int i = 0; i < m_; ++i) {
+    if (!cbuf_[idx(i)].far || modes_[idx(i)] == ContactState::kOpen) continue;
+    modes_[idx(i)] = ContactState::kOpen;
+    rec_.event(t_, i + 1, EventKind::kOpen);
+  }
 }
 
 // The last sample, and the run's result. A non-finite state is not recorded (nor handed to

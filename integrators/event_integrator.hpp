@@ -58,6 +58,9 @@ class EventDriven {
   StepEnd after_smooth_step();
   void restart_phase(double dt);
   RunResult finish(bool completed);
+  void phase_impulse(double ta, double tb);
+  StepVerdict accept_step();
+  void drop_removed_contacts();
   void record_sample(double t, const State& x, bool force);
   double balance_error(double t, const State& x);
 
@@ -156,6 +159,12 @@ class EventDriven {
   double initial_energy_ = 0.0;
   EnergyBalance energy_;  // the balance at the last sample
   double next_sample_ = -std::numeric_limits<double>::infinity();
+  // The normal impulse of each contact over the step being accepted (System::accept_step):
+  // the impacts' impulses plus the closed phase's lambda_N by the trapezoidal rule, from
+  // lambda_start_ (lambda_N at the step's start) [kN s]; t_start_ is where the step began.
+  Vector step_impulse_, lambda_start_;
+  double t_start_ = 0.0;
+  AcceptedStep accepted_;
   std::deque<double> recent_events_;
   double forced_closure_until_ = -std::numeric_limits<double>::infinity();
 };

@@ -51,6 +51,9 @@ double EventDriven::locate(int k, double ta, double tb, double ha, double hb) {
     if (ha < 0.0) return ta;
     return roots_.first_crossing(h, ta, tb);
   }
+  // An open contact the system says is far at tb (one it removed, or one far from
+  // touching) has no impact in the step.
+  if (cbuf_[idx(i)].far) return inf;
   // An open contact: an impact when g_N goes below 0 while closing.
   auto gd = [this, i](double t) { return gap_rate_at(t, i); };
   const double va = gd(ta), vb = gd(tb);

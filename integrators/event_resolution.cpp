@@ -60,6 +60,7 @@ void EventDriven::book_stage_impulses(const std::vector<int>& index, const Vecto
     const auto& c = cbuf_[idx(index[j])];
     const int jj = static_cast<int>(j);
     const double ln = stage_.lambda_n(jj), lt = stage_.lambda_t(jj);
+    step_impulse_[index[j]] += ln;
     const double mid_n = 0.5 * (c.w_normal.dot(u_minus) + c.w_normal.dot(u_plus));
     impact_normal_work_ += ln * (mid_n + c.what_normal);
     impact_ground_work_ -= ln * c.what_normal;
@@ -182,7 +183,8 @@ void EventDriven::find_touching(double t, const Vector& q, const Vector& u, bool
   any_impact = false;
   for (int i = 0; i < m_; ++i) {
     const auto& c = cbuf_[idx(i)];
-    const bool is_touching = closed(modes_[idx(i)]) || c.gap_normal <= gap_tolerance_;
+    // A far contact (one the system removed, or one far from touching) takes no part.
+    const bool is_touching = !c.far && (closed(modes_[idx(i)]) || c.gap_normal <= gap_tolerance_);
     if (!is_touching) continue;
     touching_.push_back(i);
     if (c.gap_rate(u) < -closing_velocity_) any_impact = true;

@@ -89,6 +89,7 @@ class MoreauJean {
   bool accept(double h, double t1);  // false for a non-finite force or energy
   bool solve_contacts(double t1);   // false for a non-finite contact problem
   bool diverge(double t1, const std::string& what);
+  bool unseat(double t1);
   void update_events(double t1);
   void accumulate_smooth_work(double h);
   double energy_error();
@@ -129,6 +130,10 @@ class MoreauJean {
   // Energy bookkeeping: works accumulated since t0, and the powers at t_k.
   EnergyBalance energy_;
   PowerTerms power_k_;
+
+  // The accepted step as the system sees it (System::accept_step): pointers to q_, u_ and
+  // lambda_n_, set once.
+  AcceptedStep accepted_;
 
   RunBookkeeping book_;
   double last_sample_t_ = -1e300;
@@ -187,6 +192,9 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   force_t_ = Vector::Zero(m_);
   state_.assign(static_cast<std::size_t>(m_), ContactState::kOpen);
   in_index_set_.assign(static_cast<std::size_t>(m_), 0);
+  accepted_.q = &q_;
+  accepted_.u = &u_;
+  accepted_.normal_impulse = &lambda_n_;
 
   // The initial state is accepted as it is: evaluate and commit it, so that f_k, K and C
   // belong to the committed state at t0.
@@ -262,6 +270,13 @@ bool MoreauJean::diverge(double t1, const std::string& what) {
   return false;
 }
 
+// The system stopped the run at the end of the accepted step t1 (a deck end unseated).
+bool MoreauJean::unseat(double t1) {
+  book_.unseat(t1);
+  book_.result().message = "unseated at t = " + format_number(t1) + " s";
+  return false;
+}
+
 bool MoreauJean::step(double h, double t1) {
   if (refactor_ || h != h_factored_) factorize(h);
   system_.forces(t1, q_, u_, f_pred_);
@@ -329,7 +344,10 @@ void MoreauJean::accumulate_impulse_work() {
 }
 
 // Accepts the step: evaluates the end state, keeps its tangent if it changed, commits once,
-// then the contact data, the works of the smooth forces and the forces for the history.
+// hands the step with its impulses P_N to the system (System::accept_step: a removed contact
+// is far in the contact data read next, so it leaves the index set), then the contact data,
+// the works of the smooth forces and the forces for the history. False when the system
+// stopped the run (unseated) or something went non-finite.
 bool MoreauJean::accept(double h, double t1) {
   system_.forces(t1, q_new_, u_new_, f_k_);
   if (!all_finite(f_k_)) return diverge(t1, "non-finite smooth force");
@@ -342,6 +360,9 @@ bool MoreauJean::accept(double h, double t1) {
   std::swap(u_, u_new_);
   t_ = t1;
   book_.count_step();
+  accepted_.t = t1;
+  accepted_.h = h;
+  const StepVerdict verdict = system_.accept_step(accepted_);
   // Only the normal part: the index set of the next step, Newton's law's gdot_N- and the
   // events read nothing else at t_k (the contact problem uses the full data of t_k+1).
   system_.contact_normals(t_, q_, u_, contacts_);
@@ -356,6 +377,7 @@ bool MoreauJean::accept(double h, double t1) {
     }
     had_forces_ = had_impulses_;
   }
+  if (verdict == StepVerdict::kUnseated) return unseat(t1);
   return true;
 }
 

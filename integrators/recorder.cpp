@@ -28,13 +28,17 @@ bool succeeded(RunStatus s) {
   return s == RunStatus::kCompleted || s == RunStatus::kCompletedWithFallbacks;
 }
 
-void finish_status(RunResult& r, bool diverged, bool stalled) {
+bool is_result(RunStatus s) { return succeeded(s) || s == RunStatus::kUnseated; }
+
+void finish_status(RunResult& r, bool diverged, bool stalled, bool unseated) {
   if (diverged) {
     r.status = RunStatus::kDiverged;
   } else if (stalled) {
     r.status = RunStatus::kStalled;
   } else if (r.lcp_unsolved > 0) {
     r.status = RunStatus::kContactUnsolved;
+  } else if (unseated) {
+    r.status = RunStatus::kUnseated;
   } else if (r.lcp_fallbacks > 0) {
     r.status = RunStatus::kCompletedWithFallbacks;
   } else {

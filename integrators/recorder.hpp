@@ -64,7 +64,7 @@ struct EnergyBalance {
 };
 
 // How a run ended. Every integrator reports one; the app maps it to the exit code
-// (docs/run-api.md): 0 for the two completed states, 1 for the others.
+// (docs/run-api.md): 0 for the two completed states and kUnseated, 1 for the others.
 enum class RunStatus {
   kNotRun,                  // no integration took place (a default RunResult): nothing to use.
   kCompleted,               // reached end_time; every contact problem was solved by the
@@ -78,20 +78,27 @@ enum class RunStatus {
   kStalled,                 // an adaptive method could not advance (step size underflow, or
                             //   the event bound reached twice in a row): stopped at
                             //   failure_time.
+  kUnseated,                // the system said a deck end lost its seat (StepVerdict::
+                            //   kUnseated): the run stopped there, at failure_time. A result
+                            //   (the collapse of the structure), not a numerical failure.
 };
 // The one list of status names (summary.json "status", results.csv "status").
-inline constexpr std::array<config::Name<RunStatus>, 6> kRunStatusNames{
+inline constexpr std::array<config::Name<RunStatus>, 7> kRunStatusNames{
     {{"not_run", RunStatus::kNotRun},
      {"completed", RunStatus::kCompleted},
      {"completed_with_fallbacks", RunStatus::kCompletedWithFallbacks},
      {"contact_unsolved", RunStatus::kContactUnsolved},
      {"diverged", RunStatus::kDiverged},
-     {"stalled", RunStatus::kStalled}}};
+     {"stalled", RunStatus::kStalled},
+     {"unseated", RunStatus::kUnseated}}};
 std::string_view to_string(RunStatus s);
 // The status of a name of kRunStatusNames; std::nullopt for anything else.
 std::optional<RunStatus> parse_run_status(std::string_view name);
 // True for kCompleted and kCompletedWithFallbacks.
 bool succeeded(RunStatus s);
+// True when the run's history is a result of the model up to its end: succeeded(s) or
+// kUnseated (the structure collapsed; `nsbridge run` exits 0).
+bool is_result(RunStatus s);
 
 // The outcome and statistics of one run, written to summary.json. Every integrator returns
 // one:  RunResult <method>(System&, const <Method>Options&, Recorder&).
@@ -120,9 +127,11 @@ struct RunResult {
 // Sets r.status from what the run met, in order of severity: a non-finite state or energy
 // (kDiverged), an adaptive method that could not advance (kStalled), a contact problem no
 // solver of the chain solved (kContactUnsolved), one solved by a fallback
-// (kCompletedWithFallbacks), else kCompleted. Each integrator calls it once, at its end,
-// with what it recorded itself; failure_time is the integrator's.
-void finish_status(RunResult& r, bool diverged, bool stalled);
+// (kCompletedWithFallbacks), else kCompleted; a run the system stopped as unseated is
+// kUnseated unless it diverged, stalled or left a contact problem unsolved before. Each
+// integrator calls it once, at its end, with what it recorded itself; failure_time is the
+// integrator's.
+void finish_status(RunResult& r, bool diverged, bool stalled, bool unseated = false);
 
 // Called now and then with the simulated time reached [s], for a progress display. It must
 // not throw; it may be empty. Every integrator takes one.

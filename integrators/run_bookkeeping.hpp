@@ -50,6 +50,12 @@ class RunBookkeeping {
     stalled_ = true;
     if (std::isnan(stop_time_)) stop_time_ = t;
   }
+  // The system stopped the run at t (StepVerdict::kUnseated; RunStatus::kUnseated).
+  void unseat(double t) {
+    unseated_ = true;
+    if (std::isnan(stop_time_)) stop_time_ = t;
+  }
+  bool unseated() const { return unseated_; }
   // A contact problem no solver of the chain solved at t (RunStatus::kContactUnsolved from
   // then on; the run may go on).
   void note_unsolved(double t) {
@@ -59,7 +65,8 @@ class RunBookkeeping {
   // Ends the run at end_time [s]: completed says whether end_time of the options was reached.
   // Copies the energy balance (divergence when its error is not finite) and the contact
   // stage's counts (nullptr: no contact problems), sets the status by finish_status (a run
-  // that stopped short without diverging or an unsolved contact problem has stalled),
+  // that stopped short without diverging, unseating or an unsolved contact problem has
+  // stalled),
   // failure_time (the first unsolved problem for kContactUnsolved, else where the run
   // stopped) and the wall time, and calls progress once more.
   RunResult finish(double end_time, bool completed, const EnergyBalance& energy,
@@ -72,6 +79,7 @@ class RunBookkeeping {
   std::chrono::steady_clock::time_point start_;
   bool diverged_ = false;
   bool stalled_ = false;
+  bool unseated_ = false;
   double stop_time_ = std::numeric_limits<double>::quiet_NaN();       // [s]
   double first_unsolved_ = std::numeric_limits<double>::quiet_NaN();  // [s]
 };

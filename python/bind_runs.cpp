@@ -188,7 +188,7 @@ void bind_result(py::module_& m) {
       .def_property_readonly("status", [](const Result& r) {
         return std::string(integrators::to_string(r.record().result.status));
       }, "summary.json's status: 'completed', 'completed_with_fallbacks', 'contact_unsolved', "
-         "'diverged' or 'stalled'")
+         "'diverged', 'stalled' or 'unseated'")
       .def_property_readonly("name", [](const Result& r) { return r.record().scene_name; },
                              "The scene's name")
       .def_property_readonly("method", [](const Result& r) { return r.record().result.method; },

@@ -193,9 +193,11 @@ Columns columns_of(const Table& t, const std::string& im) {
   return c;
 }
 
+// An unseated run counts: it is a result up to the loss of seat (docs/limit-states.md), and
+// its limit-state columns say which seat was lost.
 bool completed(const std::string& status) {
   const auto s = integrators::parse_run_status(status);
-  return s && integrators::succeeded(*s);
+  return s && integrators::is_result(*s);
 }
 
 // One row's outcome for a limit state: std::nullopt when it does not count (not completed,

@@ -131,7 +131,8 @@ RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out) {
     const runs::RunRecord record = runs::execute({d.scene, run.overrides, {}, {}});
     runs::write_record(dir, record);
     write_file_atomically(dir / "limit_states.csv", limit_states_csv(record.digest));
-    outcome.succeeded = integrators::succeeded(record.result.status);
+    // An unseated run is a result (the bridge collapsed), not a failed run.
+    outcome.succeeded = integrators::is_result(record.result.status);
     outcome.row = row_prefix(d, index) + "," + record_fields(d, record, now_s() - start);
   } catch (const std::invalid_argument& e) {
     // The design was validated factor by factor; a combination of values can still be one the
@@ -275,7 +276,7 @@ std::size_t count_failed(const Design& d, const std::vector<std::optional<std::s
     if (f.size() <= status) continue;
     // "rejected" is no RunStatus: a run the scene refused did not complete either.
     const auto s = integrators::parse_run_status(f[status]);
-    if (!s || !integrators::succeeded(*s)) ++failed;
+    if (!s || !integrators::is_result(*s)) ++failed;
   }
   return failed;
 }

@@ -57,7 +57,7 @@ std::string results_header(const Design& design);
 // status "rejected". Throws std::runtime_error only when the outputs cannot be written.
 struct RunOutcome {
   std::string row;         // the results.csv line, without newline
-  bool succeeded = false;  // a completed status
+  bool succeeded = false;  // a completed or unseated status (integrators::is_result)
 };
 RunOutcome run_one(const Design& design, std::size_t index, const std::filesystem::path& out);
 
@@ -96,7 +96,7 @@ bool mpi_built_in();
 // The code revision recorded in manifest.toml: io::build_info().revision, taken at build time.
 std::string code_revision();
 
-// Rows whose status is not a completed one (integrators::succeeded), "rejected" included.
+// Rows whose status is not a result (integrators::is_result), "rejected" included.
 std::size_t count_failed(const Design& design, const std::vector<std::optional<std::string>>& rows);
 
 // A progress bar on stderr (terminal only): runs done, failed, estimated time left.
