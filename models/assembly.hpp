@@ -161,8 +161,9 @@ class Assembly final : public integrators::SystemBase {
   mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time
   // The watched limit states and the contact gaps they read, sized at construction.
   LimitWatch watch_;
-  std::vector<integrators::ContactData> watch_gaps_;
+  std::vector<double> watch_gaps_;
   void build_limits();
+  void watch_gaps(double t, const integrators::Vector& q, const integrators::Vector& u);
 };
 
 }  // namespace nsb::models

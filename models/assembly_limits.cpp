@@ -14,7 +14,7 @@ void Assembly::build_limits() {
   spec.validate(contacts(), static_cast<int>(parts_.bents.size()),
                 static_cast<int>(parts_.bodies.size()));
   watch_ = LimitWatch(spec, static_cast<int>(parts_.bodies.size()));
-  if (watch_.watches_joints()) watch_gaps_ = make_contact_buffer();
+  if (watch_.watches_joints()) watch_gaps_.assign(parts_.contacts.size(), 0.0);
   // The initial state is the first value of every watched quantity; a seat shorter than the
   // initial opening of its joint is bad input, not a result.
   const integrators::Vector q0 = initial_position(), u0 = initial_velocity();
@@ -30,12 +30,33 @@ void Assembly::build_limits() {
   }
 }
 
+// g_N of every contact, the numbers contact_normals() writes, without the dofs()-sized columns.
+void Assembly::watch_gaps(double t, const integrators::Vector& q, const integrators::Vector& u) {
+  update_motions(t);
+  for (const auto& c : seat_contacts_) {
+    const Eigen::Vector3d qa = q.segment<3>(c.offset) + c.rest;
+    const Eigen::Vector3d ua = u.segment<3>(c.offset);
+    watch_gaps_[c.slot] =
+        corner_contact_normal(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)])
+            .gap_normal;
+  }
+  // Body B as the obstacle at its pose: corner_on_body's g_N is corner_contact's with B so.
+  for (const auto& c : body_contacts_) {
+    PlanarMotion b;
+    b.position = q.segment<3>(c.offset_b) + c.rest_b;
+    b.velocity = u.segment<3>(c.offset_b);
+    watch_gaps_[c.slot] = corner_contact_normal(c.geometry, q.segment<3>(c.offset_a) + c.rest_a,
+                                                u.segment<3>(c.offset_a), b)
+                              .gap_normal;
+  }
+}
+
 integrators::StepVerdict Assembly::watch_limits(const integrators::AcceptedStep& step) {
   if (watch_.empty()) return integrators::StepVerdict::kContinue;
   const integrators::Vector& q = *step.q;
   bool unseated = false;
   if (watch_.watches_joints()) {
-    contact_normals(step.t, q, *step.u, watch_gaps_);
+    watch_gaps(step.t, q, *step.u);
     unseated = watch_.joints(step.t, watch_gaps_, step.normal_impulse);
   }
   if (watch_.watches_drift()) {

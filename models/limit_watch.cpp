@@ -53,7 +53,7 @@ LimitWatch::LimitWatch(LimitSpec spec, int bodies)
       drifts_(spec_.drift_ratio > 0 ? spec_.bent_heights.size() : 0),
       theta_end_(spec_.residual_rotation > 0 ? static_cast<std::size_t>(bodies) : 0) {}
 
-bool LimitWatch::joints(double t, const std::vector<integrators::ContactData>& gaps,
+bool LimitWatch::joints(double t, const std::vector<double>& gaps,
                         const integrators::Vector* impulse) {
   bool unseated = false;
   for (std::size_t j = 0; j < joints_.size(); ++j) {
@@ -63,7 +63,7 @@ bool LimitWatch::joints(double t, const std::vector<integrators::ContactData>& g
     double least = std::numeric_limits<double>::infinity();
     bool pushed = false;
     for (int c : spec.contacts) {
-      const double g = gaps[static_cast<std::size_t>(c)].gap_normal;
+      const double g = gaps[static_cast<std::size_t>(c)];
       open = std::max(open, g);
       least = std::min(least, g);
       if (impulse != nullptr && (*impulse)(c) > 0.0) pushed = true;

@@ -63,8 +63,7 @@ class LimitWatch {
 
   // The gaps g_N of every contact at t and the step's normal impulses (null: none known);
   // true when a seat is lost at this step (the first time only).
-  bool joints(double t, const std::vector<integrators::ContactData>& gaps,
-              const integrators::Vector* impulse);
+  bool joints(double t, const std::vector<double>& gaps, const integrators::Vector* impulse);
   // Bent b's top displacement relative to its support (dx, dy) [m] at t.
   void drift(double t, std::size_t b, double dx, double dy);
   // The generalized coordinates at the end of an accepted step at t.
