@@ -96,6 +96,20 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
+// The watched limit states (docs/limit-states.md): how many, and each exceeded one with when.
+void print_limit_states(const runs::Digest& d) {
+  std::size_t exceeded = 0;
+  for (const auto& v : d.limit_states) exceeded += v.exceeded ? 1 : 0;
+  std::cout << "limits     " << d.limit_states.size() << " watched, " << exceeded << " exceeded";
+  const char* sep = ": ";
+  for (const auto& v : d.limit_states) {
+    if (!v.exceeded) continue;
+    std::cout << sep << v.name << " at t = " << io::shortest(v.time) << " s";
+    sep = ", ";
+  }
+  std::cout << '\n';
+}
+
 void print_summary(const runs::RunRecord& record, const std::filesystem::path& out) {
   const integrators::RunResult& stats = record.result;
   const runs::Digest& d = record.digest;
@@ -131,6 +145,7 @@ void print_summary(const runs::RunRecord& record, const std::filesystem::path& o
             << (std::isfinite(d.energy.error) ? io::shortest(d.energy.error)
                                               : std::string("not finite (the run diverged)"))
             << '\n';
+  if (!d.limit_states.empty()) print_limit_states(d);
   std::cout << "warnings   " << d.warnings.size()
             << (d.warnings.empty() ? "" : " (on standard error and in summary.json)") << '\n';
   std::cout << "wall time  " << stats.wall_time << " s ("

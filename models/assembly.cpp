@@ -64,6 +64,7 @@ Assembly::Assembly(Parts parts)
   build_contacts();
   seats_.assign(parts_.prescribed.size(), PlanarMotion{});
   check_initial_gaps();
+  build_limits();
 }
 
 void Assembly::validate_parts() const {

@@ -28,6 +28,7 @@
 
 #include "integrators/system.hpp"
 #include "models/contact_geometry.hpp"
+#include "models/limit_watch.hpp"
 #include "models/parts.hpp"
 #include "models/rayleigh.hpp"
 #include "models/takeda.hpp"
@@ -48,6 +49,7 @@ class Assembly final : public integrators::SystemBase {
     std::vector<parts::CornerContact> contacts;    // output order (gN1, gN2, ...)
     std::optional<parts::RayleighParts> damping;   // needs a bent on every body (K0 > 0)
     std::vector<parts::ShearKey> shear_keys;       // breakable contacts (models/shear_keys.hpp)
+    LimitSpec limits;                              // the limit states watched (none: empty)
   };
 
   // Throws std::invalid_argument naming the part and field ("bodies[1].mass: ...") for bad
@@ -92,12 +94,14 @@ class Assembly final : public integrators::SystemBase {
   // "shear_key_..." limit state per key.
   integrators::StepVerdict watch_keys(const integrators::AcceptedStep& step);
   std::vector<integrators::LimitStateValue> key_limit_states() const;
-  integrators::StepVerdict accept_step(const integrators::AcceptedStep& step) override {
-    return watch_keys(step);
-  }
-  std::vector<integrators::LimitStateValue> limit_states() const override {
-    return key_limit_states();
-  }
+  // The limit states of Parts::limits (models/limit_watch.hpp, docs/limit-states.md):
+  // watch_limits updates them with an accepted step, kUnseated when a seat is lost.
+  integrators::StepVerdict watch_limits(const integrators::AcceptedStep& step);
+  std::vector<integrators::LimitStateValue> watched_limit_states() const;
+  // Both watches, keys first; the stronger verdict (kUnseated over kContactsRemoved) wins.
+  integrators::StepVerdict accept_step(const integrators::AcceptedStep& step) override;
+  // The keys' limit states, then the watched ones.
+  std::vector<integrators::LimitStateValue> limit_states() const override;
 
  private:
   // One bent with its two springs, its body's DOF offset and its motions in motions_.
@@ -182,6 +186,11 @@ class Assembly final : public integrators::SystemBase {
   // Workspaces of the const evaluations, sized at construction.
   mutable std::vector<Eigen::Vector3d> us_dot_;  // us_dot per body at the motions' time
   mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time
+  // The watched limit states and the contact gaps they read, sized at construction.
+  LimitWatch watch_;
+  std::vector<double> watch_gaps_;
+  void build_limits();
+  void watch_gaps(double t, const integrators::Vector& q, const integrators::Vector& u);
 };
 
 }  // namespace nsb::models

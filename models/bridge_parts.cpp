@@ -153,4 +153,25 @@ Assembly::Parts bridge_parts(const Bridge::Parameters& p, const SegmentedDeck& d
   return parts;
 }
 
+LimitSpec bridge_limit_spec(const BridgeLimits& limits, std::size_t segments) {
+  LimitSpec spec;
+  const auto joint = [&](std::string name, std::size_t first, double seat) {
+    spec.joints.push_back({.name = std::move(name),
+                           .contacts = {static_cast<int>(first), static_cast<int>(first + 1)},
+                           .seat_length = seat, .closure = true});
+  };
+  joint("left", 0, limits.abutment_seat);
+  for (std::size_t k = 1; k < segments; ++k) {
+    const double seat = k - 1 < limits.hinge_seats.size()
+                            ? limits.hinge_seats[k - 1]
+                            : std::numeric_limits<double>::infinity();
+    joint("hinge_" + std::to_string(k), 2 * k, seat);
+  }
+  joint("right", 2 * segments, limits.abutment_seat);
+  spec.bent_heights = limits.bent_heights;
+  spec.drift_ratio = limits.drift_ratio;
+  spec.residual_rotation = limits.residual_rotation;
+  return spec;
+}
+
 }  // namespace nsb::models

@@ -12,6 +12,7 @@
 #include "models/bridge.hpp"
 #include "models/deck_chain.hpp"
 
+#include <limits>
 #include <vector>
 
 namespace nsb::models {
@@ -61,5 +62,20 @@ inline constexpr const char* kTwoBents =
 // the same order. Throws std::invalid_argument for bad parameters.
 Assembly::Parts bridge_parts(const Bridge::Parameters& p, const SegmentedDeck& deck,
                              const Bridge::Excitation& excitation);
+
+// The limit states a bridge's scene asks for (docs/limit-states.md): the seat lengths of the
+// abutments and hinges, the bents' heights and the limits of [model.limit_states].
+struct BridgeLimits {
+  double abutment_seat = std::numeric_limits<double>::infinity();  // [m]; inf: not watched
+  std::vector<double> hinge_seats;   // [m] per hinge (segments - 1); inf: not watched
+  std::vector<double> bent_heights;  // [m] per bent, as Bridge::Parameters::bents
+  double drift_ratio = 0.0;          // [-]; 0: not watched
+  double residual_rotation = 0.0;    // [rad]; 0: not watched
+};
+
+// The LimitSpec of a bridge of `segments` segments in the contact order of bridge_parts:
+// joints "left" (contacts 0, 1), "hinge_<k>" (2k, 2k + 1) and "right" (2N, 2N + 1), each
+// with its closure watched and its unseating where a seat length is given.
+LimitSpec bridge_limit_spec(const BridgeLimits& limits, std::size_t segments);
 
 }  // namespace nsb::models

@@ -155,12 +155,16 @@ takeda::Parameters bent_spring(const Section& s, const BentSettings& b, const ch
 
 // [[model.bents]]: the bents, the segment each carries and their wave-passage delays [s].
 // lengths: the length of each segment ({deck length} with [model.deck]).
+// heights: each bent's `height` [m], 0 where absent; need_height: [model.limit_states]
+// drift_ratio is given, so every bent must give its height.
 struct BentsRead {
   std::vector<double> delays;
   std::vector<int> segments;
+  std::vector<double> heights;
 };
 
-BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridge::Parameters& p) {
+BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridge::Parameters& p,
+                     bool need_height) {
   BentsRead out;
   const bool one = !m.has("segments");
   const auto* bents = m.array_of_tables("bents");
@@ -196,6 +200,11 @@ BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridg
                        bent_spring(s, b, "transverse")});
     out.delays.push_back(b.delay);
     out.segments.push_back(b.segment);
+    if (need_height && !s.has("height")) {
+      s.fail_table("missing key height (bent height H [m], needed by [model.limit_states] "
+                   "drift_ratio)");
+    }
+    out.heights.push_back(s.has("height") ? b.design.height : 0.0);
   }
   return out;
 }
@@ -414,15 +423,18 @@ SegmentedDeck read_segments(const Section& m, Bridge::Parameters& p) {
   SegmentedDeck d;
   d.segments = read_bodies(m, "segments");
   d.hinges = read_joints(m, "hinges", d.segments.size() - 1,
-                         "one between each two neighbouring segments");
+                         "one between each two neighbouring segments", {"seat_length"});
   return d;
 }
 
-// The assembly of `parts`, with the shear keys of [model.shear_keys] when given.
+// The assembly of `parts`, with the shear keys of [model.shear_keys] when given and the limit
+// states of `limits` watched on its `segments` deck segments.
 std::unique_ptr<integrators::System> assemble(const Section& m, Assembly::Parts parts,
-                                              const std::optional<ShearKeyParameters>& keys) {
+                                              const std::optional<ShearKeyParameters>& keys,
+                                              const BridgeLimits& limits, std::size_t segments) {
   try {
     if (keys) add_shear_keys(parts, *keys);
+    parts.limits = bridge_limit_spec(limits, segments);
     return std::make_unique<Assembly>(std::move(parts));
   } catch (const std::invalid_argument& e) {
     m.rethrow(e);
@@ -433,7 +445,8 @@ std::unique_ptr<integrators::System> assemble(const Section& m, Assembly::Parts 
 std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::Parameters& p,
                                                       SegmentedDeck& d, const BentsRead& bents,
                                                       Bridge::Excitation exc,
-                                                      const std::optional<ShearKeyParameters>& keys) {
+                                                      const std::optional<ShearKeyParameters>& keys,
+                                                      const BridgeLimits& limits) {
   d.bent_segment = bents.segments;
   for (std::size_t i = 0; i < d.segments.size(); ++i) {
     if (!torsionally_restrained(p.bents, d.bent_segment, static_cast<int>(i))) {
@@ -446,14 +459,14 @@ std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::
   } catch (const std::invalid_argument& e) {
     m.rethrow(e);
   }
-  return assemble(m, std::move(parts), keys);
+  return assemble(m, std::move(parts), keys, limits, d.segments.size());
 }
 
 }  // namespace
 
 BridgeScene build_bridge(Section& m) {
   m.only({"kind", "skew_deg", "deck", "segments", "hinges", "gaps", "damping", "bents", "seats",
-          "excitation", "shear_keys"});
+          "excitation", "shear_keys", "abutments", "limit_states"});
   const bool segmented = m.has("segments");
   if (!segmented) {
     for (const char* key : {"skew_deg", "hinges"}) {
@@ -471,7 +484,9 @@ BridgeScene build_bridge(Section& m) {
   if (!segmented) lengths.push_back(p.deck.length);
   read_table(m, "gaps", bridge_gap_fields(), p);
   read_damping(m, p);
-  const BentsRead bents = read_bents(m, lengths, p);
+  BridgeLimitKeys limits = read_bridge_limits(m);
+  const BentsRead bents = read_bents(m, lengths, p, limits.limits.drift_ratio > 0);
+  limits.limits.bent_heights = bents.heights;
   const SeatMotions seats = read_seats(m, p);
   std::optional<ShearKeyParameters> keys;
   if (m.subtable("shear_keys") != nullptr) {
@@ -480,10 +495,15 @@ BridgeScene build_bridge(Section& m) {
   BridgeScene out;
   // The system for a set of support motions: the one-deck bridge, or the segmented one.
   const auto make = [&](Bridge::Excitation exc) -> std::unique_ptr<integrators::System> {
-    if (segmented) return segmented_bridge(m, p, segments, bents, std::move(exc), keys);
+    if (segmented) {
+      return segmented_bridge(m, p, segments, bents, std::move(exc), keys, limits.limits);
+    }
     try {
-      // A part the benchmark bridge has not (shear keys): the same bridge as an assembly.
-      if (keys) return assemble(m, bridge_parts(p, exc), keys);
+      // Parts the benchmark bridge has not (shear keys, limit states): the same bridge as an
+      // assembly (bridge_parts(p, excitation) does the same operations as models::Bridge).
+      if (keys || limits.requested) {
+        return assemble(m, bridge_parts(p, exc), keys, limits.limits, 1);
+      }
       return std::make_unique<Bridge>(p, std::move(exc));
     } catch (const std::invalid_argument& e) {
       if (deck && std::string(e.what()).rfind("initial_position", 0) == 0) deck->rethrow(e);

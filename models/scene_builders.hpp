@@ -4,6 +4,7 @@
 
 #include "integrators/run.hpp"
 #include "integrators/system.hpp"
+#include "models/bridge_parts.hpp"
 #include "models/deck_chain.hpp"
 #include "models/parts.hpp"
 #include "models/excitation_scaling.hpp"
@@ -44,8 +45,20 @@ BridgeScene build_bridge(Section& m);
 // mass, inertia, length and width required, every width equal to the first.
 std::vector<parts::RigidBody> read_bodies(const Section& m, std::string_view key);
 // Exactly `count` [[model.<key>]] joints (joint_fields; gap required); `rule` says why.
+// `extra`: further keys an element may hold, read by the caller.
 std::vector<DeckChain::Joint> read_joints(const Section& m, std::string_view key,
-                                          std::size_t count, const std::string& rule);
+                                          std::size_t count, const std::string& rule,
+                                          const std::vector<std::string_view>& extra = {});
+
+// The limit-state keys of a bridge's [model] (docs/limit-states.md): [model.abutments]
+// seat_length, [[model.hinges]] seat_length (one entry per element, inf where absent) and
+// [model.limit_states]; the bents' heights are the caller's. `requested`: a seat length or a
+// limit of [model.limit_states] is given.
+struct BridgeLimitKeys {
+  BridgeLimits limits;
+  bool requested = false;
+};
+BridgeLimitKeys read_bridge_limits(const Section& m);
 
 // The deck chain of [model] kind = "deck_chain" (models/deck_chain.hpp).
 std::unique_ptr<integrators::System> build_deck_chain(Section& m);

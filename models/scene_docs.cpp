@@ -105,7 +105,14 @@ void add_bridge_tables(std::vector<DocTable>& out) {
   const DefaultNotes required{
       {"mass", "required"}, {"inertia", "required"}, {"length", "required"}, {"width", "required"}};
   out.push_back(table("model.segments", segment_fields(), parts::RigidBody{}, required));
-  out.push_back(table("model.hinges", joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}));
+  out.push_back({"model.hinges",
+                 kHeader + rows(joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}) +
+                     rows(SeatLengthSettings::fields(), SeatLengthSettings{},
+                          {{"seat_length", "none"}})});
+  out.push_back(table("model.abutments.seat", SeatLengthSettings::fields(), SeatLengthSettings{},
+                      {{"seat_length", "none"}}));
+  out.push_back(table("model.limit_states", LimitStateSettings::fields(), LimitStateSettings{},
+                      {{"drift_ratio", "none"}, {"residual_rotation", "none"}}));
 }
 
 // The marker comments around a generated table.

@@ -355,4 +355,28 @@ std::span<const c::Field<DeckChain::Joint>> joint_fields() {
   return f;
 }
 
+std::span<const c::Field<SeatLengthSettings>> SeatLengthSettings::fields() {
+  using S = SeatLengthSettings;
+  static const c::Field<S> f[] = {
+      c::number<&S::seat_length>("seat_length", "m", c::positive(),
+                                 "seat length N from the backwall (abutment) or from the other "
+                                 "frame's end face (hinge) to the seat's edge; given: "
+                                 "unseating is watched and a lost seat stops the run"),
+  };
+  return f;
+}
+
+std::span<const c::Field<LimitStateSettings>> LimitStateSettings::fields() {
+  using S = LimitStateSettings;
+  static const c::Field<S> f[] = {
+      c::number<&S::drift_ratio>("drift_ratio", "-", c::positive(),
+                                 "limit of every bent's drift ratio |Δ| / H (needs every "
+                                 "bent's height); absent: not watched"),
+      c::number<&S::residual_rotation>("residual_rotation", "rad", c::positive(),
+                                       "limit of |θ| of each deck segment at the end of the "
+                                       "run; absent: not watched"),
+  };
+  return f;
+}
+
 }  // namespace nsb::models

@@ -122,6 +122,22 @@ std::span<const config::Field<parts::RigidBody>> segment_fields();
 // [[model.hinges]] (bridge) or [[model.joints]] (deck chain).
 std::span<const config::Field<DeckChain::Joint>> joint_fields();
 
+// The seat a deck end rests on, of [model.abutments] (both abutments) and of each
+// [[model.hinges]] element: its length along the axis, from the backwall (abutment) or from
+// the other frame's end face (hinge) to the seat's edge (docs/limit-states.md, "Unseating").
+struct SeatLengthSettings {
+  double seat_length = 0.0;  // [m], > 0; absent: unseating is not watched
+  static std::span<const config::Field<SeatLengthSettings>> fields();
+};
+
+// [model.limit_states]: the limits of the bents' drift ratio and the deck's residual rotation
+// (docs/limit-states.md); absent keys are not watched.
+struct LimitStateSettings {
+  double drift_ratio = 0.0;        // [-], > 0
+  double residual_rotation = 0.0;  // [rad], > 0
+  static std::span<const config::Field<LimitStateSettings>> fields();
+};
+
 // The model kinds a scene may name in [model] kind.
 const std::vector<std::string>& scene_kinds();
 

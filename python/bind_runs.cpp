@@ -194,6 +194,11 @@ void bind_result(py::module_& m) {
       .def_property_readonly("method", [](const Result& r) { return r.record().result.method; },
                              "The method that ran")
       .def_property_readonly("summary", &Result::summary, "summary.json as a dict")
+      .def_property_readonly(
+          "limit_states",
+          [](Result& r) -> py::object { return r.summary()["limit_states"]; },
+          "summary.json's limit_states: {name: {exceeded, time, margin, unit}} "
+          "(docs/limit-states.md); {} when the system watches none")
       .def_property_readonly("history", &Result::history,
                              "history.csv's columns: name -> numpy float64 array")
       .def_property_readonly("events", &Result::events,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace nsb::runs {
 
@@ -67,8 +68,10 @@ void count_events(const Recorder& h, Digest& d) {
 
 }  // namespace
 
-Digest make_digest(const Recorder& history, const integrators::RunResult& result) {
+Digest make_digest(const Recorder& history, const integrators::RunResult& result,
+                   std::vector<integrators::LimitStateValue> limit_states) {
   Digest d;
+  d.limit_states = std::move(limit_states);
   const auto& info = history.column_info();
   for (std::size_t c = 1; c < info.size(); ++c) d.peaks.push_back(column_peak(history, c));
   for (std::size_t c = 0; c < info.size(); ++c) {

@@ -39,7 +39,8 @@ struct ContactEvents {
 struct Digest {
   std::vector<ColumnPeak> peaks;             // every history column but t, in column order
   std::vector<CoordinatePeak> coordinates;   // every generalized coordinate, in order
-  double max_penetration = 0.0;              // max(0, -g_N) over samples and gap columns [m]
+  double max_penetration = 0.0;              // max(0, -g_N) over samples and gap columns [m],
+                                             //   a removed contact's after its removal skipped
   // Events in total, per kind in the order of integrators::kEventKindNames.
   std::array<std::int64_t, integrators::kEventKindNames.size()> events{};
   std::vector<ContactEvents> contact_events;  // contacts 1..n: n = the recorded contacts, or
@@ -49,6 +50,9 @@ struct Digest {
   // (runs/trust.hpp); the first integrator_warnings entries are the integrator's.
   std::vector<std::string> warnings;
   std::size_t integrator_warnings = 0;
+  // summary.json "limit_states": the system's limit states after the run
+  // (System::limit_states(), docs/limit-states.md), which runs::run copies from the system.
+  std::vector<integrators::LimitStateValue> limit_states;
   // summary.json "input": the scene's excitation as scaled (models::Scene::input), which
   // runs::run copies from the scene; empty for a digest of a history alone.
   models::InputMotion input;
@@ -56,8 +60,10 @@ struct Digest {
   std::int64_t count(integrators::EventKind kind) const;  // events of a kind, in total
 };
 
-// The digest of a finished run, without the trust checks' warnings (runs::execute adds them).
-Digest make_digest(const integrators::Recorder& history, const integrators::RunResult& result);
+// The digest of a finished run, without the trust checks' warnings (runs::execute adds them),
+// with the system's limit states after the run.
+Digest make_digest(const integrators::Recorder& history, const integrators::RunResult& result,
+                   std::vector<integrators::LimitStateValue> limit_states = {});
 
 // The peak entry of a column name; nullptr when the history has no such column.
 const ColumnPeak* find_peak(const Digest& digest, const std::string& column);

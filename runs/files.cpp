@@ -159,6 +159,26 @@ void write_input(JsonText& j, const models::InputMotion& in) {
   j.o += "},\n";
 }
 
+// The system's limit states (docs/limit-states.md): whether each was exceeded, first when
+// (null when not), its smallest margin over the run and the margin's unit.
+void write_limit_states(JsonText& j, const Digest& d) {
+  j.key("limit_states");
+  j.o += "{";
+  bool first = true;
+  for (const auto& v : d.limit_states) {
+    j.o += first ? "\n    " : ",\n    ";
+    first = false;
+    j.o += io::json_string(v.name) + ": {\"exceeded\": ";
+    j.o += v.exceeded ? "true" : "false";
+    j.o += ", \"time\": ";
+    io::append_json_number(j.o, v.time);
+    j.o += ", \"margin\": ";
+    io::append_json_number(j.o, v.margin);
+    j.o += ", \"unit\": " + io::json_string(v.unit) + "}";
+  }
+  j.o += first ? "},\n" : "\n  },\n";
+}
+
 }  // namespace
 
 std::string history_csv(const integrators::Recorder& history) {
@@ -203,6 +223,7 @@ std::string summary_json(const RunRecord& record) {
   write_energy(j, record.digest.energy);
   write_events(j, record.digest);
   write_peaks(j, record.digest);
+  write_limit_states(j, record.digest);
   j.key("warnings");
   j.o += "[";
   for (std::size_t i = 0; i < record.digest.warnings.size(); ++i) {

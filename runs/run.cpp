@@ -44,7 +44,7 @@ RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
       dump ? integrators::with_contact_observer(scene.run, &*dump) : scene.run, history,
       progress);
   if (dump) dump->write_manifest();
-  Digest digest = make_digest(history, result);
+  Digest digest = make_digest(history, result, scene.system->limit_states());
   digest.input = scene.input;
   std::vector<std::string> warnings = std::move(prepared.warnings);
   for (auto& w : result_warnings(history, digest, result)) warnings.push_back(std::move(w));

@@ -79,12 +79,20 @@ std::string read_im(const Where& w, const toml::table& t, const Design& d) {
   return key;
 }
 
+bool ends_with(const std::string& s, std::string_view end) {
+  return s.size() > end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
+}
+
+bool is_limit_column(const std::string& c) {
+  return ends_with(c, "_exceeded") || ends_with(c, "_margin");
+}
+
 LimitState read_limit_state(const Where& w, const toml::node& n, std::size_t index,
                             const std::vector<std::string>& columns) {
   const std::string at = "fragility.limit_state[" + std::to_string(index) + "]";
   const auto* t = n.as_table();
   if (t == nullptr) w.fail(&n, at, "must be a table {name, response, threshold}");
-  check_keys(w, *t, at, {"name", "response", "threshold", "absolute"});
+  check_keys(w, *t, at, {"name", "response", "threshold", "absolute", "below"});
   LimitState ls;
   const auto* name = t->get("name");
   if (name == nullptr || !name->is_string() || name->value<std::string>()->empty())
@@ -95,10 +103,13 @@ LimitState read_limit_state(const Where& w, const toml::node& n, std::size_t ind
     w.fail(response != nullptr ? response : t, at + ".response",
            "required: a results.csv column (" + joined(columns) + ")");
   ls.response = *response->value<std::string>();
-  if (std::find(columns.begin(), columns.end(), ls.response) == columns.end())
+  // A limit-state column (<name>_exceeded, <name>_margin) exists once the runs watch that
+  // limit state: it is checked against results.csv after the runs.
+  if (std::find(columns.begin(), columns.end(), ls.response) == columns.end() &&
+      !is_limit_column(ls.response))
     w.fail(response, at + ".response",
            "\"" + ls.response + "\" is not a results.csv column of this design (allowed: " +
-               joined(columns) + ")");
+               joined(columns) + ", or a limit state's <name>_exceeded / <name>_margin)");
   const auto* threshold = t->get("threshold");
   const auto v = threshold != nullptr ? threshold->value<double>() : std::nullopt;
   if (threshold == nullptr || !(threshold->is_floating_point() || threshold->is_integer()) ||
@@ -109,6 +120,10 @@ LimitState read_limit_state(const Where& w, const toml::node& n, std::size_t ind
   if (const auto* absolute = t->get("absolute")) {
     if (!absolute->is_boolean()) w.fail(absolute, at + ".absolute", "must be true or false");
     ls.absolute = *absolute->value<bool>();
+  }
+  if (const auto* below = t->get("below")) {
+    if (!below->is_boolean()) w.fail(below, at + ".below", "must be true or false");
+    ls.below = *below->value<bool>();
   }
   return ls;
 }
@@ -178,9 +193,11 @@ Columns columns_of(const Table& t, const std::string& im) {
   return c;
 }
 
+// An unseated run counts: it is a result up to the loss of seat (docs/limit-states.md), and
+// its limit-state columns say which seat was lost.
 bool completed(const std::string& status) {
   const auto s = integrators::parse_run_status(status);
-  return s && integrators::succeeded(*s);
+  return s && integrators::is_result(*s);
 }
 
 // One row's outcome for a limit state: std::nullopt when it does not count (not completed,
@@ -190,7 +207,8 @@ std::optional<bool> reached(const std::vector<std::string>& row, const Columns& 
   if (!completed(row[c.status])) return std::nullopt;
   const auto v = parse_number(row[response]);
   if (!v) return std::nullopt;
-  return (ls.absolute ? std::abs(*v) : *v) >= ls.threshold;
+  const double r = ls.absolute ? std::abs(*v) : *v;
+  return ls.below ? r <= ls.threshold : r >= ls.threshold;
 }
 
 std::vector<StripeCount> count_stripes(const Table& t, const Columns& c, std::size_t response,
@@ -316,7 +334,9 @@ void limit_state_json(std::string& out, const LimitStateFit& f) {
   out += "    " + io::json_string(f.limit.name) + ": {\n";
   out += "      \"response\": " + io::json_string(f.limit.response) + ", \"threshold\": ";
   io::append_json_number(out, f.limit.threshold);
-  out += std::string(", \"absolute\": ") + (f.limit.absolute ? "true" : "false") + ",\n";
+  out += std::string(", \"absolute\": ") + (f.limit.absolute ? "true" : "false");
+  if (f.limit.below) out += ", \"below\": true";  // written only when set: older files stay
+  out += ",\n";
   out += "      \"status\": " + io::json_string(to_string(f.mle.status)) + ",\n";
   out += "      \"message\": " + io::json_string(f.mle.message) + ",\n";
   out += "      \"theta\": ";

@@ -5,6 +5,7 @@
 #include "runs/files.hpp"
 #include "runs/run.hpp"
 #include "sweep/csv.hpp"
+#include "sweep/limit_columns.hpp"
 #include "sweep/mpi.hpp"
 
 #include <toml++/toml.h>
@@ -129,6 +130,7 @@ RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out) {
   try {
     const runs::RunRecord record = runs::execute({d.scene, run.overrides, {}, {}});
     runs::write_record(dir, record);
+    write_file_atomically(dir / "limit_states.csv", limit_states_csv(record.digest));
     // An unseated run is a result (the bridge collapsed), not a failed run.
     outcome.succeeded = integrators::is_result(record.result.status);
     outcome.row = row_prefix(d, index) + "," + record_fields(d, record, now_s() - start);
@@ -197,8 +199,13 @@ Plan prepare(const Design& d, const SweepOptions& options) {
 
 void write_results(const Design& d, const SweepOptions& options,
                    const std::vector<std::optional<std::string>>& rows) {
-  std::string text = results_header(d) + "\n";
-  for (const auto& r : rows) {
+  std::string header = results_header(d);
+  std::vector<std::optional<std::string>> full = rows;
+  std::vector<fs::path> dirs;
+  for (const auto& run : d.runs) dirs.push_back(options.out / "runs" / run.id);
+  add_limit_columns(header, full, dirs);
+  std::string text = header + "\n";
+  for (const auto& r : full) {
     if (r) text += *r + "\n";
   }
   write_file_atomically(options.out / "results.csv", text);

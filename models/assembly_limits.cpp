@@ -1,0 +1,93 @@
+// The limit states an Assembly watches (models/limit_watch.hpp, docs/limit-states.md): each
+// accepted step's contact gaps, bent drifts and end state go to the LimitWatch.
+#include "models/assembly.hpp"
+
+#include "config/schema.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace nsb::models {
+
+void Assembly::build_limits() {
+  const LimitSpec& spec = parts_.limits;
+  spec.validate(contacts(), static_cast<int>(parts_.bents.size()),
+                static_cast<int>(parts_.bodies.size()));
+  watch_ = LimitWatch(spec, static_cast<int>(parts_.bodies.size()));
+  if (watch_.watches_joints()) watch_gaps_.assign(parts_.contacts.size(), 0.0);
+  // The initial state is the first value of every watched quantity; a seat shorter than the
+  // initial opening of its joint is bad input, not a result.
+  const integrators::Vector q0 = initial_position(), u0 = initial_velocity();
+  const integrators::AcceptedStep start{.t = initial_time(), .h = 0.0, .q = &q0, .u = &u0};
+  if (watch_limits(start) == integrators::StepVerdict::kUnseated) {
+    for (const auto& v : watch_.values()) {
+      if (v.exceeded) {
+        throw std::invalid_argument("limits." + v.name + ": seat_length is shorter than the "
+                                    "joint's opening at t0 (overlap " +
+                                    config::format_value(v.margin) + " m); it must exceed it");
+      }
+    }
+  }
+}
+
+// g_N of every contact, the numbers contact_normals() writes, without the dofs()-sized columns.
+void Assembly::watch_gaps(double t, const integrators::Vector& q, const integrators::Vector& u) {
+  update_motions(t);
+  for (const auto& c : seat_contacts_) {
+    const Eigen::Vector3d qa = q.segment<3>(c.offset) + c.rest;
+    const Eigen::Vector3d ua = u.segment<3>(c.offset);
+    watch_gaps_[c.slot] =
+        corner_contact_normal(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)])
+            .gap_normal;
+  }
+  // Body B as the obstacle at its pose: corner_on_body's g_N is corner_contact's with B so.
+  for (const auto& c : body_contacts_) {
+    PlanarMotion b;
+    b.position = q.segment<3>(c.offset_b) + c.rest_b;
+    b.velocity = u.segment<3>(c.offset_b);
+    watch_gaps_[c.slot] = corner_contact_normal(c.geometry, q.segment<3>(c.offset_a) + c.rest_a,
+                                                u.segment<3>(c.offset_a), b)
+                              .gap_normal;
+  }
+}
+
+integrators::StepVerdict Assembly::watch_limits(const integrators::AcceptedStep& step) {
+  if (watch_.empty()) return integrators::StepVerdict::kContinue;
+  const integrators::Vector& q = *step.q;
+  bool unseated = false;
+  if (watch_.watches_joints()) {
+    watch_gaps(step.t, q, *step.u);
+    unseated = watch_.joints(step.t, watch_gaps_, step.normal_impulse);
+  }
+  if (watch_.watches_drift()) {
+    update_motions(step.t);
+    // The bent top's displacement relative to its support, as the bent's springs see it.
+    for (std::size_t j = 0; j < parts_.bents.size(); ++j) {
+      const BentState& b = bents_[bent_slot_[j]];
+      const int o = b.offset;
+      const double dx = q(o) - motions_.value(b.ground_x).d;
+      const double dy = q(o + 1) + b.position * q(o + 2) - motions_.value(b.ground_y).d;
+      watch_.drift(step.t, j, dx, dy);
+    }
+  }
+  watch_.end_state(step.t, q);
+  return unseated ? integrators::StepVerdict::kUnseated : integrators::StepVerdict::kContinue;
+}
+
+std::vector<integrators::LimitStateValue> Assembly::watched_limit_states() const {
+  return watch_.values();
+}
+
+integrators::StepVerdict Assembly::accept_step(const integrators::AcceptedStep& step) {
+  const integrators::StepVerdict keys = watch_keys(step);
+  const integrators::StepVerdict limits = watch_limits(step);
+  return limits == integrators::StepVerdict::kUnseated ? limits : keys;
+}
+
+std::vector<integrators::LimitStateValue> Assembly::limit_states() const {
+  std::vector<integrators::LimitStateValue> out = key_limit_states();
+  for (auto& v : watched_limit_states()) out.push_back(std::move(v));
+  return out;
+}
+
+}  // namespace nsb::models
