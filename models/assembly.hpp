@@ -27,6 +27,7 @@
 #pragma once
 
 #include "integrators/system.hpp"
+#include "models/connector_set.hpp"
 #include "models/contact_geometry.hpp"
 #include "models/parts.hpp"
 #include "models/rayleigh.hpp"
@@ -46,6 +47,10 @@ class Assembly final : public integrators::SystemBase {
     std::vector<parts::Bent> bents;
     std::vector<parts::CornerContact> contacts;    // output order (gN1, gN2, ...)
     std::optional<parts::RayleighParts> damping;   // needs a bent on every body (K0 > 0)
+    // Connectors (models/connector_set.hpp): restrainer cables, and links to the ground
+    // (bearings, backfills) whose initial stiffness joins the bents' K0.
+    std::vector<parts::Restrainer> restrainers;
+    std::vector<parts::GroundLink> links;
   };
 
   // Throws std::invalid_argument naming the part and field ("bodies[1].mass: ...") for bad
@@ -147,6 +152,7 @@ class Assembly final : public integrators::SystemBase {
   std::vector<SeatContact> seat_contacts_;
   std::vector<BodyContact> body_contacts_;
   RayleighDamping rayleigh_;
+  ConnectorSet connectors_;
   // Workspaces of the const evaluations, sized at construction.
   mutable std::vector<Eigen::Vector3d> us_dot_;  // us_dot per body at the motions' time
   mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time

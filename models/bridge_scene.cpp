@@ -5,6 +5,7 @@
 
 #include "models/bridge.hpp"
 #include "models/bridge_parts.hpp"
+#include "models/connector_scene.hpp"
 #include "models/excitation_scaling.hpp"
 #include "models/ground_motion.hpp"
 #include "models/scene_schema.hpp"
@@ -372,8 +373,10 @@ ExcitationRecords read_excitation(const Section& m, const FirstPeriod& first_per
 }
 
 // The support motions of every bent and seat, and the end of the longest bent motion [s].
+// ground: the zero-delay motions (x, y) of the connectors to the ground.
 Bridge::Excitation support_motions(const ExcitationRecords& e, const SeatMotions& seats,
-                                   const std::vector<double>& bent_delays, double& end) {
+                                   const std::vector<double>& bent_delays, double& end,
+                                   std::array<parts::Motion, 2>& ground) {
   GroundMotionOptions ox = e.options, oy = e.options;
   ox.scale = e.longitudinal_factor;
   oy.scale = e.transverse_factor;
@@ -381,6 +384,7 @@ Bridge::Excitation support_motions(const ExcitationRecords& e, const SeatMotions
   GroundMotionOptions rot = e.options;
   rot.scale = seats.rotation_scale;
   Bridge::Excitation exc;
+  ground = {mx.at_delay(0.0), my.at_delay(0.0)};
   for (double delay : bent_delays) {
     exc.bents.push_back({mx.at_delay(delay), my.at_delay(delay), nullptr});
   }
@@ -414,20 +418,44 @@ SegmentedDeck read_segments(const Section& m, Bridge::Parameters& p) {
   SegmentedDeck d;
   d.segments = read_bodies(m, "segments");
   d.hinges = read_joints(m, "hinges", d.segments.size() - 1,
-                         "one between each two neighbouring segments");
+                         "one between each two neighbouring segments", {"restrainer"});
   return d;
+}
+
+// The bridge with connectors (models/connector_scene.hpp): its parts, one deck or segmented,
+// plus the connectors.
+std::unique_ptr<integrators::System> connected_bridge(const Section& m,
+                                                      const Bridge::Parameters& p,
+                                                      const SegmentedDeck* d,
+                                                      const BridgeConnectors& c,
+                                                      const Bridge::Excitation& exc,
+                                                      const std::array<parts::Motion, 2>& g) {
+  try {
+    Assembly::Parts parts = d != nullptr ? bridge_parts(p, *d, exc) : bridge_parts(p, exc);
+    std::vector<double> gaps;
+    if (d != nullptr) {
+      for (const auto& h : d->hinges) gaps.push_back(h.gap);
+    }
+    add_connectors(c, p, gaps, g, parts);
+    return std::make_unique<Assembly>(std::move(parts));
+  } catch (const std::invalid_argument& e) {
+    m.rethrow(e);
+  }
 }
 
 // The bridge of [[model.segments]]: an assembly of parts (models/bridge_parts.hpp).
 std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::Parameters& p,
                                                       SegmentedDeck& d, const BentsRead& bents,
-                                                      Bridge::Excitation exc) {
+                                                      Bridge::Excitation exc,
+                                                      const BridgeConnectors& c,
+                                                      const std::array<parts::Motion, 2>& g) {
   d.bent_segment = bents.segments;
   for (std::size_t i = 0; i < d.segments.size(); ++i) {
     if (!torsionally_restrained(p.bents, d.bent_segment, static_cast<int>(i))) {
       m.fail("bents", "segment " + std::to_string(i) + " " + kTwoBents);
     }
   }
+  if (c.any()) return connected_bridge(m, p, &d, c, exc, g);
   try {
     return std::make_unique<Assembly>(bridge_parts(p, d, exc));
   } catch (const std::invalid_argument& e) {
@@ -439,7 +467,7 @@ std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::
 
 BridgeScene build_bridge(Section& m) {
   m.only({"kind", "skew_deg", "deck", "segments", "hinges", "gaps", "damping", "bents", "seats",
-          "excitation"});
+          "excitation", "abutments", "bearings"});
   const bool segmented = m.has("segments");
   if (!segmented) {
     for (const char* key : {"skew_deg", "hinges"}) {
@@ -459,10 +487,16 @@ BridgeScene build_bridge(Section& m) {
   read_damping(m, p);
   const BentsRead bents = read_bents(m, lengths, p);
   const SeatMotions seats = read_seats(m, p);
+  const BridgeConnectors connectors = read_connectors(m, lengths);
   BridgeScene out;
-  // The system for a set of support motions: the one-deck bridge, or the segmented one.
+  std::array<parts::Motion, 2> ground{};
+  // The system for a set of support motions: the one-deck bridge, or the segmented one; an
+  // assembly when there are connectors.
   const auto make = [&](Bridge::Excitation exc) -> std::unique_ptr<integrators::System> {
-    if (segmented) return segmented_bridge(m, p, segments, bents, std::move(exc));
+    if (segmented) {
+      return segmented_bridge(m, p, segments, bents, std::move(exc), connectors, ground);
+    }
+    if (connectors.any()) return connected_bridge(m, p, nullptr, connectors, exc, ground);
     try {
       return std::make_unique<Bridge>(p, std::move(exc));
     } catch (const std::invalid_argument& e) {
@@ -475,7 +509,7 @@ BridgeScene build_bridge(Section& m) {
     return periods.empty() ? NAN : periods.front();
   };
   const ExcitationRecords excitation = read_excitation(m, first_period, out.time_scale);
-  out.system = make(support_motions(excitation, seats, bents.delays, out.motion_end));
+  out.system = make(support_motions(excitation, seats, bents.delays, out.motion_end, ground));
   out.input = describe_excitation(excitation, *out.system);
   return out;
 }

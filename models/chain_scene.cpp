@@ -14,10 +14,13 @@ namespace {
 // The element `i` of the array of tables `key` of m, as a section restricted to fields.
 template <class S>
 Section element(const Section& m, const toml::array& a, std::string_view key, std::size_t i,
-                std::span<const config::Field<S>> fields) {
+                std::span<const config::Field<S>> fields,
+                const std::vector<std::string_view>& extra = {}) {
   const toml::table* t = a[i].as_table();
   Section s(m.context(), *t, m.key_path(key) + "[" + std::to_string(i) + "]");
-  s.only(keys_of(fields));
+  std::vector<std::string_view> keys = keys_of(fields);
+  keys.insert(keys.end(), extra.begin(), extra.end());
+  s.only(keys);
   return s;
 }
 
@@ -46,7 +49,8 @@ std::vector<parts::RigidBody> read_bodies(const Section& m, std::string_view key
 }
 
 std::vector<DeckChain::Joint> read_joints(const Section& m, std::string_view key,
-                                          std::size_t count, const std::string& rule) {
+                                          std::size_t count, const std::string& rule,
+                                          const std::vector<std::string_view>& extra) {
   const toml::array* a = m.array_of_tables(key);
   const std::size_t given = a == nullptr ? 0 : a->size();
   if (given != count) {
@@ -57,7 +61,7 @@ std::vector<DeckChain::Joint> read_joints(const Section& m, std::string_view key
   }
   std::vector<DeckChain::Joint> out;
   for (std::size_t i = 0; i < given; ++i) {
-    const Section s = element(m, *a, key, i, joint_fields());
+    const Section s = element(m, *a, key, i, joint_fields(), extra);
     DeckChain::Joint j;
     s.read_all(joint_fields(), j);
     if (!s.has("gap")) s.fail_table("missing key gap (clear distance along the axis [m])");

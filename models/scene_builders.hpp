@@ -44,8 +44,10 @@ BridgeScene build_bridge(Section& m);
 // mass, inertia, length and width required, every width equal to the first.
 std::vector<parts::RigidBody> read_bodies(const Section& m, std::string_view key);
 // Exactly `count` [[model.<key>]] joints (joint_fields; gap required); `rule` says why.
+// `extra`: further keys allowed in each joint, read elsewhere (a hinge's restrainer).
 std::vector<DeckChain::Joint> read_joints(const Section& m, std::string_view key,
-                                          std::size_t count, const std::string& rule);
+                                          std::size_t count, const std::string& rule,
+                                          const std::vector<std::string_view>& extra = {});
 
 // The deck chain of [model] kind = "deck_chain" (models/deck_chain.hpp).
 std::unique_ptr<integrators::System> build_deck_chain(Section& m);

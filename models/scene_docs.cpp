@@ -1,6 +1,7 @@
 #include "models/scene_docs.hpp"
 
 #include "integrators/run.hpp"
+#include "models/connector_scene.hpp"
 #include "models/scene_schema.hpp"
 
 #include <map>
@@ -105,6 +106,12 @@ void add_bridge_tables(std::vector<DocTable>& out) {
       {"mass", "required"}, {"inertia", "required"}, {"length", "required"}, {"width", "required"}};
   out.push_back(table("model.segments", segment_fields(), parts::RigidBody{}, required));
   out.push_back(table("model.hinges", joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}));
+  // Connectors (models/connector_scene.hpp).
+  out.push_back(table("model.restrainer", RestrainerSettings::fields(), RestrainerSettings{},
+                      {{"stiffness", "required"}}));
+  out.push_back(table("model.abutments", AbutmentSettings::fields(), AbutmentSettings{}));
+  out.push_back(table("model.bearings", BearingSettings::fields(), BearingSettings{},
+                      {{"position", "required"}, {"stiffness", "required"}}));
 }
 
 // The marker comments around a generated table.
