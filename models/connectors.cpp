@@ -101,7 +101,7 @@ double Law::envelope_work(double c) const {
 
 void Law::bilinear(State& s, double d) const {
   // Kinematic hardening as a linear spring r k in parallel with an elastic-perfectly plastic
-  // one of stiffness (1 - r) k and yield force (1 - r) F_y (Naeim & Kelly 1999, sec. 4.2).
+  // one of stiffness (1 - r) k and yield force (1 - r) F_y (Naeim & Kelly 1999).
   const double k_ep = (1.0 - p_.post_yield_ratio) * p_.stiffness;
   const double g_max = (1.0 - p_.post_yield_ratio) * p_.yield_force;
   double g = k_ep * (d - s.back);

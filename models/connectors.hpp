@@ -3,12 +3,13 @@
 // step or roll back an event:
 //   - Cable: a restrainer cable, tension only, with slack and an elastic-perfectly plastic
 //     yield in tension (permanent elongation accumulates): the restrainer model of DesRoches
-//     & Fenves (2000), Earthquake Spectra 16(2), and of the Caltrans restrainer design
-//     (Caltrans Memo to Designers 20-3 / SDC): a linear tension-only spring with slack.
+//     & Fenves (2000), J. Struct. Eng. 126(4), and of the Caltrans restrainer design
+//     method (evaluated by Saiidi, Maragakis & Feng 1992, CCEER 92-8): a linear
+//     tension-only spring with slack.
 //   - Law (Kind::kLinear, kBilinear): an elastomeric or lead-rubber bearing in one direction,
 //     linear, or bilinear with kinematic hardening (stiffness k, yield force F_y, post-yield
-//     stiffness r k; Naeim & Kelly 1999, Design of Seismic Isolated Structures, ch. 4;
-//     AASHTO Guide Specifications for Seismic Isolation Design, sec. 8).
+//     stiffness r k; Naeim & Kelly 1999, Design of Seismic Isolated Structures; AASHTO
+//     Guide Specifications for Seismic Isolation Design).
 //   - Law (Kind::kHyperbolicGap): an abutment backfill, compression only, hyperbolic
 //     envelope F = d / (1/K + R_f d / F_ult) (Duncan & Mokwa 2001; Shamsabadi, Rollins &
 //     Kapuskar 2007, J. Geotech. Geoenviron. Eng. 133(6)), unloading and reloading on a line

@@ -61,7 +61,7 @@ TEST_CASE("restrainer cable: slack, tension, yield, permanent set (hand-derived)
 }
 
 TEST_CASE("bilinear bearing: kinematic hardening path (hand-derived)") {
-  // k = 1000 kN/m, F_y = 10 kN (d_y = 0.01 m), r = 0.1 (Naeim & Kelly 1999, sec. 4.2):
+  // k = 1000 kN/m, F_y = 10 kN (d_y = 0.01 m), r = 0.1 (Naeim & Kelly 1999):
   // linear spring r k = 100 kN/m in parallel with an elastic-plastic one of 900 kN/m, 9 kN.
   Law b(LawParameters::bilinear(1000.0, 10.0, 0.1));
   // d = 0.005 < d_y: F = k d = 5 kN.
