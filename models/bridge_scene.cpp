@@ -487,7 +487,7 @@ BridgeScene build_bridge(Section& m) {
   read_damping(m, p);
   const BentsRead bents = read_bents(m, lengths, p);
   const SeatMotions seats = read_seats(m, p);
-  const BridgeConnectors connectors = read_connectors(m, lengths);
+  const BridgeConnectors connectors = read_connectors(m, lengths, p.deck);
   BridgeScene out;
   std::array<parts::Motion, 2> ground{};
   // The system for a set of support motions: the one-deck bridge, or the segmented one; an

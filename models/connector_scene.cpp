@@ -2,6 +2,7 @@
 
 #include "models/scene_builders.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -90,7 +91,8 @@ bool BridgeConnectors::any() const {
 
 namespace {
 
-std::optional<RestrainerSettings> read_restrainer(const Section& s) {
+// The restrainer of joint table s, whose gap is `gap` [m] (its length must exceed it).
+std::optional<RestrainerSettings> read_restrainer(const Section& s, double gap) {
   const toml::table* t = s.subtable("restrainer");
   if (t == nullptr) return std::nullopt;
   Section r(s.context(), *t, s.key_path("restrainer"));
@@ -98,6 +100,10 @@ std::optional<RestrainerSettings> read_restrainer(const Section& s) {
   RestrainerSettings out;
   r.read_all(RestrainerSettings::fields(), out);
   if (!r.has("stiffness")) r.fail_table("missing key stiffness (cable stiffness [kN/m])");
+  if (!(out.length > gap)) {
+    r.fail("length", "must exceed the joint's gap " + c::format_value(gap) + " m (got " +
+                         c::format_value(out.length) + ")");
+  }
   return out;
 }
 
@@ -129,13 +135,15 @@ void read_bearings(const Section& m, const std::vector<double>& lengths,
 
 }  // namespace
 
-BridgeConnectors read_connectors(const Section& m, const std::vector<double>& lengths) {
+BridgeConnectors read_connectors(const Section& m, const std::vector<double>& lengths,
+                                 const DeckGeometry& deck) {
   BridgeConnectors out;
   if (const toml::array* h = m.array_of_tables("hinges"); h != nullptr) {
     for (std::size_t i = 0; i < h->size(); ++i) {
       const Section s(m.context(), *(*h)[i].as_table(),
                       m.key_path("hinges") + "[" + std::to_string(i) + "]");
-      out.hinge_restrainers.push_back(read_restrainer(s));
+      out.hinge_restrainers.push_back(
+          read_restrainer(s, s.table()["gap"].value_or(0.0)));
     }
   }
   if (const toml::table* t = m.subtable("abutments"); t != nullptr) {
@@ -150,7 +158,7 @@ BridgeConnectors read_connectors(const Section& m, const std::vector<double>& le
                                               "cycle must not create energy)");
     }
     out.abutments = a;
-    out.abutment_restrainer = read_restrainer(s);
+    out.abutment_restrainer = read_restrainer(s, std::max(deck.gap_left, deck.gap_right));
   }
   read_bearings(m, lengths, out);
   return out;

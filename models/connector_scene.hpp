@@ -70,8 +70,10 @@ struct BridgeConnectors {
 };
 
 // Reads [[model.hinges]] restrainer, [model.abutments] and [[model.bearings]] of [model] m;
-// `lengths` are the segments' lengths (bearing positions are checked against them).
-BridgeConnectors read_connectors(const Section& m, const std::vector<double>& lengths);
+// `lengths` are the segments' lengths (bearing positions are checked against them), `deck`
+// gives the abutment gaps (a restrainer's length must exceed its joint's gap).
+BridgeConnectors read_connectors(const Section& m, const std::vector<double>& lengths,
+                                 const DeckGeometry& deck);
 
 // Adds the connectors to the parts of a bridge (models::bridge_parts): p gives the gaps,
 // width and skew; ground the zero-delay support motions (x, y) of the bearings and
