@@ -46,7 +46,7 @@ struct AbutmentSettings {
   double failure_ratio = 0.7;               // R_f
   double unloading_stiffness_per_width = 20300.0;  // K_ur [kN/m per m]
   double pile_stiffness = 7000.0;  // linear x spring in parallel [kN/m]
-  double tie_frequency = 50.0;     // y and theta ties' frequency on the wall's mass [Hz]
+  double tie_frequency = 20.0;     // y and theta ties' frequency on the wall's mass [Hz]
   static std::span<const config::Field<AbutmentSettings>> fields();
 };
 
