@@ -60,6 +60,8 @@ Assembly::Assembly(Parts parts)
   }
   set_mass(mass);
   set_initial_state(q0, u0);
+  connectors_ = ConnectorSet(parts_.bodies, parts_.prescribed, parts_.restrainers, parts_.links,
+                             motions_);
   build_bents(mass);
   build_contacts();
   seats_.assign(parts_.prescribed.size(), PlanarMotion{});
@@ -126,6 +128,7 @@ void Assembly::build_bents(const integrators::Matrix& mass) {
       body.k0 += p.transverse.k0 * by * by.transpose();
     }
     body.bent_end = bents_.size();
+    connectors_.add_initial_stiffness(static_cast<int>(i), body.k0);
   }
   us_dot_.assign(body_forces_.size(), Eigen::Vector3d::Zero());
   if (parts_.damping) build_damping(mass);
@@ -151,6 +154,7 @@ void Assembly::build_damping(const integrators::Matrix& mass) {
       bent.qs_y =
           ldlt.solve(bent.y.parameters().k0 * Eigen::Vector3d(0.0, 1.0, bent.position));
     }
+    connectors_.set_quasi_static(b.offset / 3, ldlt);
   }
 }
 
@@ -204,6 +208,7 @@ void Assembly::update_motions(double t) const {
       const BentState& b = bents_[j];
       us += b.qs_x * motions_.value(b.ground_x).v + b.qs_y * motions_.value(b.ground_y).v;
     }
+    connectors_.add_support_velocity(static_cast<int>(i), motions_, us);
     us_dot_[i] = us;
   }
   for (std::size_t p = 0; p < seats_.size(); ++p) seat_pose(p, seats_[p]);
@@ -270,6 +275,7 @@ void Assembly::forces(double t, const integrators::Vector& q, const integrators:
       f.segment<3>(body.offset) = fs;
     }
   }
+  if (!connectors_.empty()) connectors_.forces(q, motions_, seats_, f);
 }
 
 void Assembly::tangent(double, const integrators::Vector&, const integrators::Vector&,
@@ -285,6 +291,7 @@ void Assembly::tangent(double, const integrators::Vector&, const integrators::Ve
     K(o + 2, o + 1) += ky * s;
     K(o + 2, o + 2) += ky * s * s;
   }
+  connectors_.tangent(K);
   C.setZero(dofs(), dofs());
   for (const auto& b : body_forces_) C.block<3, 3>(b.offset, b.offset) = b.c;
 }
@@ -293,17 +300,19 @@ bool Assembly::tangent_changed() const {
   for (const auto& b : bents_) {
     if (b.x.tangent_changed() || b.y.tangent_changed()) return true;
   }
-  return false;
+  return connectors_.tangent_changed();
 }
 
 void Assembly::commit() {
   for (auto& b : bents_) b.x.commit();
   for (auto& b : bents_) b.y.commit();
+  connectors_.commit();
 }
 
 void Assembly::revert() {
   for (auto& b : bents_) b.x.revert();
   for (auto& b : bents_) b.y.revert();
+  connectors_.revert();
 }
 
 void Assembly::resize_buffer(std::vector<integrators::ContactData>& out) const {
@@ -387,6 +396,7 @@ integrators::PowerTerms Assembly::power(double t, const integrators::Vector&,
     ground -= b.x.force() * motions_.value(b.ground_x).v +
               b.y.force() * motions_.value(b.ground_y).v;
   }
+  if (!connectors_.empty()) ground += connectors_.ground_power(motions_, seats_);
   pw.ground = ground;
   return pw;
 }
@@ -397,6 +407,7 @@ integrators::EnergyState Assembly::energy(double, const integrators::Vector&) co
     e.stored += b.x.stored_energy() + b.y.stored_energy();
     e.hysteretic += b.x.dissipated_energy() + b.y.dissipated_energy();
   }
+  connectors_.energy(e);
   return e;
 }
 

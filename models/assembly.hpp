@@ -27,6 +27,7 @@
 #pragma once
 
 #include "integrators/system.hpp"
+#include "models/connector_set.hpp"
 #include "models/contact_geometry.hpp"
 #include "models/limit_watch.hpp"
 #include "models/parts.hpp"
@@ -50,6 +51,10 @@ class Assembly final : public integrators::SystemBase {
     std::optional<parts::RayleighParts> damping;   // needs a bent on every body (K0 > 0)
     std::vector<parts::ShearKey> shear_keys;       // breakable contacts (models/shear_keys.hpp)
     LimitSpec limits;                              // the limit states watched (none: empty)
+    // Connectors (models/connector_set.hpp): restrainer cables, and links to the ground
+    // (bearings, backfills) whose initial stiffness joins the bents' K0.
+    std::vector<parts::Restrainer> restrainers;
+    std::vector<parts::GroundLink> links;
   };
 
   // Throws std::invalid_argument naming the part and field ("bodies[1].mass: ...") for bad
@@ -183,6 +188,7 @@ class Assembly final : public integrators::SystemBase {
   std::vector<BodyContact> body_contacts_;
   RayleighDamping rayleigh_;
   std::vector<KeyState> keys_;
+  ConnectorSet connectors_;
   // Workspaces of the const evaluations, sized at construction.
   mutable std::vector<Eigen::Vector3d> us_dot_;  // us_dot per body at the motions' time
   mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time

@@ -4,6 +4,7 @@
 
 #include "config/schema.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,7 +14,8 @@ void Assembly::build_limits() {
   const LimitSpec& spec = parts_.limits;
   spec.validate(contacts(), static_cast<int>(parts_.bents.size()),
                 static_cast<int>(parts_.bodies.size()));
-  watch_ = LimitWatch(spec, static_cast<int>(parts_.bodies.size()));
+  const int bodies = static_cast<int>(parts_.bodies.size());
+  watch_ = LimitWatch(spec, spec.deck_bodies > 0 ? std::min(spec.deck_bodies, bodies) : bodies);
   if (watch_.watches_joints()) watch_gaps_.assign(parts_.contacts.size(), 0.0);
   // The initial state is the first value of every watched quantity; a seat shorter than the
   // initial opening of its joint is bad input, not a result.

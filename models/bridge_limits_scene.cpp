@@ -11,8 +11,8 @@ namespace nsb::models {
 BridgeLimitKeys read_bridge_limits(const Section& m) {
   BridgeLimitKeys out;
   if (const auto* t = m.subtable("abutments")) {
+    // Its other keys are the connectors' (read_connectors checks the table's keys).
     Section s(m.context(), *t, m.key_path("abutments"));
-    s.only(keys_of(SeatLengthSettings::fields()));
     SeatLengthSettings seat;
     s.read_all(SeatLengthSettings::fields(), seat);
     if (s.has("seat_length")) {

@@ -171,6 +171,7 @@ LimitSpec bridge_limit_spec(const BridgeLimits& limits, std::size_t segments) {
   spec.bent_heights = limits.bent_heights;
   spec.drift_ratio = limits.drift_ratio;
   spec.residual_rotation = limits.residual_rotation;
+  spec.deck_bodies = static_cast<int>(segments);
   return spec;
 }
 

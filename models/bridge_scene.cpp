@@ -5,6 +5,7 @@
 
 #include "models/bridge.hpp"
 #include "models/bridge_parts.hpp"
+#include "models/connector_scene.hpp"
 #include "models/excitation_scaling.hpp"
 #include "models/ground_motion.hpp"
 #include "models/scene_schema.hpp"
@@ -381,8 +382,10 @@ ExcitationRecords read_excitation(const Section& m, const FirstPeriod& first_per
 }
 
 // The support motions of every bent and seat, and the end of the longest bent motion [s].
+// ground: the zero-delay motions (x, y) of the connectors to the ground.
 Bridge::Excitation support_motions(const ExcitationRecords& e, const SeatMotions& seats,
-                                   const std::vector<double>& bent_delays, double& end) {
+                                   const std::vector<double>& bent_delays, double& end,
+                                   std::array<parts::Motion, 2>& ground) {
   GroundMotionOptions ox = e.options, oy = e.options;
   ox.scale = e.longitudinal_factor;
   oy.scale = e.transverse_factor;
@@ -390,6 +393,7 @@ Bridge::Excitation support_motions(const ExcitationRecords& e, const SeatMotions
   GroundMotionOptions rot = e.options;
   rot.scale = seats.rotation_scale;
   Bridge::Excitation exc;
+  ground = {mx.at_delay(0.0), my.at_delay(0.0)};
   for (double delay : bent_delays) {
     exc.bents.push_back({mx.at_delay(delay), my.at_delay(delay), nullptr});
   }
@@ -423,50 +427,65 @@ SegmentedDeck read_segments(const Section& m, Bridge::Parameters& p) {
   SegmentedDeck d;
   d.segments = read_bodies(m, "segments");
   d.hinges = read_joints(m, "hinges", d.segments.size() - 1,
-                         "one between each two neighbouring segments", {"seat_length"});
+                         "one between each two neighbouring segments",
+                         {"seat_length", "restrainer"});
   return d;
 }
 
-// The assembly of `parts`, with the shear keys of [model.shear_keys] when given and the limit
-// states of `limits` watched on its `segments` deck segments.
-std::unique_ptr<integrators::System> assemble(const Section& m, Assembly::Parts parts,
-                                              const std::optional<ShearKeyParameters>& keys,
-                                              const BridgeLimits& limits, std::size_t segments) {
+// What a bridge adds to the benchmark's parts: connectors, shear keys, limit states.
+struct BridgeAdditions {
+  BridgeConnectors connectors;
+  std::optional<ShearKeyParameters> keys;
+  BridgeLimitKeys limits;
+  bool any() const { return connectors.any() || keys.has_value() || limits.requested; }
+};
+
+// The bridge as an assembly of parts (models/bridge_parts.hpp), one deck (d == nullptr: the
+// same operations as models::Bridge) or segmented, with the additions: the connectors
+// (models/connector_scene.hpp) and their ground motions g, then the shear keys on the deck's
+// bodies, then the limit states watched on its segments.
+std::unique_ptr<integrators::System> assemble(const Section& m, const Bridge::Parameters& p,
+                                              const SegmentedDeck* d, const BridgeAdditions& a,
+                                              const Bridge::Excitation& exc,
+                                              const std::array<parts::Motion, 2>& g) {
   try {
-    if (keys) add_shear_keys(parts, *keys);
-    parts.limits = bridge_limit_spec(limits, segments);
+    Assembly::Parts parts = d != nullptr ? bridge_parts(p, *d, exc) : bridge_parts(p, exc);
+    const std::size_t deck_bodies = parts.bodies.size();
+    if (a.connectors.any()) {
+      std::vector<double> gaps;
+      if (d != nullptr) {
+        for (const auto& h : d->hinges) gaps.push_back(h.gap);
+      }
+      add_connectors(a.connectors, p, gaps, g, parts);
+    }
+    if (a.keys) add_shear_keys(parts, *a.keys, deck_bodies);
+    parts.limits = bridge_limit_spec(a.limits.limits, deck_bodies);
     return std::make_unique<Assembly>(std::move(parts));
   } catch (const std::invalid_argument& e) {
     m.rethrow(e);
   }
 }
 
-// The bridge of [[model.segments]]: an assembly of parts (models/bridge_parts.hpp).
+// The bridge of [[model.segments]]: an assembly of parts.
 std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::Parameters& p,
                                                       SegmentedDeck& d, const BentsRead& bents,
-                                                      Bridge::Excitation exc,
-                                                      const std::optional<ShearKeyParameters>& keys,
-                                                      const BridgeLimits& limits) {
+                                                      const Bridge::Excitation& exc,
+                                                      const BridgeAdditions& a,
+                                                      const std::array<parts::Motion, 2>& g) {
   d.bent_segment = bents.segments;
   for (std::size_t i = 0; i < d.segments.size(); ++i) {
     if (!torsionally_restrained(p.bents, d.bent_segment, static_cast<int>(i))) {
       m.fail("bents", "segment " + std::to_string(i) + " " + kTwoBents);
     }
   }
-  Assembly::Parts parts;
-  try {
-    parts = bridge_parts(p, d, exc);
-  } catch (const std::invalid_argument& e) {
-    m.rethrow(e);
-  }
-  return assemble(m, std::move(parts), keys, limits, d.segments.size());
+  return assemble(m, p, &d, a, exc, g);
 }
 
 }  // namespace
 
 BridgeScene build_bridge(Section& m) {
   m.only({"kind", "skew_deg", "deck", "segments", "hinges", "gaps", "damping", "bents", "seats",
-          "excitation", "shear_keys", "abutments", "limit_states"});
+          "excitation", "shear_keys", "abutments", "bearings", "limit_states"});
   const bool segmented = m.has("segments");
   if (!segmented) {
     for (const char* key : {"skew_deg", "hinges"}) {
@@ -484,26 +503,23 @@ BridgeScene build_bridge(Section& m) {
   if (!segmented) lengths.push_back(p.deck.length);
   read_table(m, "gaps", bridge_gap_fields(), p);
   read_damping(m, p);
-  BridgeLimitKeys limits = read_bridge_limits(m);
-  const BentsRead bents = read_bents(m, lengths, p, limits.limits.drift_ratio > 0);
-  limits.limits.bent_heights = bents.heights;
+  BridgeAdditions add;
+  add.limits = read_bridge_limits(m);
+  const BentsRead bents = read_bents(m, lengths, p, add.limits.limits.drift_ratio > 0);
+  add.limits.limits.bent_heights = bents.heights;
   const SeatMotions seats = read_seats(m, p);
-  std::optional<ShearKeyParameters> keys;
   if (m.subtable("shear_keys") != nullptr) {
-    read_table(m, "shear_keys", shear_key_fields(), keys.emplace());
+    read_table(m, "shear_keys", shear_key_fields(), add.keys.emplace());
   }
+  add.connectors = read_connectors(m, lengths, p.deck);
   BridgeScene out;
-  // The system for a set of support motions: the one-deck bridge, or the segmented one.
+  std::array<parts::Motion, 2> ground{};
+  // The system for a set of support motions: the one-deck bridge, or an assembly when the
+  // deck is segmented or the bridge has parts the benchmark has not.
   const auto make = [&](Bridge::Excitation exc) -> std::unique_ptr<integrators::System> {
-    if (segmented) {
-      return segmented_bridge(m, p, segments, bents, std::move(exc), keys, limits.limits);
-    }
+    if (segmented) return segmented_bridge(m, p, segments, bents, exc, add, ground);
+    if (add.any()) return assemble(m, p, nullptr, add, exc, ground);
     try {
-      // Parts the benchmark bridge has not (shear keys, limit states): the same bridge as an
-      // assembly (bridge_parts(p, excitation) does the same operations as models::Bridge).
-      if (keys || limits.requested) {
-        return assemble(m, bridge_parts(p, exc), keys, limits.limits, 1);
-      }
       return std::make_unique<Bridge>(p, std::move(exc));
     } catch (const std::invalid_argument& e) {
       if (deck && std::string(e.what()).rfind("initial_position", 0) == 0) deck->rethrow(e);
@@ -515,7 +531,7 @@ BridgeScene build_bridge(Section& m) {
     return periods.empty() ? NAN : periods.front();
   };
   const ExcitationRecords excitation = read_excitation(m, first_period, out.time_scale);
-  out.system = make(support_motions(excitation, seats, bents.delays, out.motion_end));
+  out.system = make(support_motions(excitation, seats, bents.delays, out.motion_end, ground));
   out.input = describe_excitation(excitation, *out.system);
   return out;
 }

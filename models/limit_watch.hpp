@@ -42,6 +42,9 @@ struct LimitSpec {
                                      //   needed for every bent when drift_ratio > 0
   double drift_ratio = 0.0;          // [-]; 0: the drift is not watched
   double residual_rotation = 0.0;    // [rad]; 0: the residual rotation is not watched
+  int deck_bodies = 0;               // bodies 0 .. deck_bodies - 1 are the deck's segments,
+                                     //   whose residual rotation is watched; 0: every body
+                                     //   (a backfill abutment's backwall is a body too)
   bool empty() const {
     return joints.empty() && drift_ratio == 0.0 && residual_rotation == 0.0;
   }

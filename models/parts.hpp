@@ -14,6 +14,7 @@
 #pragma once
 
 #include "integrators/system.hpp"
+#include "models/connectors.hpp"
 #include "models/contact_geometry.hpp"
 #include "models/ground_motion.hpp"
 #include "models/takeda.hpp"
@@ -86,6 +87,40 @@ struct Bent {
   Motion ground_transverse;        // u_gy(t); null: fixed
 };
 
+// What a corner touches: the face of a prescribed body, or the face of another rigid body.
+enum class Obstacle { kPrescribed, kBody };
+
+// A restrainer cable (models/connectors.hpp, Cable) from the anchor point of a rigid body to
+// the anchor point of another body (across a hinge) or of a prescribed body (an abutment
+// seat). Anchors are in each body's frame; the rest length L0 is their distance in the rest
+// layout (q = 0, seats at their reference, t-independent) and the elongation is |p_a - p_b| -
+// L0 with the exact positions. The tension F pulls the anchors together: body a gets
+// -F (e, r_a x e), body b +F (e, r_b x e), e = (p_a - p_b) / |p_a - p_b|, r the anchor from
+// the body centre in the global frame.
+struct Restrainer {
+  int body = 0;                                       // body of anchor a, >= 0
+  Eigen::Vector2d anchor = Eigen::Vector2d::Zero();   // in body's frame [m]
+  Obstacle other = Obstacle::kPrescribed;             // what anchor b is on
+  int other_index = 0;                                // index among bodies or prescribed
+  Eigen::Vector2d other_anchor = Eigen::Vector2d::Zero();  // in the other's frame [m]
+  connectors::CableParameters cable;
+};
+
+// A connector between a body point at position s along its axis and the ground (an
+// elastomeric bearing, a backfill, a pile or tie spring): one uniaxial law per direction
+// (models/connectors.hpp, Law) acting on the point's displacement relative to its own
+// support motion, as a bent (small rotations):
+//   F_x = law_x(x - u_gx(t)),   F_y = law_y(y + s theta - u_gy(t)),
+//   f_b -= F_x (1, 0, 0) + F_y (0, 1, s).
+struct GroundLink {
+  int body = 0;                  // >= 0
+  double position = 0.0;         // s from the body centre along its axis [m], |s| <= L/2
+  connectors::LawParameters longitudinal;
+  connectors::LawParameters transverse;
+  Motion ground_longitudinal;    // u_gx(t); null: fixed
+  Motion ground_transverse;      // u_gy(t); null: fixed
+};
+
 // Rayleigh damping C = a0 M + a1 K0 on the assembled mass and initial stiffness, from two
 // modal ratios (models/rayleigh.hpp), acting on the velocity relative to the quasi-static
 // motion of the supports: f_D = -C (u - us_dot(t)) (Chopra, Dynamics of Structures, sec. 9.7).
@@ -93,9 +128,6 @@ struct RayleighParts {
   double ratio_i = 0.0, ratio_j = 0.0;  // zeta of modes i and j, in [0, 1)
   int mode_i = 1, mode_j = 3;           // 1-based modes of (M, K0), distinct
 };
-
-// What a corner touches: the face of a prescribed body, or the face of another rigid body.
-enum class Obstacle { kPrescribed, kBody };
 
 // A unilateral frictional contact: corner `corner` of rigid body `body` against `face` of the
 // obstacle (index `obstacle_index` among the prescribed or the rigid bodies).

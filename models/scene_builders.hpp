@@ -45,7 +45,7 @@ BridgeScene build_bridge(Section& m);
 // mass, inertia, length and width required, every width equal to the first.
 std::vector<parts::RigidBody> read_bodies(const Section& m, std::string_view key);
 // Exactly `count` [[model.<key>]] joints (joint_fields; gap required); `rule` says why.
-// `extra`: further keys an element may hold, read by the caller.
+// `extra`: further keys an element may hold, read by the caller (seat_length, restrainer).
 std::vector<DeckChain::Joint> read_joints(const Section& m, std::string_view key,
                                           std::size_t count, const std::string& rule,
                                           const std::vector<std::string_view>& extra = {});

@@ -1,6 +1,7 @@
 #include "models/scene_docs.hpp"
 
 #include "integrators/run.hpp"
+#include "models/connector_scene.hpp"
 #include "models/scene_schema.hpp"
 
 #include <map>
@@ -109,8 +110,15 @@ void add_bridge_tables(std::vector<DocTable>& out) {
                  kHeader + rows(joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}) +
                      rows(SeatLengthSettings::fields(), SeatLengthSettings{},
                           {{"seat_length", "none"}})});
-  out.push_back(table("model.abutments.seat", SeatLengthSettings::fields(), SeatLengthSettings{},
-                      {{"seat_length", "none"}}));
+  // Connectors (models/connector_scene.hpp); seat_length is a limit state's.
+  out.push_back(table("model.restrainer", RestrainerSettings::fields(), RestrainerSettings{},
+                      {{"stiffness", "required"}}));
+  out.push_back({"model.abutments",
+                 kHeader + rows(AbutmentSettings::fields(), AbutmentSettings{}) +
+                     rows(SeatLengthSettings::fields(), SeatLengthSettings{},
+                          {{"seat_length", "none"}})});
+  out.push_back(table("model.bearings", BearingSettings::fields(), BearingSettings{},
+                      {{"position", "required"}, {"stiffness", "required"}}));
   out.push_back(table("model.limit_states", LimitStateSettings::fields(), LimitStateSettings{},
                       {{"drift_ratio", "none"}, {"residual_rotation", "none"}}));
 }

@@ -38,11 +38,14 @@ void ShearKeyParameters::validate(const std::string& prefix) const {
           "must be >= 0 [kN] (0: unbreakable)");
 }
 
-void add_shear_keys(Assembly::Parts& parts, const ShearKeyParameters& keys) {
+void add_shear_keys(Assembly::Parts& parts, const ShearKeyParameters& keys,
+                    std::size_t deck_bodies) {
   keys.validate("shear_keys.");
   require(!parts.bodies.empty() && parts.prescribed.size() >= 2, "shear_keys",
           "need a deck and the two abutment seats (prescribed bodies 0 and 1)");
-  const int last = static_cast<int>(parts.bodies.size()) - 1;
+  const std::size_t deck = deck_bodies > 0 ? deck_bodies : parts.bodies.size();
+  require(deck <= parts.bodies.size(), "shear_keys", "more deck bodies than bodies");
+  const int last = static_cast<int>(deck) - 1;
   add_key(parts, keys, 0, 0, 0, 1.0, "shear_key_left_plus");
   add_key(parts, keys, 0, 1, 0, -1.0, "shear_key_left_minus");
   add_key(parts, keys, last, 2, 1, 1.0, "shear_key_right_plus");

@@ -32,9 +32,11 @@ struct ShearKeyParameters {
 // in this order: left +y, left -y, right +y, right -y ("shear_key_left_plus", ...). The left
 // keys sit on prescribed body 0 (the left seat) and touch corners 0 (+y) and 1 (-y) of the
 // first body; the right keys sit on prescribed body 1 and touch corners 2 (+y) and 3 (-y) of
-// the last body (the deck, or the last segment of a segmented deck). The key face of side
+// the deck's last body, deck_bodies - 1 (the deck, or the last segment of a segmented deck;
+// 0: the last of all bodies; a backfill abutment's backwall bodies follow the deck's). The key face of side
 // s = +-1 passes through (x_c, s (W/2 + gap)) at rest, x_c the touching corner's x at rest,
 // with the normal (0, -s) pointing from the key towards the deck.
-void add_shear_keys(Assembly::Parts& parts, const ShearKeyParameters& keys);
+void add_shear_keys(Assembly::Parts& parts, const ShearKeyParameters& keys,
+                    std::size_t deck_bodies = 0);
 
 }  // namespace nsb::models

@@ -135,7 +135,10 @@ std::vector<SceneCase> scene_cases() {
   // Bridges in parts (the same window, step and load bound as the one-deck benchmark: the
   // deck's mass and bents are shared among the frames) and the free two-deck chain (no
   // smooth force on a contact: load 0).
-  for (const char* file : {"bridge-two-frame.toml", "bridge-skew-three-span.toml"}) {
+  // With connectors (docs/bridge.md, "Connectors"): backfill abutments (backwall bodies on
+  // the hyperbolic backfill) and a restrainer across the two-frame bridge's hinge.
+  for (const char* file : {"bridge-two-frame.toml", "bridge-skew-three-span.toml",
+                           "bridge-backfill.toml", "bridge-two-frame-restrainers.toml"}) {
     s.push_back(from_file(file, kBridgeWindow, 1e-4, false, kBridgeNormalLoad));
   }
   s.push_back(from_file("deck-chain-two.toml", 1.0, 1e-4, false, 0.0));
