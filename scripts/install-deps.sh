@@ -4,7 +4,7 @@
 # (without it `nsbridge sweep` runs on threads only); CI installs it to test sweeps under mpirun.
 # The Python packages build and test the module `nsbridge` for Debian's /usr/bin/python3
 # (docs/python.md), pip route included.
-# Debian's Siconos for Python (python3-siconos, with python3-scipy) is the peer of the check
+# Debian's Siconos for Python (python3-siconos) is the peer of the check
 # verification.siconos_two_frame (docs/verification.md), which CMake registers only when
 # /usr/bin/python3 imports it: CI installs it so that the check runs; nothing needs it to build.
 #   --with-siconos   also install Siconos Numerics, the optional reference for benchmarks
@@ -20,7 +20,7 @@ packages=(
   clang libfuzzer-14-dev libclang-rt-14-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
   python3-venv python3-pip python3-setuptools
-  python3-siconos python3-scipy
+  python3-siconos
 )
 if [[ "${1:-}" == "--with-siconos" ]]; then
   packages+=(libsiconos-numerics-dev)

@@ -16,7 +16,7 @@ file with the formulas of docs/bridge.md ("Bridges in parts"), not exported from
         quasi-static support motion is e_y u_g (y of both frames), so Siconos's
         LagrangianLinearTIDS gets F_ext(t) = K0 e_y u_g(t) + C e_y v_g(t);
   u_g, v_g: the natural cubic spline through the record's samples and its exact integrals
-        from the first sample (models/ground_motion.hpp), here scipy's CubicSpline.
+        from the first sample (models/ground_motion.hpp), here NaturalSpline below.
 Contacts are LagrangianScleronomousR relations computing the exact (nonlinear) gap
 g_N(q) = n . (p - a) of a frame corner p against a face (a, n) and its exact Jacobian
 (models/contact_geometry.hpp, models/parts.hpp): a seat face is fixed; the hinge face is the
@@ -43,14 +43,12 @@ import tempfile
 import time
 import tomllib
 
-try:  # the check needs Siconos (python3-siconos) and scipy; nothing else does
+try:  # the check needs Siconos (python3-siconos, with numpy); nothing else does
     import numpy as np
     import siconos.kernel as sk
     import siconos.numerics as sn
-    from scipy.interpolate import CubicSpline
-    from scipy.linalg import eigh
 except ImportError as error:
-    print(f"siconos_two_frame: skipped, Siconos or scipy not importable ({error})")
+    print(f"siconos_two_frame: skipped, Siconos not importable ({error})")
     sys.exit(77)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -64,27 +62,65 @@ def read_record(path):
     return np.array([float(r[0]) for r in rows]), np.array([float(r[1]) for r in rows])
 
 
+class NaturalSpline:
+    """The natural cubic spline through (t_i, a_i) (second derivative 0 at both ends) and its
+    first and second integrals from t_0, exact: on [t_i, t_i+1], with s = t - t_i,
+    a = a_i + b_i s + c_i s^2 + e_i s^3, c_i = m_i / 2, e_i = (m_i+1 - m_i) / (6 h_i),
+    b_i = (a_i+1 - a_i) / h_i - h_i (2 m_i + m_i+1) / 6, where the second derivatives m_i
+    solve the tridiagonal system h_i-1 m_i-1 + 2 (h_i-1 + h_i) m_i + h_i m_i+1 =
+    6 ((a_i+1 - a_i) / h_i - (a_i - a_i-1) / h_i-1), m_0 = m_n = 0."""
+
+    def __init__(self, t, a):
+        n, h = len(t), np.diff(t)
+        slope = np.diff(a) / h
+        A, r = np.zeros((n, n)), np.zeros(n)
+        A[0, 0] = A[-1, -1] = 1.0
+        for i in range(1, n - 1):
+            A[i, i - 1:i + 2] = h[i - 1], 2.0 * (h[i - 1] + h[i]), h[i]
+            r[i] = 6.0 * (slope[i] - slope[i - 1])
+        m = np.linalg.solve(A, r)
+        self.t, self.h = t, h
+        self.c = [a[:-1], slope - h * (2.0 * m[:-1] + m[1:]) / 6.0, m[:-1] / 2.0,
+                  (m[1:] - m[:-1]) / (6.0 * h)]
+        # v_i, d_i: the integrals at t_i, summed over the intervals before it.
+        a0, b, c, e = self.c
+        dv = a0 * h + b * h**2 / 2 + c * h**3 / 3 + e * h**4 / 4
+        self.v0 = np.concatenate(([0.0], np.cumsum(dv)))
+        dd = self.v0[:-1] * h + a0 * h**2 / 2 + b * h**3 / 6 + c * h**4 / 12 + e * h**5 / 20
+        self.d0 = np.concatenate(([0.0], np.cumsum(dd)))
+
+    def integrals(self, t):
+        """(d, v): the second and first integrals from t_0 at t in [t_0, t_n]."""
+        i = min(max(int(np.searchsorted(self.t, t, side="right")) - 1, 0), len(self.h) - 1)
+        s = t - self.t[i]
+        a0, b, c, e = (x[i] for x in self.c)
+        v = self.v0[i] + a0 * s + b * s**2 / 2 + c * s**3 / 3 + e * s**4 / 4
+        d = self.d0[i] + self.v0[i] * s + a0 * s**2 / 2 + b * s**3 / 6 + c * s**4 / 12 \
+            + e * s**5 / 20
+        return float(d), float(v)
+
+
 class GroundMotion:
     """u_g, v_g of a record: natural cubic spline of a, exact integrals from the first
     sample, zero before it, the displacement held and the velocity zero after the last."""
 
     def __init__(self, t, a):
         self.t0, self.t1 = t[0], t[-1]
-        self.a = CubicSpline(t, a, bc_type="natural")
-        self.v = self.a.antiderivative(1)
-        self.d = self.a.antiderivative(2)
+        self.spline = NaturalSpline(t, a)
 
     def values(self, t):
         if t <= self.t0:
             return 0.0, 0.0
         if t >= self.t1:
-            return float(self.d(self.t1)), 0.0
-        return float(self.d(t)), float(self.v(t))
+            return self.spline.integrals(self.t1)[0], 0.0
+        return self.spline.integrals(t)
 
 
 def rayleigh(M, K, mode_i, zeta_i, mode_j, zeta_j):
     """a0, a1 with zeta_n = a0 / (2 w_n) + a1 w_n / 2 on modes i and j (1-based) of (M, K)."""
-    w = np.sqrt(np.maximum(eigh(K, M, eigvals_only=True), 0.0))
+    # The generalized problem K x = w^2 M x as the standard one of L^-1 K L^-T, M = L L^T.
+    L_inv = np.linalg.inv(np.linalg.cholesky(M))
+    w = np.sqrt(np.maximum(np.linalg.eigvalsh(L_inv @ K @ L_inv.T), 0.0))
     wi, wj = w[mode_i - 1], w[mode_j - 1]
     A = np.array([[1.0 / (2.0 * wi), wi / 2.0], [1.0 / (2.0 * wj), wj / 2.0]])
     return np.linalg.solve(A, np.array([zeta_i, zeta_j]))
