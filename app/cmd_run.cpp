@@ -96,6 +96,13 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
+// Six significant digits for the terminal summary; summary.json keeps every digit.
+std::string six_digits(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
 // The watched limit states (docs/limit-states.md): how many, and each exceeded one with when.
 void print_limit_states(const runs::Digest& d) {
   std::size_t exceeded = 0;
@@ -104,7 +111,7 @@ void print_limit_states(const runs::Digest& d) {
   const char* sep = ": ";
   for (const auto& v : d.limit_states) {
     if (!v.exceeded) continue;
-    std::cout << sep << v.name << " at t = " << io::shortest(v.time) << " s";
+    std::cout << sep << v.name << " at t = " << six_digits(v.time) << " s";
     sep = ", ";
   }
   std::cout << '\n';
@@ -127,8 +134,12 @@ void print_summary(const runs::RunRecord& record, const std::filesystem::path& o
   std::cout << "time       " << stats.end_time << " s in " << stats.steps << " steps"
             << (stats.completed ? "" : " (stopped early: " + stats.message + ")") << '\n';
   std::cout << "contacts   " << stats.steps_with_lcp << " steps with a contact problem, "
-            << stats.lcp_solves << " solves, " << stats.lcp_fallbacks << " fallbacks;";
-  for (const auto& [status, count] : stats.lcp_status) std::cout << ' ' << status << ' ' << count;
+            << stats.lcp_solves << " solves, " << stats.lcp_fallbacks << " fallbacks";
+  const char* sep = "; ";
+  for (const auto& [status, count] : stats.lcp_status) {
+    std::cout << sep << status << ' ' << count;
+    sep = " ";
+  }
   std::cout << '\n';
   std::cout << "events     " << events(integrators::EventKind::kImpact) << " impacts, "
             << events(integrators::EventKind::kSlip) << " slips, "
@@ -137,12 +148,12 @@ void print_summary(const runs::RunRecord& record, const std::filesystem::path& o
   std::cout << "peaks     ";
   for (const runs::CoordinatePeak& c : d.coordinates) {
     std::cout << " |" << c.name << "| "
-              << (std::isfinite(c.peak) ? io::shortest(c.peak) : std::string("not finite"));
+              << (std::isfinite(c.peak) ? six_digits(c.peak) : std::string("not finite"));
   }
   std::cout << '\n';
   // A diverged run's balance is not a number: say so rather than print "nan".
   std::cout << "energy     balance error "
-            << (std::isfinite(d.energy.error) ? io::shortest(d.energy.error)
+            << (std::isfinite(d.energy.error) ? six_digits(d.energy.error)
                                               : std::string("not finite (the run diverged)"))
             << '\n';
   if (!d.limit_states.empty()) print_limit_states(d);
