@@ -136,9 +136,11 @@ std::vector<SceneCase> scene_cases() {
   // deck's mass and bents are shared among the frames) and the free two-deck chain (no
   // smooth force on a contact: load 0).
   // With connectors (docs/bridge.md, "Connectors"): backfill abutments (backwall bodies on
-  // the hyperbolic backfill) and a restrainer across the two-frame bridge's hinge.
+  // the hyperbolic backfill), a restrainer across the two-frame bridge's hinge, and
+  // lead-rubber bearings (bilinear) under the deck ends.
   for (const char* file : {"bridge-two-frame.toml", "bridge-skew-three-span.toml",
-                           "bridge-backfill.toml", "bridge-two-frame-restrainers.toml"}) {
+                           "bridge-backfill.toml", "bridge-two-frame-restrainers.toml",
+                           "bridge-bearings.toml"}) {
     s.push_back(from_file(file, kBridgeWindow, 1e-4, false, kBridgeNormalLoad));
   }
   s.push_back(from_file("deck-chain-two.toml", 1.0, 1e-4, false, 0.0));
