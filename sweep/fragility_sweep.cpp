@@ -87,21 +87,41 @@ bool is_limit_column(const std::string& c) {
   return ends_with(c, "_exceeded") || ends_with(c, "_margin");
 }
 
-LimitState read_limit_state(const Where& w, const toml::node& n, std::size_t index,
-                            const std::vector<std::string>& columns) {
-  const std::string at = "fragility.limit_state[" + std::to_string(index) + "]";
-  const auto* t = n.as_table();
-  if (t == nullptr) w.fail(&n, at, "must be a table {name, response, threshold}");
-  check_keys(w, *t, at, {"name", "response", "threshold", "absolute", "below"});
-  LimitState ls;
-  const auto* name = t->get("name");
-  if (name == nullptr || !name->is_string() || name->value<std::string>()->empty())
-    w.fail(name != nullptr ? name : t, at + ".name", "required: a non-empty string");
-  ls.name = *name->value<std::string>();
-  const auto* response = t->get("response");
+// `unseated` of a limit state or of the section: "exceeded" or "response".
+UnseatedRuns read_unseated(const Where& w, const toml::node& n, const std::string& key) {
+  const auto v = n.value<std::string>();
+  if (v && *v == "exceeded") return UnseatedRuns::kExceed;
+  if (v && *v == "response") return UnseatedRuns::kResponse;
+  w.fail(&n, key,
+         "must be \"exceeded\" (an unseated run reaches the limit state) or \"response\" "
+         "(its response up to the loss of seat is compared)");
+}
+
+// `limit_state = "<watched name>"`: the run's <name>_exceeded column, reached at 1. It stands
+// for response and threshold, so neither they nor absolute and below may be given with it.
+void read_watched(const Where& w, const toml::table& t, const std::string& at, LimitState& ls) {
+  const auto* watched = t.get("limit_state");
+  if (!watched->is_string() || watched->value<std::string>()->empty())
+    w.fail(watched, at + ".limit_state",
+           "must be the name of a watched limit state (docs/limit-states.md: unseating_left, "
+           "closure_hinge_1, drift_bent_2, residual_rotation, ...)");
+  for (const char* other : {"response", "threshold", "absolute", "below"})
+    if (const auto* n = t.get(other))
+      w.fail(n, at + "." + other,
+             "not allowed with limit_state (which reads <limit_state>_exceeded, threshold 1)");
+  ls.watched = *watched->value<std::string>();
+  ls.response = ls.watched + "_exceeded";
+  ls.threshold = 1.0;
+}
+
+// `response`, `threshold`, `absolute` and `below` of a limit state on a results.csv column.
+void read_response(const Where& w, const toml::table& t, const std::string& at,
+                   const std::vector<std::string>& columns, LimitState& ls) {
+  const auto* response = t.get("response");
   if (response == nullptr || !response->is_string())
-    w.fail(response != nullptr ? response : t, at + ".response",
-           "required: a results.csv column (" + joined(columns) + ")");
+    w.fail(response != nullptr ? response : &t, at + ".response",
+           "required: a results.csv column (" + joined(columns) +
+               "), or limit_state = a watched limit state's name");
   ls.response = *response->value<std::string>();
   // A limit-state column (<name>_exceeded, <name>_margin) exists once the runs watch that
   // limit state: it is checked against results.csv after the runs.
@@ -110,21 +130,43 @@ LimitState read_limit_state(const Where& w, const toml::node& n, std::size_t ind
     w.fail(response, at + ".response",
            "\"" + ls.response + "\" is not a results.csv column of this design (allowed: " +
                joined(columns) + ", or a limit state's <name>_exceeded / <name>_margin)");
-  const auto* threshold = t->get("threshold");
+  const auto* threshold = t.get("threshold");
   const auto v = threshold != nullptr ? threshold->value<double>() : std::nullopt;
   if (threshold == nullptr || !(threshold->is_floating_point() || threshold->is_integer()) ||
       !v || !std::isfinite(*v))
-    w.fail(threshold != nullptr ? threshold : t, at + ".threshold",
+    w.fail(threshold != nullptr ? threshold : &t, at + ".threshold",
            "required: a finite number, in the unit of the response column");
   ls.threshold = *v;
-  if (const auto* absolute = t->get("absolute")) {
+  if (const auto* absolute = t.get("absolute")) {
     if (!absolute->is_boolean()) w.fail(absolute, at + ".absolute", "must be true or false");
     ls.absolute = *absolute->value<bool>();
   }
-  if (const auto* below = t->get("below")) {
+  if (const auto* below = t.get("below")) {
     if (!below->is_boolean()) w.fail(below, at + ".below", "must be true or false");
     ls.below = *below->value<bool>();
   }
+}
+
+LimitState read_limit_state(const Where& w, const toml::node& n, std::size_t index,
+                            const std::vector<std::string>& columns, UnseatedRuns unseated) {
+  const std::string at = "fragility.limit_state[" + std::to_string(index) + "]";
+  const auto* t = n.as_table();
+  if (t == nullptr) w.fail(&n, at, "must be a table {name, response, threshold}");
+  check_keys(w, *t, at,
+             {"name", "response", "threshold", "absolute", "below", "limit_state", "unseated"});
+  LimitState ls;
+  ls.unseated = unseated;
+  if (t->get("limit_state") != nullptr) read_watched(w, *t, at, ls);
+  else read_response(w, *t, at, columns, ls);
+  const auto* name = t->get("name");
+  if (name == nullptr && !ls.watched.empty()) {
+    ls.name = ls.watched;  // a watched limit state names itself
+  } else {
+    if (name == nullptr || !name->is_string() || name->value<std::string>()->empty())
+      w.fail(name != nullptr ? name : t, at + ".name", "required: a non-empty string");
+    ls.name = *name->value<std::string>();
+  }
+  if (const auto* u = t->get("unseated")) ls.unseated = read_unseated(w, *u, at + ".unseated");
   return ls;
 }
 
@@ -145,9 +187,12 @@ std::optional<FragilitySpec> read_fragility(const toml::table& root, const Desig
   const Where w{file};
   const auto* t = node->as_table();
   if (t == nullptr) w.fail(node, "fragility", "must be a table [fragility]");
-  check_keys(w, *t, "fragility", {"im", "limit_state"});
+  check_keys(w, *t, "fragility", {"im", "limit_state", "unseated"});
   FragilitySpec spec;
   spec.im = read_im(w, *t, d);
+  const auto* u = t->get("unseated");
+  const UnseatedRuns unseated =
+      u != nullptr ? read_unseated(w, *u, "fragility.unseated") : UnseatedRuns::kExceed;
   const auto* ls = t->get("limit_state");
   const auto* a = ls != nullptr ? ls->as_array() : nullptr;
   if (a == nullptr || a->empty() || !a->is_array_of_tables())
@@ -156,7 +201,7 @@ std::optional<FragilitySpec> read_fragility(const toml::table& root, const Desig
   const std::vector<std::string> columns = response_columns(d);
   std::set<std::string> names;
   for (std::size_t k = 0; k < a->size(); ++k) {
-    spec.limit_states.push_back(read_limit_state(w, (*a)[k], k, columns));
+    spec.limit_states.push_back(read_limit_state(w, (*a)[k], k, columns, unseated));
     if (!names.insert(spec.limit_states.back().name).second)
       w.fail(&(*a)[k], "fragility.limit_state[" + std::to_string(k) + "].name",
              "\"" + spec.limit_states.back().name + "\" appears twice");
@@ -200,11 +245,17 @@ bool completed(const std::string& status) {
   return s && integrators::is_result(*s);
 }
 
+bool unseated(const std::vector<std::string>& row, const Columns& c) {
+  return integrators::parse_run_status(row[c.status]) == integrators::RunStatus::kUnseated;
+}
+
 // One row's outcome for a limit state: std::nullopt when it does not count (not completed,
-// or no value of the response).
+// or no value of the response). An unseated run reaches every limit state unless the limit
+// state compares its response (UnseatedRuns::kResponse).
 std::optional<bool> reached(const std::vector<std::string>& row, const Columns& c,
                             std::size_t response, const LimitState& ls) {
   if (!completed(row[c.status])) return std::nullopt;
+  if (ls.unseated == UnseatedRuns::kExceed && unseated(row, c)) return true;
   const auto v = parse_number(row[response]);
   if (!v) return std::nullopt;
   const double r = ls.absolute ? std::abs(*v) : *v;
@@ -225,6 +276,7 @@ std::vector<StripeCount> count_stripes(const Table& t, const Columns& c, std::si
     } else {
       ++s.n;
       s.exceeded += *r ? 1 : 0;
+      s.unseated += unseated(row, c) ? 1 : 0;
     }
   }
   std::vector<StripeCount> out;
@@ -270,6 +322,25 @@ MomentsFit fit_capacities(const Table& t, const Columns& c, std::size_t response
   return m;
 }
 
+// The column of a limit state's response; a missing column names the limit states the runs
+// watch when the limit state is one of them.
+std::size_t response_column(const Table& results, const LimitState& ls) {
+  try {
+    return results.column(ls.response);
+  } catch (const std::invalid_argument&) {
+    if (ls.watched.empty())
+      throw std::invalid_argument("fragility.limit_state " + ls.name +
+                                  ": results.csv has no column \"" + ls.response + "\"");
+    std::vector<std::string> watched;
+    for (const auto& h : results.header)
+      if (ends_with(h, "_exceeded")) watched.push_back(h.substr(0, h.size() - 9));
+    throw std::invalid_argument(
+        "fragility.limit_state " + ls.name + ": no run of the sweep watches \"" + ls.watched +
+        "\" (results.csv has no column " + ls.response + "; watched: " +
+        (watched.empty() ? std::string("none") : joined(watched)) + ")");
+  }
+}
+
 }  // namespace
 
 FragilityReport fit_fragility(const FragilitySpec& spec, const Table& results, bool ida,
@@ -277,13 +348,7 @@ FragilityReport fit_fragility(const FragilitySpec& spec, const Table& results, b
   const Columns c = columns_of(results, spec.im);
   FragilityReport report{spec.im, {}};
   for (const LimitState& ls : spec.limit_states) {
-    std::size_t response = 0;
-    try {
-      response = results.column(ls.response);
-    } catch (const std::invalid_argument&) {
-      throw std::invalid_argument("fragility.limit_state " + ls.name +
-                                  ": results.csv has no column \"" + ls.response + "\"");
-    }
+    const std::size_t response = response_column(results, ls);
     LimitStateFit fit{ls, count_stripes(results, c, response, ls), {}, std::nullopt};
     std::vector<Stripe> stripes;
     for (const auto& s : fit.stripes)
@@ -336,6 +401,13 @@ void limit_state_json(std::string& out, const LimitStateFit& f) {
   io::append_json_number(out, f.limit.threshold);
   out += std::string(", \"absolute\": ") + (f.limit.absolute ? "true" : "false");
   if (f.limit.below) out += ", \"below\": true";  // written only when set: older files stay
+  if (!f.limit.watched.empty()) out += ", \"limit_state\": " + io::json_string(f.limit.watched);
+  // How unseated runs counted, written when a stripe has one (sweeps without seats unchanged).
+  const bool unseated = std::any_of(f.stripes.begin(), f.stripes.end(),
+                                    [](const StripeCount& s) { return s.unseated > 0; });
+  if (unseated)
+    out += std::string(", \"unseated\": ") +
+           (f.limit.unseated == UnseatedRuns::kExceed ? "\"exceeded\"" : "\"response\"");
   out += ",\n";
   out += "      \"status\": " + io::json_string(to_string(f.mle.status)) + ",\n";
   out += "      \"message\": " + io::json_string(f.mle.message) + ",\n";
@@ -354,7 +426,9 @@ void limit_state_json(std::string& out, const LimitStateFit& f) {
     out += "        {\"im\": ";
     io::append_json_number(out, s.im);
     out += ", \"n\": " + std::to_string(s.n) + ", \"exceeded\": " + std::to_string(s.exceeded) +
-           ", \"left_out\": " + std::to_string(s.left_out) + "}";
+           ", \"left_out\": " + std::to_string(s.left_out);
+    if (unseated) out += ", \"unseated\": " + std::to_string(s.unseated);
+    out += "}";
   }
   out += "],\n      \"moments\": ";
   moments_json(out, f.moments);

@@ -5,10 +5,12 @@
 // moments on each record's capacity (fit_moments). The results go to DIR/fragility.json and,
 // with a gnuplot, DIR/fragility.png.
 //
-// Which runs count: a run that did not complete (a status other than completed or
-// completed_with_fallbacks, or "rejected") has no trustworthy peak, so it is left out of its
-// stripe's n and reported in the stripe's "left_out" count. A row without an IM (an empty or
-// non-numeric label) belongs to no stripe and is left out too.
+// Which runs count: a run that did not complete (a status other than completed,
+// completed_with_fallbacks or unseated, or "rejected") has no trustworthy peak, so it is left
+// out of its stripe's n and reported in the stripe's "left_out" count. An unseated run (the
+// bridge lost a seat and the run stopped there) is a result: it counts in n, and reaches
+// every limit state unless the limit state says `unseated = "response"` (sweep/limit_states.hpp).
+// A row without an IM (an empty or non-numeric label) belongs to no stripe and is left out too.
 #pragma once
 
 #include "sweep/csv.hpp"
@@ -39,6 +41,7 @@ struct StripeCount {
   double im = 0.0;   // the level [unit of the IM factor]
   int n = 0;         // completed runs at the level
   int exceeded = 0;  // of which reached the limit state
+  int unseated = 0;  // of n: runs stopped by the loss of a seat (counted as LimitState says)
   int left_out = 0;  // runs at the level that did not complete (not in n)
 };
 

@@ -56,6 +56,10 @@ bool completed(const std::vector<std::string>& row, const Layout& l) {
   return status && integrators::succeeded(*status);
 }
 
+bool unseated(const std::vector<std::string>& row, const Layout& l) {
+  return integrators::parse_run_status(row[l.status]) == integrators::RunStatus::kUnseated;
+}
+
 std::optional<std::size_t> find_column(const Table& t, const std::string& name) {
   const auto it = std::find(t.header.begin(), t.header.end(), name);
   if (it == t.header.end()) return std::nullopt;
@@ -72,13 +76,14 @@ std::vector<IdaPoint> ida_points(const Table& t, const PlotOptions& o) {
   for (const auto& row : t.rows) {
     const auto x = parse(row[*pga]);
     const auto y = parse(row[l.response]);
-    if (!completed(row, l) || !x || !y) continue;
+    const bool lost_seat = unseated(row, l);
+    if (!(completed(row, l) || lost_seat) || !x || !y) continue;
     std::string curve;
     for (std::size_t k = l.first; k < l.end; ++k) {
       if (k == *pga) continue;
       curve += (curve.empty() ? "" : "; ") + t.header[k] + "=" + row[k];
     }
-    points.push_back({curve.empty() ? "all" : curve, *x, *y});
+    points.push_back({curve.empty() ? "all" : curve, *x, *y, lost_seat});
   }
   std::stable_sort(points.begin(), points.end(), [](const IdaPoint& a, const IdaPoint& b) {
     return a.curve != b.curve ? a.curve < b.curve : a.pga < b.pga;
@@ -92,7 +97,8 @@ std::vector<ExceedancePoint> exceedance_points(const Table& t, const PlotOptions
     auto& e = by_pga[p.pga];
     e.pga = p.pga;
     ++e.runs;
-    if (p.response > o.limit) ++e.exceeding;
+    if (p.unseated || p.response > o.limit) ++e.exceeding;
+    if (p.unseated) ++e.unseated;
   }
   std::vector<ExceedancePoint> out;
   for (auto& [pga, e] : by_pga) {
@@ -166,6 +172,98 @@ std::string axis_label(const std::string& column) {
 
 }  // namespace
 
+namespace {
+
+// ida.{csv,gp,png,svg}: one line per curve through its completed runs; the unseated runs, when
+// there are any, as points of their own from ida-unseated.csv (their response is that up to
+// the loss of seat, so they are not joined to the curves).
+void draw_ida(const std::vector<IdaPoint>& ida, const fs::path& dir, const PlotOptions& o,
+              std::vector<fs::path>& files) {
+  const std::string header = "curve," + csv_quote(o.pga_key) + "," + o.response + "\n";
+  std::string csv = header, lost = header;
+  std::vector<std::string> curves;
+  for (const auto& p : ida) {
+    (p.unseated ? lost : csv) +=
+        csv_quote(p.curve) + "," + format_number(p.pga) + "," + format_number(p.response) + "\n";
+    if (!p.unseated && (curves.empty() || curves.back() != p.curve)) curves.push_back(p.curve);
+  }
+  write_file_atomically(dir / "ida.csv", csv);
+  files.push_back(dir / "ida.csv");
+  std::string gp =
+      "set datafile separator ','\nset termoption noenhanced\nset key top left\nset grid\n"
+      "set xlabel 'target PGA [g] (" +
+      o.pga_key + ")'\nset ylabel " + io::gnuplot_string(axis_label(o.response)) +
+      "\nset title 'IDA curves'\nplot ";
+  std::string sep;
+  for (const auto& c : curves) {
+    const std::string curve = io::gnuplot_string(c);
+    gp += sep + "'ida.csv' skip 1 using 2:(strcol(1) eq " + curve +
+          " ? $3 : NaN) with linespoints title " + curve;
+    sep = ", \\\n     ";
+  }
+  if (lost != header) {
+    write_file_atomically(dir / "ida-unseated.csv", lost);
+    files.push_back(dir / "ida-unseated.csv");
+    gp += sep + "'ida-unseated.csv' skip 1 using 2:3 with points pt 2 ps 2 lc rgb 'black' "
+                "title 'unseated: response up to the loss of seat'";
+  }
+  render(o, dir, "ida", gp + "\n", files);
+}
+
+// exceedance.{csv,gp,png,svg}: the share of runs above the limit at each PGA; an unseated run
+// counts as exceeding, and the CSV then has a column `unseated` with their number.
+void draw_exceedance(const Table& t, const fs::path& dir, const PlotOptions& o,
+                     std::vector<fs::path>& files) {
+  const auto points = exceedance_points(t, o);
+  const bool lost = std::any_of(points.begin(), points.end(),
+                                [](const ExceedancePoint& e) { return e.unseated > 0; });
+  std::string ex =
+      csv_quote(o.pga_key) + ",runs,exceeding,share" + (lost ? ",unseated\n" : "\n");
+  for (const auto& e : points) {
+    ex += format_number(e.pga) + "," + std::to_string(e.runs) + "," +
+          std::to_string(e.exceeding) + "," + format_number(e.share) +
+          (lost ? "," + std::to_string(e.unseated) : std::string()) + "\n";
+  }
+  write_file_atomically(dir / "exceedance.csv", ex);
+  files.push_back(dir / "exceedance.csv");
+  const std::string title = "share of runs with " + o.response + " > " +
+                            format_number(o.limit) +
+                            (lost ? " or unseated (unseated runs count as exceeding)" : "");
+  render(o, dir, "exceedance",
+         "set datafile separator ','\nset termoption noenhanced\nset grid\nset yrange [0:1]\nset "
+         "xlabel 'target PGA [g] (" +
+             o.pga_key + ")'\nset ylabel 'share of runs'\nset title " +
+             io::gnuplot_string(title) +
+             "\nplot 'exceedance.csv' skip 1 using 1:4 with linespoints notitle\n",
+         files);
+}
+
+void draw_tornado(const std::vector<TornadoBar>& bars, const fs::path& dir, const PlotOptions& o,
+                  std::vector<fs::path>& files) {
+  std::string csv = "factor,low,high,base,low_level,high_level\n";
+  for (const auto& b : bars) {
+    csv += csv_quote(b.factor) + "," + format_number(b.low) + "," + format_number(b.high) + "," +
+           format_number(b.base) + "," + csv_quote(b.low_level) + "," + csv_quote(b.high_level) +
+           "\n";
+  }
+  write_file_atomically(dir / "tornado.csv", csv);
+  files.push_back(dir / "tornado.csv");
+  // Largest swing on top: bar i sits at y = n - 1 - i.
+  const std::string n = std::to_string(bars.size());
+  render(o, dir, "tornado",
+         "set datafile separator ','\nset termoption noenhanced\nset grid x\nset xlabel " +
+             io::gnuplot_string(axis_label(o.response)) +
+             "\nset title 'one factor at a time, about the base run'\nset yrange [-1:" + n +
+             "]\nset style fill solid 0.5\nset arrow from " + format_number(bars[0].base) +
+             ", graph 0 to " + format_number(bars[0].base) +
+             ", graph 1 nohead dt 2\nplot 'tornado.csv' skip 1 using (($2+$3)/2):(" + n +
+             "-1-$0):2:3:(" + n + "-1.4-$0):(" + n +
+             "-0.6-$0):yticlabels(1) with boxxyerror notitle\n",
+         files);
+}
+
+}  // namespace
+
 std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& dir,
                                  const PlotOptions& o) {
   o.validate();
@@ -175,66 +273,11 @@ std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& di
   std::vector<fs::path> files;
   const auto ida = ida_points(t, o);
   if (!ida.empty()) {
-    std::string csv = "curve," + csv_quote(o.pga_key) + "," + o.response + "\n";
-    std::vector<std::string> curves;
-    for (const auto& p : ida) {
-      csv +=
-          csv_quote(p.curve) + "," + format_number(p.pga) + "," + format_number(p.response) + "\n";
-      if (curves.empty() || curves.back() != p.curve) curves.push_back(p.curve);
-    }
-    write_file_atomically(dir / "ida.csv", csv);
-    files.push_back(dir / "ida.csv");
-    std::string gp =
-        "set datafile separator ','\nset termoption noenhanced\nset key top left\nset grid\n"
-        "set xlabel 'target PGA [g] (" +
-        o.pga_key + ")'\nset ylabel " + io::gnuplot_string(axis_label(o.response)) +
-        "\nset title 'IDA curves'\nplot ";
-    for (std::size_t i = 0; i < curves.size(); ++i) {
-      const std::string curve = io::gnuplot_string(curves[i]);
-      gp += std::string(i == 0 ? "" : ", \\\n     ") + "'ida.csv' skip 1 using 2:(strcol(1) eq " +
-            curve + " ? $3 : NaN) with linespoints title " + curve;
-    }
-    render(o, dir, "ida", gp + "\n", files);
-
-    std::string ex = csv_quote(o.pga_key) + ",runs,exceeding,share\n";
-    for (const auto& e : exceedance_points(t, o)) {
-      ex += format_number(e.pga) + "," + std::to_string(e.runs) + "," +
-            std::to_string(e.exceeding) + "," + format_number(e.share) + "\n";
-    }
-    write_file_atomically(dir / "exceedance.csv", ex);
-    files.push_back(dir / "exceedance.csv");
-    render(o, dir, "exceedance",
-           "set datafile separator ','\nset termoption noenhanced\nset grid\nset yrange [0:1]\nset "
-           "xlabel 'target PGA [g] (" +
-               o.pga_key + ")'\nset ylabel 'share of runs'\nset title " +
-               io::gnuplot_string("share of runs with " + o.response + " > " +
-                                  format_number(o.limit)) +
-               "\nplot 'exceedance.csv' skip 1 using 1:4 with linespoints notitle\n",
-           files);
+    draw_ida(ida, dir, o, files);
+    draw_exceedance(t, dir, o, files);
   }
   const auto bars = tornado_bars(t, o);
-  if (!bars.empty()) {
-    std::string csv = "factor,low,high,base,low_level,high_level\n";
-    for (const auto& b : bars) {
-      csv += csv_quote(b.factor) + "," + format_number(b.low) + "," + format_number(b.high) + "," +
-             format_number(b.base) + "," + csv_quote(b.low_level) + "," + csv_quote(b.high_level) +
-             "\n";
-    }
-    write_file_atomically(dir / "tornado.csv", csv);
-    files.push_back(dir / "tornado.csv");
-    // Largest swing on top: bar i sits at y = n - 1 - i.
-    const std::string n = std::to_string(bars.size());
-    render(o, dir, "tornado",
-           "set datafile separator ','\nset termoption noenhanced\nset grid x\nset xlabel " +
-               io::gnuplot_string(axis_label(o.response)) +
-               "\nset title 'one factor at a time, about the base run'\nset yrange [-1:" + n +
-               "]\nset style fill solid 0.5\nset arrow from " + format_number(bars[0].base) +
-               ", graph 0 to " + format_number(bars[0].base) +
-               ", graph 1 nohead dt 2\nplot 'tornado.csv' skip 1 using (($2+$3)/2):(" + n +
-               "-1-$0):2:3:(" + n + "-1.4-$0):(" + n +
-               "-0.6-$0):yticlabels(1) with boxxyerror notitle\n",
-           files);
-  }
+  if (!bars.empty()) draw_tornado(bars, dir, o, files);
   return files;
 }
 

@@ -5,7 +5,11 @@
 //   exceedance.{csv,gp,png,svg}  share of the runs whose response exceeds a limit, against PGA
 //   tornado.{csv,gp,png,svg}     one factor at a time: each factor's swing of the response
 //                                about the base run
-// Runs that did not complete are left out of every plot (results.csv keeps them).
+// Runs that did not complete are left out of every plot (results.csv keeps them). A run that
+// stopped at the loss of a seat (status "unseated", a result: docs/limit-states.md) is drawn in
+// the IDA plot as a point of its own, at its response up to the loss of seat, off the curves,
+// and counts as exceeding the limit in the exceedance plot (the collapse convention of the
+// fragility curves, sweep/limit_states.hpp); the tornado chart leaves it out.
 #pragma once
 
 #include "sweep/csv.hpp"
@@ -28,15 +32,17 @@ struct IdaPoint {
   std::string curve;  // the other factors' values, "key=value; ..." ("all" when none)
   double pga = 0.0;   // [g]
   double response = 0.0;
+  bool unseated = false;  // the run stopped at the loss of a seat: response up to that instant
 };
-// One point per completed run that has a PGA, sorted by curve then PGA. Empty when
-// results.csv has no column named options.pga_key.
+// One point per completed or unseated run that has a PGA, sorted by curve then PGA. Empty
+// when results.csv has no column named options.pga_key.
 std::vector<IdaPoint> ida_points(const Table& results, const PlotOptions& options);
 
 struct ExceedancePoint {
   double pga = 0.0;           // [g]
-  std::size_t runs = 0;       // completed runs at this PGA
-  std::size_t exceeding = 0;  // of which response > limit
+  std::size_t runs = 0;       // completed and unseated runs at this PGA
+  std::size_t exceeding = 0;  // of which response > limit, or unseated
+  std::size_t unseated = 0;   // of runs: unseated (each counted as exceeding)
   double share = 0.0;         // exceeding / runs
 };
 std::vector<ExceedancePoint> exceedance_points(const Table& results, const PlotOptions& options);

@@ -268,3 +268,81 @@ TEST_CASE("results without the IM or the response column") {
                        "fragility.limit_state ls: results.csv has no column \"peak_x\"",
                        std::invalid_argument);
 }
+
+TEST_CASE("limit_state names a watched limit state: its _exceeded column, threshold 1") {
+  const Design d = load_design(write_design("watched", design_text(R"(
+[fragility]
+im = "model.restitution"
+unseated = "response"
+[[fragility.limit_state]]
+limit_state = "unseating_left"
+[[fragility.limit_state]]
+name = "drift"
+limit_state = "drift_bent_2"
+unseated = "exceeded"
+)")));
+  REQUIRE(d.fragility->limit_states.size() == 2);
+  const LimitState& a = d.fragility->limit_states[0];
+  CHECK(a.name == "unseating_left");  // the name defaults to the watched limit state's
+  CHECK(a.watched == "unseating_left");
+  CHECK(a.response == "unseating_left_exceeded");
+  CHECK(a.threshold == 1.0);
+  CHECK((!a.absolute && !a.below));
+  CHECK(a.unseated == UnseatedRuns::kResponse);  // the section's default
+  CHECK(d.fragility->limit_states[1].name == "drift");
+  CHECK(d.fragility->limit_states[1].response == "drift_bent_2_exceeded");
+  CHECK(d.fragility->limit_states[1].unseated == UnseatedRuns::kExceed);
+  const auto e1 = error_of("both", "[fragility]\nim = \"model.restitution\"\n"
+                           "[[fragility.limit_state]]\nlimit_state = \"closure_left\"\n"
+                           "threshold = 0.5\n");
+  CHECK(e1.find("both.toml:13:13: fragility.limit_state[0].threshold: not allowed with "
+                "limit_state") != std::string::npos);
+  const auto e2 = error_of("empty", "[fragility]\nim = \"model.restitution\"\n"
+                           "[[fragility.limit_state]]\nlimit_state = \"\"\n");
+  CHECK(e2.find("empty.toml:12:15: fragility.limit_state[0].limit_state: must be the name of a "
+                "watched limit state") != std::string::npos);
+  const auto e3 = error_of("mode", "[fragility]\nim = \"model.restitution\"\nunseated = \"yes\"\n" +
+                           kLimit);
+  CHECK(e3.find("mode.toml:11:12: fragility.unseated: must be \"exceeded\"") != std::string::npos);
+}
+
+TEST_CASE("an unseated run counts in n; it reaches every limit state unless unseated = response") {
+  // Stripe 0.5: a completed below the threshold, b unseated with a response below it; stripe 1:
+  // a completed above it, b unseated, c diverged (left out either way).
+  const Table t = results({{"0.5", "a", "completed", "0.001"},
+                           {"0.5", "b", "unseated", "0.002"},
+                           {"1", "a", "completed", "0.02"},
+                           {"1", "b", "unseated", "0.003"},
+                           {"1", "c", "diverged", ""}});
+  FragilitySpec s = spec(0.01);
+  const FragilityReport r = fit_fragility(s, t, false);
+  const auto& st = r.fits[0].stripes;
+  CHECK((st[0].n == 2 && st[0].exceeded == 1 && st[0].unseated == 1 && st[0].left_out == 0));
+  CHECK((st[1].n == 2 && st[1].exceeded == 2 && st[1].unseated == 1 && st[1].left_out == 1));
+  const std::string json = fragility_json(r);
+  CHECK(json.find("\"absolute\": false, \"unseated\": \"exceeded\",") != std::string::npos);
+  CHECK(json.find("{\"im\": 0.5, \"n\": 2, \"exceeded\": 1, \"left_out\": 0, \"unseated\": 1}") !=
+        std::string::npos);
+  s.limit_states[0].unseated = UnseatedRuns::kResponse;
+  const FragilityReport rr = fit_fragility(s, t, false);
+  const auto& sr = rr.fits[0].stripes;
+  CHECK((sr[0].n == 2 && sr[0].exceeded == 0));
+  CHECK((sr[1].n == 2 && sr[1].exceeded == 1));
+  // Without an unseated run the JSON has no "unseated" (the files of sweeps without seats).
+  CHECK(fragility_json(fit_fragility(spec(0.01), results({{"1", "a", "completed", "0.02"}}),
+                                     false))
+            .find("unseated") == std::string::npos);
+}
+
+TEST_CASE("a watched limit state no run watches names those the runs watch") {
+  Table t = results({{"0.2", "a", "completed", "0.001"}});
+  t.header.insert(t.header.end() - 1, {"closure_left_exceeded", "closure_left_margin"});
+  for (auto& row : t.rows) row.insert(row.end() - 1, {"0", "0.01"});
+  LimitState ls{"u", "unseating_left_exceeded", 1.0};
+  ls.watched = "unseating_left";
+  CHECK_THROWS_WITH_AS(fit_fragility({"im", {ls}}, t, false),
+                       "fragility.limit_state u: no run of the sweep watches \"unseating_left\" "
+                       "(results.csv has no column unseating_left_exceeded; watched: "
+                       "closure_left)",
+                       std::invalid_argument);
+}

@@ -7,6 +7,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 using namespace nsb::sweep;
 
@@ -90,5 +92,39 @@ TEST_CASE("draw_plots writes PNG and SVG beside their CSV") {
   PlotOptions bad;
   bad.response = "peak_omega";
   CHECK_THROWS_AS(draw_plots(dir / "results.csv", dir / "plots", bad), std::invalid_argument);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("an unseated run: its own IDA point, exceeding in the exceedance plot") {
+  Table t = ida_table();
+  // Record b at 1 g lost a seat at a response below every limit.
+  t.rows[3] = {"0003", "b", "1", "unseated", "0.001", "1"};
+  const auto p = ida_points(t, PlotOptions{});
+  REQUIRE(p.size() == 5);
+  CHECK((p[3].curve == "record=b" && p[3].pga == 1.0 && p[3].unseated));
+  CHECK_FALSE(p[2].unseated);
+  PlotOptions o;
+  o.limit = 0.01;
+  const auto e = exceedance_points(t, o);
+  // 1 g: a's 0.02 exceeds, b is unseated: 2 of 2, one unseated.
+  CHECK((e[1].runs == 2 && e[1].exceeding == 2 && e[1].unseated == 1));
+  CHECK((e[0].unseated == 0 && e[0].exceeding == 1));
+
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("nsb_plots_unseated_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "results.csv")
+      << "run,record,model.excitation.target_pga,status,peak_theta,wall_s\n"
+         "0000,a,0.5,completed,0.004,1\n0001,a,1,unseated,0.002,1\n";
+  (void)draw_plots(dir / "results.csv", dir / "plots", o);
+  std::ifstream ida(dir / "plots" / "ida.csv"), lost(dir / "plots" / "ida-unseated.csv");
+  const std::string ida_text((std::istreambuf_iterator<char>(ida)), {});
+  const std::string lost_text((std::istreambuf_iterator<char>(lost)), {});
+  CHECK(ida_text.find(",1,") == std::string::npos);  // not joined to the curve
+  CHECK(lost_text.find("record=a,1,0.002") != std::string::npos);
+  std::ifstream ex(dir / "plots" / "exceedance.csv");
+  const std::string ex_text((std::istreambuf_iterator<char>(ex)), {});
+  CHECK(ex_text.find("runs,exceeding,share,unseated\n0.5,1,0,0,0\n1,1,1,1,1\n") !=
+        std::string::npos);
   std::filesystem::remove_all(dir);
 }
