@@ -262,12 +262,25 @@ void draw_tornado(const std::vector<TornadoBar>& bars, const fs::path& dir, cons
          files);
 }
 
+// The options with the default response resolved: a bridge in segments has one rotation per
+// frame (peak_theta1, peak_theta2, ...) and no peak_theta; the default then plots frame 1's.
+PlotOptions resolve_response(const Table& t, PlotOptions o) {
+  const auto has = [&t](const std::string& c) {
+    return std::find(t.header.begin(), t.header.end(), c) != t.header.end();
+  };
+  if (o.response == "peak_theta" && !has("peak_theta") && has("peak_theta1")) {
+    o.response = "peak_theta1";
+  }
+  return o;
+}
+
 }  // namespace
 
 std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& dir,
-                                 const PlotOptions& o) {
-  o.validate();
+                                 const PlotOptions& options) {
+  options.validate();
   const Table t = read_csv(results_csv);
+  const PlotOptions o = resolve_response(t, options);
   (void)layout(t, o);
   fs::create_directories(dir);
   std::vector<fs::path> files;

@@ -22,7 +22,8 @@ namespace nsb::sweep {
 
 struct PlotOptions {
   std::string pga_key = "model.excitation.target_pga";  // the factor on the x axis [g]
-  std::string response = "peak_theta";  // the results.csv column plotted [rad for peak_theta]
+  std::string response = "peak_theta";  // the results.csv column plotted [rad for peak_theta];
+                                        //   peak_theta1 when only a segmented bridge's exist
   double limit = 0.01;                  // exceedance threshold, in the response's unit, > 0
   std::string gnuplot = "gnuplot";      // gnuplot executable (on PATH, or a path), non-empty
   void validate() const;                // throws std::invalid_argument naming the field

@@ -128,3 +128,20 @@ TEST_CASE("an unseated run: its own IDA point, exceeding in the exceedance plot"
         std::string::npos);
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("a bridge in segments: the default response is frame 1's peak rotation") {
+  // results.csv of a segmented bridge has peak_theta1, peak_theta2 and no peak_theta; the
+  // default options plot peak_theta1 (the IDA table's last column), not an error.
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("nsb_plots_segments_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "results.csv")
+      << "run,record,model.excitation.target_pga,status,peak_theta1,peak_theta2,wall_s\n"
+         "0000,a,0.5,completed,0.004,0.005,1\n0001,a,1,completed,0.02,0.03,1\n";
+  (void)draw_plots(dir / "results.csv", dir / "plots", PlotOptions{});
+  std::ifstream ida(dir / "plots" / "ida.csv");
+  std::string header;
+  std::getline(ida, header);
+  CHECK(header == "curve,model.excitation.target_pga,peak_theta1");
+  std::filesystem::remove_all(dir);
+}
