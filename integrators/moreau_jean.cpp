@@ -304,7 +304,9 @@ RunResult MoreauJean::run() {
   if (!book_.diverged() && !std::isfinite(error)) {
     diverge(t_, "non-finite energy balance");
   }
-  if (completed && options_.checkpoint != nullptr) save(*options_.checkpoint);
+  if (completed && !book_.diverged() && options_.checkpoint != nullptr) {
+    save(*options_.checkpoint);
+  }
   return book_.finish(t_, completed, energy_, &stage_.counts());
 }
 
