@@ -81,6 +81,8 @@ class MoreauJean {
   RunResult run();
 
  private:
+  void resume(const MoreauJeanCheckpoint& from);
+  void save(MoreauJeanCheckpoint& to) const;
   void factorize(double h);
   bool step(double h, double t1);  // false when the step failed (non-finite state)
   void free_velocity(double h);
@@ -103,8 +105,11 @@ class MoreauJean {
   int m_ = 0;  // potential contacts
   double theta_ = 0.5;
 
-  // State at t_k, and the end-of-step values being computed.
+  // State at t_k, and the end-of-step values being computed. The steps fall at
+  // t_k = grid_origin_ + k h, k from first_step_ (0 unless resumed).
   double t_ = 0.0;
+  double grid_origin_ = 0.0;
+  std::int64_t first_step_ = 0;
   Vector q_, u_, q_new_, u_new_, u_free_, rhs_, f_k_, f_pred_, mu_tmp_;
 
   // Tangent of the committed state and the iteration matrix A = M + h theta C + h^2 theta^2 K.
@@ -154,6 +159,8 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   t_ = system.initial_time();
   q_ = system.initial_position();
   u_ = system.initial_velocity();
+  grid_origin_ = t_;
+  if (options.resume != nullptr) resume(*options.resume);
   if (!(options.end_time > t_)) {
     throw std::invalid_argument("moreau_jean: end_time (" + format_number(options.end_time) +
                                 ") must exceed the system's initial time (" +
@@ -197,9 +204,14 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   accepted_.normal_impulse = &lambda_n_;
 
   // The initial state is accepted as it is: evaluate and commit it, so that f_k, K and C
-  // belong to the committed state at t0.
+  // belong to the committed state at t0 (a resumed run's K and C are the saved ones).
   system_.forces(t_, q_, u_, f_k_);
-  system_.tangent(t_, q_, u_, K_, C_);
+  if (options.resume == nullptr) {
+    system_.tangent(t_, q_, u_, K_, C_);
+  } else {
+    K_ = options.resume->stiffness;
+    C_ = options.resume->damping;
+  }
   system_.commit();
   system_.contact_data(t_, q_, u_, contacts_);
   if (static_cast<int>(contacts_.size()) != m_) {
@@ -209,6 +221,42 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   const EnergyState e0 = system_.energy(t_, q_);
   mu_tmp_.noalias() = mass_ * u_;
   energy_.initial = 0.5 * u_.dot(mu_tmp_) + e0.stored;
+  if (options.resume != nullptr) energy_ = options.resume->energy;
+}
+
+// Starts from a saved state (MoreauJeanCheckpoint): its time must lie on its grid,
+// grid_origin + K h with K >= 0, as every step's end does, to within the round-off of an
+// end_time that is not exactly on it (the saving run's last step then ended at end_time).
+void MoreauJean::resume(const MoreauJeanCheckpoint& from) {
+  const double h = options_.step;
+  const auto k = static_cast<std::int64_t>(std::llround((from.time - from.grid_origin) / h));
+  const double on_grid = from.grid_origin + static_cast<double>(k) * h;
+  if (!(k >= 0 && std::abs(on_grid - from.time) <= kTimeSlack * h)) {
+    throw std::invalid_argument("moreau_jean: resume.time (" + format_number(from.time) +
+                                ") is not on the step grid of resume.grid_origin (" +
+                                format_number(from.grid_origin) + ") and step");
+  }
+  if (from.position.size() != n_ || from.velocity.size() != n_ || !all_finite(from.position) ||
+      !all_finite(from.velocity) || from.stiffness.rows() != n_ || from.stiffness.cols() != n_ ||
+      from.damping.rows() != n_ || from.damping.cols() != n_) {
+    throw std::invalid_argument("moreau_jean: resume: q and u must be finite vectors, K and C "
+                                "matrices, of the system's dofs()");
+  }
+  t_ = from.time;
+  q_ = from.position;
+  u_ = from.velocity;
+  grid_origin_ = from.grid_origin;
+  first_step_ = k;
+}
+
+void MoreauJean::save(MoreauJeanCheckpoint& to) const {
+  to.time = t_;
+  to.position = q_;
+  to.velocity = u_;
+  to.grid_origin = grid_origin_;
+  to.energy = energy_;
+  to.stiffness = K_;
+  to.damping = C_;
 }
 
 // A = M + h theta C + h^2 theta^2 K (Acary & Brogliato 2008, ch. 10), and its inverse,
@@ -227,14 +275,14 @@ void MoreauJean::factorize(double h) {
 }
 
 RunResult MoreauJean::run() {
-  const double t0 = t_;
+  const double t0 = grid_origin_;
   const double h = options_.step;
   const double duration = options_.end_time - t0;
   const auto steps = static_cast<std::int64_t>(std::ceil(duration / h - kTimeSlack));
 
   sample(true);
   bool completed = true;
-  for (std::int64_t k = 0; k < steps; ++k) {
+  for (std::int64_t k = first_step_; k < steps; ++k) {
     const bool last = (k + 1 == steps);
     const double t1 = last ? options_.end_time : t0 + static_cast<double>(k + 1) * h;
     // Keep the nominal h (and its factorization) unless the last step is really shorter.
@@ -255,6 +303,9 @@ RunResult MoreauJean::run() {
   const double error = energy_error();
   if (!book_.diverged() && !std::isfinite(error)) {
     diverge(t_, "non-finite energy balance");
+  }
+  if (completed && !book_.diverged() && options_.checkpoint != nullptr) {
+    save(*options_.checkpoint);
   }
   return book_.finish(t_, completed, energy_, &stage_.counts());
 }

@@ -31,6 +31,26 @@ namespace nsb::integrators {
 
 class ContactObserver;  // contact_stage.hpp
 
+// The scheme's state at the end of an accepted step, from which a run continues as the run
+// that saved it would have, given the system in its state of that step (e.g. a copy of a
+// models::Assembly taken there): the time and q, u; the origin of the step grid
+// t_k = grid_origin + k h, on which `time` lies (t_b + k h and grid_origin + (K + k) h differ
+// by round-off, and the ground motions are read at t_k); the energy balance accumulated since
+// the saving run's t0; and the tangent K, C the iteration matrix A was built with (re-evaluated
+// only when the system reports a change beyond its own tolerance, e.g. a Takeda spring's, so
+// an evaluation at `time` may differ from it). Everything else carried from step to step is
+// evaluated again from these and the system's committed state, as at any start: f_k, A^-1,
+// the contact data and the powers at t_k. The previous step's impulses enter only the
+// history's force columns at `time` itself; the contact problem keeps no warm start. See
+// docs/moreau-jean.md, "Restarting a run".
+struct MoreauJeanCheckpoint {
+  double time = 0.0;          // [s]
+  Vector position, velocity;  // q [m, rad], u [m/s, rad/s] at `time`
+  double grid_origin = 0.0;   // [s]
+  EnergyBalance energy;       // [kJ], since the saving run's t0
+  Matrix stiffness, damping;  // K, C of the iteration matrix at `time` [kN/m, kN s/m]
+};
+
 struct MoreauJeanOptions {
   static constexpr std::string_view kMethod = "moreau";  // solver.method in scene files
   double end_time = 1.0;       // final time [s], > initial time of the system
@@ -46,6 +66,11 @@ struct MoreauJeanOptions {
   // Shown every contact problem of the run (contact_stage.hpp), e.g. to write it to a file;
   // not a scene key (the run pipeline sets it: runs::RunRequest::dump_lcp). Not owned.
   ContactObserver* contact_observer = nullptr;
+  // Not scene keys (a restart, MoreauJeanCheckpoint; not owned): `resume` starts the run from
+  // a saved state instead of the system's initial one; `checkpoint` receives the state at the
+  // end of a run that reached end_time.
+  const MoreauJeanCheckpoint* resume = nullptr;
+  MoreauJeanCheckpoint* checkpoint = nullptr;
   // The schema of these fields (keys of a scene's [solver] table, units, ranges).
   static std::span<const config::Field<MoreauJeanOptions>> fields();
   void validate() const;       // throws std::invalid_argument naming the key

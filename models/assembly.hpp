@@ -19,6 +19,11 @@
 // per distinct t (parts::MotionTable, a cache inside const calls): one Assembly must not be
 // used from several threads at once.
 //
+// A copy is an independent system in the same state (the bents' committed and trial Takeda
+// states, the connectors', the keys' peaks and breaks, the limit watch; the ground motions,
+// immutable, are shared): the system's half of a saved state from which a run restarts
+// (integrators::MoreauJeanCheckpoint holds the integrator's half).
+//
 // With one body, bents and contacts in the order of models::Bridge, the assembly performs the
 // same floating-point operations in the same order as models::Bridge
 // (verification/parts_bridge_check.cpp).

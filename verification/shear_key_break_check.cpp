@@ -9,6 +9,11 @@
 //  - the comparison catches a deliberate break one step early (the key gone before the impact
 //    that broke it): it then differs. (One step late it does not: the key's impact ends in
 //    its step, ε = 0, and the deck leaves the key.)
+//  - after the first break the run equals a run restarted from the state saved at the break
+//    (integrators::MoreauJeanCheckpoint, and a copy of the models::Assembly: the bents'
+//    committed Takeda states, the keys with the broken one's contact far for good, the limit
+//    watch), to the end of the window (the later breaks happen in both); a restart from the
+//    state one step before the break with that key's contact removed differs.
 // All to 1e-9 of each column's peak.
 #include "integrators/moreau_jean.hpp"
 #include "models/scene.hpp"
@@ -18,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,7 +47,12 @@ struct Deletion {
 class DeletedContacts final : public ni::System {
  public:
   DeletedContacts(ni::System& inner, std::vector<Deletion> deletions)
-      : s_(inner), deletions_(std::move(deletions)), deleted_(deletions_.size(), 0) {}
+      : s_(inner), deletions_(std::move(deletions)), deleted_(deletions_.size(), 0) {
+    // A deletion at -infinity holds from the start of the run.
+    for (std::size_t k = 0; k < deletions_.size(); ++k) {
+      if (deletions_[k].at == -std::numeric_limits<double>::infinity()) deleted_[k] = 1;
+    }
+  }
   int dofs() const override { return s_.dofs(); }
   std::vector<std::string> coordinate_names() const override { return s_.coordinate_names(); }
   std::vector<std::string> velocity_names() const override { return s_.velocity_names(); }
@@ -121,18 +132,82 @@ double difference(const ni::Recorder& a, const ni::Recorder& b, double until) {
   return worst;
 }
 
+// Largest difference of a and b over b's rows with t > from, relative to each column's peak
+// over a; b's rows are the last ones of a, at the same times. (At t = from itself a restarted
+// run's force columns are zero, no step having ended there yet.)
+double difference_after(const ni::Recorder& a, const ni::Recorder& b, double from) {
+  REQUIRE(a.rows() >= b.rows());
+  const std::size_t offset = a.rows() - b.rows();
+  double worst = 0.0;
+  for (std::size_t c = 0; c < a.columns().size(); ++c) {
+    double peak = 1e-300;
+    for (std::size_t r = 0; r < a.rows(); ++r) peak = std::max(peak, std::abs(a.at(r, c)));
+    for (std::size_t r = 0; r < b.rows(); ++r) {
+      REQUIRE(a.at(offset + r, 0) == b.at(r, 0));
+      if (b.at(r, 0) > from) {
+        worst = std::max(worst, std::abs(a.at(offset + r, c) - b.at(r, c)) / peak);
+      }
+    }
+  }
+  return worst;
+}
+
+// The breaking run saved at its end time `at`: the integrator's checkpoint and a copy of the
+// system (the scene that ran it is gone when this returns, the copy lives on).
+struct Saved {
+  ni::MoreauJeanCheckpoint point;
+  std::unique_ptr<nm::Assembly> system;
+};
+
+Saved save_at(double at) {
+  nm::Scene scene = load("bridge-shear-keys-capacity.toml");
+  Saved saved;
+  auto options = std::get<ni::MoreauJeanOptions>(scene.run);
+  options.end_time = at;
+  options.checkpoint = &saved.point;
+  ni::Recorder rec(*scene.system, 0.0);
+  REQUIRE(ni::succeeded(ni::moreau_jean(*scene.system, options, rec).status));
+  REQUIRE(saved.point.time == at);
+  const auto* assembly = dynamic_cast<const nm::Assembly*>(scene.system.get());
+  REQUIRE(assembly != nullptr);
+  saved.system = std::make_unique<nm::Assembly>(*assembly);
+  return saved;
+}
+
+// `s` run from `from` to the end of the window, with the scene's options otherwise.
+ni::Recorder resumed(ni::System& s, const ni::MoreauJeanCheckpoint& from) {
+  auto options = std::get<ni::MoreauJeanOptions>(load("bridge-shear-keys-capacity.toml").run);
+  options.resume = &from;
+  ni::Recorder rec(s, 0.0);
+  REQUIRE(ni::succeeded(ni::moreau_jean(s, options, rec).status));
+  return rec;
+}
+
+// The breaks of a run's keys (limit states that remove a contact; the joint closures the
+// scene also watches remove none), as deletions of their contacts.
+std::vector<Deletion> breaks_of(const ni::System& s) {
+  std::vector<Deletion> out;
+  for (const auto& v : s.limit_states()) {
+    if (v.exceeded && v.removes_contact > 0) out.push_back({v.removes_contact - 1, v.time});
+  }
+  return out;
+}
+
+// The first break of a run: its 0-based contact and time (slot -1 for none).
+Deletion first_break(const ni::System& s) {
+  Deletion first{-1, std::numeric_limits<double>::infinity()};
+  for (const Deletion& d : breaks_of(s)) {
+    if (d.at < first.at) first = d;
+  }
+  return first;
+}
+
 TEST_CASE("a broken shear key: the run without the key from the break on") {
   nm::Scene breaking = load("bridge-shear-keys-capacity.toml");
   const ni::Recorder broken = run(*breaking.system, breaking.run);
-  // The first break, from the limit states.
-  double t_b = std::numeric_limits<double>::infinity();
-  int slot = -1;
-  for (const auto& v : breaking.system->limit_states()) {
-    if (v.exceeded && v.time < t_b) {
-      t_b = v.time;
-      slot = v.removes_contact - 1;
-    }
-  }
+  const Deletion first = first_break(*breaking.system);
+  const double t_b = first.at;
+  const int slot = first.slot;
   REQUIRE(slot >= 4);
   CHECK(t_b < kWindow);
   INFO("first break at t = ", t_b, " s, contact ", slot + 1);
@@ -144,10 +219,7 @@ TEST_CASE("a broken shear key: the run without the key from the break on") {
   CHECK(difference(broken, unbreakable, kWindow + 1.0) > 1e-6);  // the break matters
 
   // Every break of the window, as a deletion of its contact.
-  std::vector<Deletion> breaks;
-  for (const auto& v : breaking.system->limit_states()) {
-    if (v.exceeded) breaks.push_back({v.removes_contact - 1, v.time});
-  }
+  const std::vector<Deletion> breaks = breaks_of(*breaking.system);
   MESSAGE(breaks.size(), " keys break in the window");
   const double t_all = kWindow + 1.0;
   nm::Scene base = load("bridge-shear-keys.toml");
@@ -168,6 +240,44 @@ TEST_CASE("a broken shear key: the run without the key from the break on") {
   const ni::Recorder early_run = run(early, early_scene.run);
   MESSAGE("the first key deleted one step early: ", difference(broken, early_run, t_all));
   CHECK(difference(broken, early_run, t_all) > 1e-6);
+}
+
+TEST_CASE("a broken shear key: the run restarted from the state saved at the break") {
+  nm::Scene breaking = load("bridge-shear-keys-capacity.toml");
+  const ni::Recorder broken = run(*breaking.system, breaking.run);
+  const Deletion first = first_break(*breaking.system);
+  REQUIRE(first.slot >= 4);
+  const double t_b = first.at;
+
+  Saved at_break = save_at(t_b);
+  CHECK(first_break(*at_break.system).slot == first.slot);  // broken in the saved state
+  const ni::Recorder restarted = resumed(*at_break.system, at_break.point);
+  MESSAGE("after the break, against the run restarted from the state saved there: ",
+          difference_after(broken, restarted, t_b));
+  CHECK(difference_after(broken, restarted, t_b) <= kRelative);
+  // The limit states over the run, carried through the restart: the same breaks, closures,
+  // times and margins.
+  const auto whole = breaking.system->limit_states();
+  const auto continued = at_break.system->limit_states();
+  REQUIRE(whole.size() == continued.size());
+  for (std::size_t i = 0; i < whole.size(); ++i) {
+    INFO(whole[i].name);
+    CHECK(whole[i].exceeded == continued[i].exceeded);
+    CHECK((whole[i].time == continued[i].time || !whole[i].exceeded));
+    CHECK((whole[i].margin == continued[i].margin || std::isnan(whole[i].margin)));
+  }
+
+  // A deliberate break: the state one step before the break, restarted with the key's
+  // contact removed from the start.
+  const double h = std::get<ni::MoreauJeanOptions>(breaking.run).step;
+  Saved before = save_at(static_cast<double>(std::llround(t_b / h) - 1) * h);
+  CHECK(first_break(*before.system).slot != first.slot);  // not broken yet
+  DeletedContacts removed(*before.system,
+                          {{first.slot, -std::numeric_limits<double>::infinity()}});
+  const ni::Recorder early = resumed(removed, before.point);
+  MESSAGE("restarted one step before the break without the key: ",
+          difference_after(broken, early, t_b));
+  CHECK(difference_after(broken, early, t_b) > 1e-6);
 }
 
 }  // namespace

@@ -322,6 +322,75 @@ TEST_CASE("hysteresis is committed once per accepted step and the tangent is ref
   CHECK(stats.factorizations < stats.steps / 10);  // but only when the tangent changed
 }
 
+// Runs `system` to `until` saving a checkpoint there, then a copy of it (its state at
+// `until`) from the checkpoint to `end`, and checks that every history row after `until` and
+// the final energy balance equal those of one run of another copy straight to `end`.
+template <class S>
+void check_resumed_run(const S& system, double h, double until, double end) {
+  S whole = system, first = system;
+  MoreauJeanOptions o;
+  o.step = h;
+  o.end_time = end;
+  Recorder straight(whole, 0.0);
+  const RunResult r = moreau_jean(whole, o, straight);
+  MoreauJeanCheckpoint saved;
+  o.end_time = until;
+  o.checkpoint = &saved;
+  Recorder head(first, 0.0);
+  moreau_jean(first, o, head);
+  CHECK(saved.time == until);
+  S second = first;
+  o.end_time = end;
+  o.checkpoint = nullptr;
+  o.resume = &saved;
+  Recorder tail(second, 0.0);
+  const RunResult rt = moreau_jean(second, o, tail);
+  REQUIRE(straight.rows() == head.rows() + tail.rows() - 1);
+  const std::size_t offset = head.rows() - 1;
+  for (std::size_t i = 1; i < tail.rows(); ++i) {
+    for (std::size_t c = 0; c < tail.columns().size(); ++c) {
+      REQUIRE(tail.at(i, c) == straight.at(offset + i, c));
+    }
+  }
+  CHECK(rt.energy.error == r.energy.error);
+  CHECK(rt.energy.hysteretic == r.energy.hysteretic);
+  CHECK(rt.energy.impacts == r.energy.impacts);
+  CHECK(rt.steps == r.steps - (head.rows() - 1));
+}
+
+TEST_CASE("a run resumed from a checkpoint continues as the run that saved it") {
+  // The plastic oscillator yields and unloads on both sides of the checkpoint (its plastic
+  // state travels in the copy of the system); the ball bounces (e = 0.5) across it. The step
+  // h = 2^-10 s puts every grid time k h, and so the saving run's end_time, exactly on the
+  // grid: the two runs then read the same times.
+  const double h = 1.0 / 1024.0;
+  check_resumed_run(ts::PlasticOscillator(plastic(100.0, 1.0, 2.0, 3.0)), h, 2560 * h, 6.0);
+  check_resumed_run(ts::Ball(ball_on_platform(1.0, 0.0, 0.5)), h, 717 * h, 3.0);
+}
+
+TEST_CASE("a checkpoint off its step grid or past end_time is refused") {
+  ts::Ball ball(ball_on_platform(1.0, 0.0, 0.5));
+  MoreauJeanOptions o;
+  o.step = 1e-3;
+  o.end_time = 0.5;
+  MoreauJeanCheckpoint saved;
+  o.checkpoint = &saved;
+  Recorder rec(ball, 0.0);
+  moreau_jean(ball, o, rec);
+  o.checkpoint = nullptr;
+  o.resume = &saved;
+  o.end_time = 1.0;
+  saved.time += 0.25e-3;
+  Recorder off(ball, 0.0);
+  CHECK_THROWS_WITH_AS(moreau_jean(ball, o, off),
+                       doctest::Contains("resume.time (0.5) is not on the step grid"),
+                       std::invalid_argument);
+  saved.time = 1.0;
+  Recorder late(ball, 0.0);
+  CHECK_THROWS_WITH_AS(moreau_jean(ball, o, late), doctest::Contains("must exceed"),
+                       std::invalid_argument);
+}
+
 TEST_CASE("a step allocates nothing") {
   MoreauJeanOptions o;
   o.step = 1e-3;
