@@ -1,5 +1,6 @@
 #include "integrators/compliance.hpp"
 
+#include "integrators/closure_bound.hpp"
 #include "integrators/rosenbrock.hpp"
 #include "integrators/run_bookkeeping.hpp"
 
@@ -330,6 +331,9 @@ class ComplianceRun {
     accepted_.normal_impulse = &impulse_;
     recorder_.sample(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
                      0.0);
+    start_gap_ = Vector::Zero(m_);
+    start_rate_ = Vector::Zero(m_);
+    remember_start();
   }
 
   // A gap element closes: eq. (9)'s v_minus is the approach velocity now (floored).
@@ -358,11 +362,37 @@ class ComplianceRun {
     return g;
   }
 
+  // The gaps and gap rates at the accepted state, the start of the next step (may_close()).
+  void remember_start() {
+    for (int i = 0; i < m_; ++i) {
+      const ContactData& c = core_.contacts_[static_cast<std::size_t>(i)];
+      start_gap_[i] = c.gap_normal;
+      start_rate_[i] = c.gap_rate(core_.u_);
+    }
+  }
+
+  // Whether a gap the search looks for may close within the step: false when every one stays
+  // open by the bound of closure_bound.hpp on its values and rates at the step's two ends, so
+  // that the probes, which would all find it open, are skipped.
+  bool may_close(double t_new, bool landed) {
+    const auto& cs = core_.gaps_at(t_, x_, t_new, xnew_, 1.0);
+    for (int i = 0; i < m_; ++i) {
+      const auto ii = static_cast<std::size_t>(i);
+      if (closed_[ii] || (landed && pending_[ii])) continue;
+      if (!gap_stays_open(start_gap_[i], start_rate_[i], cs[ii].gap_normal,
+                          cs[ii].gap_rate(core_.u_), t_new - t_)) {
+        return true;
+      }
+    }
+    return false;
+  }
+
   // Step control at contact onset: the first probe point where a searched gap is negative,
   // then bisection on the interpolant between it and the previous probe. The contacts that
   // close first become pending.
   Closure locate_closure(double t_new, bool landed) {
     Closure out;
+    if (m_ == 0 || !may_close(t_new, landed)) return out;
     double s_lo = 0.0, s_hi = -1.0;
     for (int j = 1; m_ > 0 && j <= kClosureProbes; ++j) {
       const double s = static_cast<double>(j) / kClosureProbes;
@@ -453,6 +483,7 @@ class ComplianceRun {
     accumulate_energy(h);
     recorder_.sample(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
                      energy_.error);
+    remember_start();
     if (verdict != StepVerdict::kUnseated) return true;
     book_.unseat(t_);
     book_.result().message = "unseated at t = " + format_number(t_) + " s";
@@ -551,6 +582,7 @@ class ComplianceRun {
   Vector momentum_;
   // The step's normal impulses [kN s] and lambda_N at the step's start [kN] (watch()).
   Vector impulse_, lambda_start_;
+  Vector start_gap_, start_rate_;  // gaps [m] and gap rates [m/s] at t_ (remember_start())
   AcceptedStep accepted_;
 };
 

@@ -8,10 +8,6 @@ namespace nsb::paper_figures {
 
 namespace {
 
-// Every compliance step is recorded up to this long after the first pounding, long enough for
-// the softest contact (1e-4 k) to open again: measured 0.06 s.
-constexpr double kFirstPoundingWindow = 0.15;  // [s]
-
 // The nonsmooth run's rows of the table: law 0, the effective restitution its eps.
 void add_nonsmooth_rows(Table& t, const History& mj, const std::string& g, const std::string& l,
                         double t_first, double eps) {

@@ -140,5 +140,8 @@ std::vector<Claim> nominal_claims(const Study& study);
 // Fig. 8 and C5 look at excitation 5's first pounding from this long before it [s]: the gap
 // still open, before the softest contact (1e-4 k) starts to close.
 inline constexpr double kFirstPoundingLead = 0.02;
+// Every compliance step is recorded up to this long after the first pounding, long enough for
+// the softest contact (1e-4 k) to open again: measured 0.06 s.
+inline constexpr double kFirstPoundingWindow = 0.15;  // [s]
 
 }  // namespace nsb::paper_figures

@@ -57,11 +57,14 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
                     return p.assumption.empty() ||
                            p.values[index_of(p.assumption)] != as[index_of(p.assumption)].nominal;
                   });
-  const Rows oat_rows = run_design(oat_design, work / "oat", options.workers, res.runs, res.failed);
+  Rows oat_rows = run_design(oat_design, work / "oat", options.workers, res.runs, res.failed);
+  add_first_poundings("oat-first", base_scene, oat, targets, work / "oat-first", options.workers,
+                      oat_rows, res);
   tornado(oat_rows, work, options.out, res);
   std::vector<std::pair<std::string, std::string>> cols;
   const std::string oat_csv = judge_oat(oat, oat_rows, pga, cols, res);
   fs::remove_all(work / "oat" / "runs");
+  fs::remove_all(work / "oat-first" / "runs");
 
   // The Latin hypercube over every assumption at once.
   res.samples = options.samples > 0 ? options.samples : (quick ? kSamplesQuick : kSamplesFull);
@@ -69,13 +72,15 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
   const sweep::Design lhs_design =
       make_design("latin", base_scene, lhs, targets, end_time, claim_runs(),
                   [](const Point&, const ClaimRun&) { return true; });
-  const Rows lhs_rows =
-      run_design(lhs_design, work / "latin", options.workers, res.runs, res.failed);
+  Rows lhs_rows = run_design(lhs_design, work / "latin", options.workers, res.runs, res.failed);
+  add_first_poundings("latin-first", base_scene, lhs, targets, work / "latin-first",
+                      options.workers, lhs_rows, res);
   const std::string lhs_csv = judge_latin(lhs, lhs_rows, pga, cols, res);
   sweep::write_file_atomically(options.out / "uncertainty.csv", lhs_csv);
   sweep::write_file_atomically(options.out / "uncertainty-oat.csv",
                                csv_header({"point", "assumption", "end"}, cols) + oat_csv);
   fs::remove_all(work / "latin" / "runs");
+  fs::remove_all(work / "latin-first" / "runs");
 
   res.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   sweep::write_file_atomically(options.out / "uncertainty.json", uncertainty_json(res));

@@ -1,6 +1,6 @@
 // The uncertainty of the claims' verdicts: the assumed values of the benchmark
 // (docs/bridge.md, "Assumed") over their plausible ranges, run through the sweep module
-// (sweep/), and the claims C1, C2, C3 and C6 judged at every point with the functions of
+// (sweep/), and the claims C1 ... C6, C4' and C5' judged at every point with the functions of
 // paper-figures/claims.hpp. Two designs:
 //   - one factor at a time (each assumption at the low and the high end of its range, the
 //     others nominal): the tornado chart of run 7's peak rotation and the verdicts that flip;
@@ -10,6 +10,7 @@
 // "Uncertainty of the verdicts".
 #pragma once
 
+#include "integrators/compliance.hpp"
 #include "paper-figures/claims.hpp"
 
 #include <array>
@@ -40,13 +41,19 @@ const std::vector<Assumption>& assumptions();
 std::vector<double> nominal_point();
 
 // One run of the claims' set at a point: an excitation with or without pounding, or with
-// mu = 0. The set is that of --quick's Fig. 6: runs 1, 3, 5, 7 with and without pounding, and
-// runs 5 and 7 with mu = 0 (C1, C2, C3), and C6 on run 5 with pounding.
+// mu = 0, or excitation 5 under the compliance method. The set is that of --quick's Fig. 6:
+// runs 1, 3, 5, 7 with and without pounding, and runs 5 and 7 with mu = 0 (C1, C2, C3), C6 on
+// run 5 with pounding, and run 5 under the compliance method at the stiffness factors of C4's
+// checks under both compared laws (C4, C4'). C5's runs of the first pounding follow from each
+// point's run 5 (uncertainty_compliance.cpp).
 struct ClaimRun {
-  std::string name;      // "exc7", "exc7-no-pounding", "exc7-mu0"
+  std::string name;      // "exc7", "exc7-no-pounding", "exc7-mu0", "exc5-k100"
   int excitation = 7;    // the scene bridge-exc<n>.toml
   bool pounding = true;  // false: gaps of 1 m that never close
   bool mu0 = false;      // true: mu = 0
+  double factor = 0.0;   // > 0: the compliance method at c k with c = factor; 0: the scene's
+  integrators::DampingLaw law = integrators::DampingLaw::kHertzDamp;  // of eq. (9), if factor > 0
+  double tolerance = 0.0;  // > 0: the compliance method's tolerance; 0: the scene's
 };
 const std::vector<ClaimRun>& claim_runs();
 // The runs of Fig. 6: each excitation of pga_runs with and without pounding ("exc<n>",
@@ -119,7 +126,7 @@ struct UncertaintyOptions {
 };
 
 struct UncertaintyResult {
-  std::vector<std::string> claims;         // the claims judged: C1, C2, C3, C6
+  std::vector<std::string> claims;         // the claims judged: C1 ... C6, C4', C5'
   std::map<std::string, Verdict> nominal;  // their verdicts at the nominal point
   std::map<std::string, Share> shares;     // over the hypercube
   std::size_t samples = 0;                 // hypercube samples

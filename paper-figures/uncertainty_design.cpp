@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "models/scene.hpp"
+#include "paper-figures/figure.hpp"
 #include "paper-figures/figures.hpp"
 
 namespace nsb::paper_figures {
@@ -72,8 +73,11 @@ std::vector<ClaimRun> fig6_runs(const std::vector<int>& pga_runs,
 }
 
 const std::vector<ClaimRun>& claim_runs() {
-  static const std::vector<ClaimRun> r =
-      fig6_runs(uncertainty::kStudyPgaRuns, uncertainty::kStudyMu0Runs);
+  static const std::vector<ClaimRun> r = [] {
+    std::vector<ClaimRun> v = fig6_runs(uncertainty::kStudyPgaRuns, uncertainty::kStudyMu0Runs);
+    for (auto& c : uncertainty::compliance_claim_runs()) v.push_back(std::move(c));
+    return v;
+  }();
   return r;
 }
 
@@ -144,6 +148,10 @@ std::vector<std::string> point_overrides(const std::vector<double>& v, const Cla
     }
     o.push_back(kv("model.seats.rotation_scale", c / width * factor));
   }
+  if (run.factor > 0) {
+    for (auto& s : compliance_overrides(run.factor, run.law)) o.push_back(std::move(s));
+  }
+  if (run.factor > 0 && run.tolerance > 0) o.push_back(kv("solver.tolerance", run.tolerance));
   return o;
 }
 

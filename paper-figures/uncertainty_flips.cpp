@@ -40,7 +40,7 @@ std::string judge_oat(const std::vector<Point>& oat, const Rows& oat_rows, const
     const auto it = oat_rows.find(p.name);
     if (it == oat_rows.end()) continue;
     // A point with the tornado's run only: --quick, or an end at the nominal value.
-    if (it->second.size() != claim_runs().size()) continue;
+    if (!has_claim_runs(it->second)) continue;
     const double mu = p.values[index_of("friction")];
     const auto claims = judge(it->second, mu, pga);
     if (cols.empty()) cols = check_columns(claims);

@@ -146,8 +146,12 @@ std::string uncertainty_markdown(const UncertaintyResult& r, bool quick) {
     << std::defaultfloat;
   s << "\n## Share of the plausible space in which each claim holds\n\n"
     << "Latin hypercube of " << r.samples
-    << " samples over every assumption at once (uncertainty.csv). C4 and C5 (compliance "
-       "method, about 10 s CPU per run) are not part of the study.";
+    << " samples over every assumption at once (uncertainty.csv). C4 and C4' run the "
+       "compliance method at tolerance "
+    << format_number(uncertainty::kStudyComplianceTolerance)
+    << " and k factors 1e-4, 1e-3, 1e-2 and 1e2 (those their checks read), C5 and C5' at the "
+       "scenes' tolerance (docs/benchmarks/compliance.md, \"Tolerance of the uncertainty "
+       "study\").";
   if (quick) {
     s << " --quick draws only " << r.samples
       << " samples and integrates 20 s of the record: the shares are not meaningful, and the "

@@ -1,9 +1,11 @@
 #include "integrators/compliance.hpp"
+#include "integrators/closure_bound.hpp"
 #include "integrators/rosenbrock.hpp"
 #include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -269,6 +271,42 @@ TEST_CASE("compliance: a closure is never stepped over, however large max_step")
   // One commit at the start and one per accepted step.
   CHECK(s.commits == st.steps + 1);
   CHECK(st.factorizations == st.steps + st.rejected_steps);
+}
+
+TEST_CASE("compliance: the gap bound never clears a cubic gap that goes negative") {
+  using nsb::integrators::gap_stays_open;
+  // Cubic gaps on a step of length h from their end values and rates, over a grid of end data
+  // and steps: wherever the bound says "stays open", the cubic is positive at every one of
+  // 1001 points of the step.
+  int cleared = 0;
+  for (double h : {1e-6, 1e-4, 1e-3, 1e-2}) {
+    for (double g0 : {1e-7, 1e-5, 1e-4, 1e-3, 1e-2}) {
+      for (double g1 : {1e-7, 1e-5, 1e-4, 1e-3, 1e-2}) {
+        for (double d0 : {-2.0, -0.1, -1e-3, 0.0, 1e-3, 0.1, 2.0}) {
+          for (double d1 : {-2.0, -0.1, -1e-3, 0.0, 1e-3, 0.1, 2.0}) {
+            if (!gap_stays_open(g0, d0, g1, d1, h)) continue;
+            ++cleared;
+            double lowest = std::min(g0, g1);
+            for (int j = 0; j <= 1000; ++j) {
+              const double s = j / 1000.0;
+              const double g = (2 * s * s * s - 3 * s * s + 1) * g0 +
+                               (s * s * s - 2 * s * s + s) * h * d0 +
+                               (-2 * s * s * s + 3 * s * s) * g1 + (s * s * s - s * s) * h * d1;
+              lowest = std::min(lowest, g);
+            }
+            CHECK(lowest > 0.0);
+          }
+        }
+      }
+    }
+  }
+  CHECK(cleared > 1000);  // the bound clears most open gaps: the probes are rarely needed
+  // A gap that closes and reopens within the step, positive at both ends, is not cleared.
+  CHECK_FALSE(gap_stays_open(1e-4, -1.0, 1e-4, 1.0, 1e-3));
+  // Nor a negative or NaN end.
+  CHECK_FALSE(gap_stays_open(-1e-9, 0.0, 1.0, 0.0, 1e-3));
+  CHECK_FALSE(gap_stays_open(std::nan(""), 0.0, 1.0, 0.0, 1e-3));
+  CHECK(gap_stays_open(1e-2, -0.1, 1e-2, 0.1, 1e-3));
 }
 
 TEST_CASE("compliance: contact-free harmonic oscillator matches the closed form") {

@@ -2,6 +2,7 @@
 // the base point, the overrides of a point, and the claims from hand-made numbers. Expected
 // values are worked out by hand beside each case.
 #include "paper-figures/uncertainty.hpp"
+#include "paper-figures/uncertainty_steps.hpp"
 
 #include <doctest/doctest.h>
 
@@ -154,6 +155,36 @@ TEST_CASE("a point's overrides: no pounding, mu = 0, the ratio and the seat rota
   CHECK_THROWS_AS(point_overrides({1.0}, claim_runs()[0], targets()), std::invalid_argument);
   SceneTargets none;
   CHECK_THROWS_AS(point_overrides(nominal_point(), claim_runs()[0], none), std::invalid_argument);
+}
+
+TEST_CASE("C4's runs: excitation 5 under the compliance method, both laws, the study's tolerance") {
+  std::size_t compliance_runs = 0;
+  for (const auto& r : claim_runs()) {
+    if (r.factor == 0) continue;
+    ++compliance_runs;
+    CAPTURE(r.name);
+    CHECK(r.excitation == 5);
+    const auto o = point_overrides(nominal_point(), r, targets());
+    CHECK(has(o, "model.excitation.target_pga=0.83"));
+    CHECK(has(o, "solver.method=compliance"));
+    const double tol = nsb::paper_figures::uncertainty::kStudyComplianceTolerance;
+    CHECK(has(o, "solver.tolerance=" + nsb::sweep::format_number(tol)));
+    if (r.name == "exc5-k100") {
+      CHECK(has(o, "solver.stiffness_factor=100"));
+      CHECK(has(o, "solver.damping_law=hertzdamp"));
+    }
+    if (r.name == "exc5-k0.0001-hunt_crossley_exact") {
+      CHECK(has(o, "solver.stiffness_factor=0.0001"));
+      CHECK(has(o, "solver.damping_law=hunt_crossley_exact"));
+    }
+  }
+  CHECK(compliance_runs == 8);  // 4 factors x 2 laws
+  for (const auto& r : claim_runs()) {
+    if (r.factor > 0) continue;
+    for (const auto& s : point_overrides(nominal_point(), r, targets())) {
+      CHECK(s.rfind("solver.", 0) == std::string::npos);  // the scene's own method
+    }
+  }
 }
 
 TEST_CASE("claims C1-C3 from hand-made peaks") {
