@@ -1,26 +1,35 @@
 #include "models/contact_geometry.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace nsb::models {
 
 namespace {
 
 // Cosine and sine of a rotation angle. The corners of one body share its angle and a seat
-// that does not rotate has Phi = 0 exactly, so the last angle's values are kept (per thread)
-// and 0 needs no evaluation: the results are the same numbers, computed less often.
+// that does not rotate has Phi = 0 exactly, so the values of the last two angles are kept
+// (per thread; two, because a corner of one body against a face of another alternates
+// between the bodies' angles) and 0 needs no evaluation: the results are the same numbers,
+// computed less often.
 struct Rotation {
   double c = 1.0, s = 0.0;
   explicit Rotation(double angle) {
     if (angle == 0.0) return;
-    thread_local double last_angle = 0.0, last_c = 1.0, last_s = 0.0;
-    if (angle != last_angle) {
-      last_angle = angle;
-      last_c = std::cos(angle);
-      last_s = std::sin(angle);
+    struct Kept {
+      double angle = 0.0, c = 1.0, s = 0.0;
+    };
+    thread_local Kept last, before;
+    if (angle != last.angle) {
+      if (angle == before.angle) {
+        std::swap(last, before);
+      } else {
+        before = last;
+        last = {angle, std::cos(angle), std::sin(angle)};
+      }
     }
-    c = last_c;
-    s = last_s;
+    c = last.c;
+    s = last.s;
   }
   // (x, y) = R v, as two scalars: building a Vector2d from separately computed halves and
   // reading it back whole stalls the store forwarding, a large share of this function.
@@ -121,6 +130,8 @@ ContactNormal corner_contact_normal(const CornerFace& c, const Eigen::Vector3d& 
   const double tx = -ny, ty = nx;  // t = J n
   const double dx = px - ax, dy = py - ay;
 
+  k.point.x() = px;
+  k.point.y() = py;
   k.gap_normal = nx * dx + ny * dy;
   const double gap_tangent = tx * dx + ty * dy;
   const double wn2 = rx * ny - ry * nx;  // r x n
