@@ -184,10 +184,6 @@ void Assembly::build_contacts() {
                                 .restitution = c.restitution, .friction = c.friction});
     }
   }
-  normals_.q = integrators::Vector::Zero(dofs());
-  normals_.u = integrators::Vector::Zero(dofs());
-  normals_.seat.resize(seat_contacts_.size());
-  normals_.body.resize(body_contacts_.size());
 }
 
 void Assembly::check_initial_gaps() const {

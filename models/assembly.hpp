@@ -192,9 +192,9 @@ class Assembly final : public integrators::SystemBase {
   // Workspaces of the const evaluations, sized at construction.
   mutable std::vector<Eigen::Vector3d> us_dot_;  // us_dot per body at the motions' time
   mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time
-  // The normal kinematics of every contact at one state, sized at construction: the limit
-  // watch and contact_normals() read the same accepted state, evaluated once. (t, q, u) is
-  // the state the watch evaluated them at.
+  // The normal kinematics of every contact at one state, sized at construction when joints
+  // are watched: the limit watch and contact_normals() read the same accepted state,
+  // evaluated once. (t, q, u) is the state the watch evaluated them at.
   struct NormalCache {
     double t = std::numeric_limits<double>::quiet_NaN();
     integrators::Vector q, u;

@@ -16,7 +16,13 @@ void Assembly::build_limits() {
                 static_cast<int>(parts_.bodies.size()));
   const int bodies = static_cast<int>(parts_.bodies.size());
   watch_ = LimitWatch(spec, spec.deck_bodies > 0 ? std::min(spec.deck_bodies, bodies) : bodies);
-  if (watch_.watches_joints()) watch_gaps_.assign(parts_.contacts.size(), 0.0);
+  if (watch_.watches_joints()) {
+    watch_gaps_.assign(parts_.contacts.size(), 0.0);
+    normals_.q = integrators::Vector::Zero(dofs());
+    normals_.u = integrators::Vector::Zero(dofs());
+    normals_.seat.resize(seat_contacts_.size());
+    normals_.body.resize(body_contacts_.size());
+  }
   // The initial state is the first value of every watched quantity; a seat shorter than the
   // initial opening of its joint is bad input, not a result.
   const integrators::Vector q0 = initial_position(), u0 = initial_velocity();
