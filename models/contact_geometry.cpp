@@ -1,35 +1,26 @@
 #include "models/contact_geometry.hpp"
 
 #include <cmath>
-#include <utility>
 
 namespace nsb::models {
 
 namespace {
 
 // Cosine and sine of a rotation angle. The corners of one body share its angle and a seat
-// that does not rotate has Phi = 0 exactly, so the values of the last two angles are kept
-// (per thread; two, because a corner of one body against a face of another alternates
-// between the bodies' angles) and 0 needs no evaluation: the results are the same numbers,
-// computed less often.
+// that does not rotate has Phi = 0 exactly, so the last angle's values are kept (per thread)
+// and 0 needs no evaluation: the results are the same numbers, computed less often.
 struct Rotation {
   double c = 1.0, s = 0.0;
   explicit Rotation(double angle) {
     if (angle == 0.0) return;
-    struct Kept {
-      double angle = 0.0, c = 1.0, s = 0.0;
-    };
-    thread_local Kept last, before;
-    if (angle != last.angle) {
-      if (angle == before.angle) {
-        std::swap(last, before);
-      } else {
-        before = last;
-        last = {angle, std::cos(angle), std::sin(angle)};
-      }
+    thread_local double last_angle = 0.0, last_c = 1.0, last_s = 0.0;
+    if (angle != last_angle) {
+      last_angle = angle;
+      last_c = std::cos(angle);
+      last_s = std::sin(angle);
     }
-    c = last.c;
-    s = last.s;
+    c = last_c;
+    s = last_s;
   }
   // (x, y) = R v, as two scalars: building a Vector2d from separately computed halves and
   // reading it back whole stalls the store forwarding, a large share of this function.
