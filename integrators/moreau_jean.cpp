@@ -28,14 +28,35 @@ constexpr std::int64_t kProgressInterval = 4096;
 // y += alpha A x. The systems here are tiny (3 DOF for the bridge), where the general
 // matrix-vector kernel's dispatch costs more than the arithmetic. Per row the products are
 // summed over the columns in order, then scaled by alpha and added, as Eigen's column-major
-// kernel does (the bridge benchmark's histories came out bit for bit the same).
-void add_product(double alpha, const Matrix& a, const Vector& x, Vector& y) {
-  const Eigen::Index rows = a.rows(), cols = a.cols();
-  for (Eigen::Index i = 0; i < rows; ++i) {
-    double c = 0.0;
-    for (Eigen::Index j = 0; j < cols; ++j) c += a(i, j) * x[j];
-    y[i] += c * alpha;
+// kernel does (the bridge benchmark's histories came out bit for bit the same). The sums of
+// all rows advance together, column by column (contiguous in column-major storage, so they
+// vectorise), each row's in the same order.
+template <int N>
+void add_product_fixed(double alpha, const double* a, const double* x, double* y) {
+  double s[N] = {};
+  for (int j = 0; j < N; ++j) {
+    for (int i = 0; i < N; ++i) s[i] += a[j * N + i] * x[j];
   }
+  for (int i = 0; i < N; ++i) y[i] += s[i] * alpha;
+}
+// Any size; `sum` is a workspace of A's rows.
+void add_product(double alpha, const Matrix& a, const Vector& x, Vector& sum, Vector& y) {
+  const Eigen::Index rows = a.rows(), cols = a.cols();
+  if (rows == cols) {
+    switch (rows) {  // one body, two bodies (the bridges in parts)
+      case 3: return add_product_fixed<3>(alpha, a.data(), x.data(), y.data());
+      case 6: return add_product_fixed<6>(alpha, a.data(), x.data(), y.data());
+      default: break;
+    }
+  }
+  double* s = sum.data();
+  for (Eigen::Index i = 0; i < rows; ++i) s[i] = 0.0;
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    const double* col = a.data() + j * rows;
+    const double xj = x[j];
+    for (Eigen::Index i = 0; i < rows; ++i) s[i] += col[i] * xj;
+  }
+  for (Eigen::Index i = 0; i < rows; ++i) y[i] += s[i] * alpha;
 }
 
 // Element-wise loops for the vectors of the step (the same operations as Eigen's expressions,
@@ -358,9 +379,9 @@ bool MoreauJean::step(double h, double t1) {
 // with f(t_k+1, q_k, u_k) in f_pred_.
 void MoreauJean::free_velocity(double h) {
   combine(h * (1.0 - theta_), f_k_, h * theta_, f_pred_, rhs_);
-  if (has_stiffness_) add_product(-(h * h * theta_), K_, u_, rhs_);
+  if (has_stiffness_) add_product(-(h * h * theta_), K_, u_, mu_tmp_, rhs_);
   copy(u_, u_free_);
-  add_product(1.0, A_inv_, rhs_, u_free_);
+  add_product(1.0, A_inv_, rhs_, mu_tmp_, u_free_);
 }
 
 // Index set: contacts closed or closing within the step, g_N + (h/2) gdot_N <= 0, with

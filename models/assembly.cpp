@@ -3,6 +3,7 @@
 #include "models/rigid_deck.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <initializer_list>
 #include <sstream>
 #include <stdexcept>
@@ -350,10 +351,64 @@ void Assembly::contact_data(double t, const integrators::Vector& q, const integr
   mark_broken(out);
 }
 
+namespace {
+
+// Bitwise equality of two vectors of the same size (NaN equals NaN, -0 differs from +0): the
+// cached normals are reused only for exactly the state they were computed from.
+bool same_bits(const integrators::Vector& a, const integrators::Vector& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) ==
+             0;
+}
+
+}  // namespace
+
+bool Assembly::normals_at(double t, const integrators::Vector& q,
+                          const integrators::Vector& u) const {
+  return std::memcmp(&t, &normals_.t, sizeof t) == 0 && same_bits(q, normals_.q) &&
+         same_bits(u, normals_.u);
+}
+
+void Assembly::evaluate_normals(double t, const integrators::Vector& q,
+                                const integrators::Vector& u) const {
+  update_motions(t);
+  Eigen::Vector3d qa, ua;
+  int body = -1;
+  for (std::size_t i = 0; i < seat_contacts_.size(); ++i) {
+    const SeatContact& c = seat_contacts_[i];
+    if (c.offset != body) {
+      body = c.offset;
+      qa = q.segment<3>(body) + c.rest;
+      ua = u.segment<3>(body);
+    }
+    normals_.seat[i] =
+        corner_contact_normal(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
+  }
+  for (std::size_t i = 0; i < body_contacts_.size(); ++i) {
+    const BodyContact& c = body_contacts_[i];
+    normals_.body[i] = parts::corner_on_body_normal(
+        c.geometry, q.segment<3>(c.offset_a) + c.rest_a, u.segment<3>(c.offset_a),
+        q.segment<3>(c.offset_b) + c.rest_b, u.segment<3>(c.offset_b));
+  }
+}
+
 void Assembly::contact_normals(double t, const integrators::Vector& q,
                                const integrators::Vector& u,
                                std::vector<integrators::ContactData>& out) const {
   size_buffer(out);
+  if (watch_.watches_joints() && normals_at(t, q, u)) {
+    // The limit watch evaluated them at this accepted state.
+    for (std::size_t i = 0; i < seat_contacts_.size(); ++i) {
+      const SeatContact& c = seat_contacts_[i];
+      parts::write_contact_normal(normals_.seat[i], c.offset, out[c.slot]);
+    }
+    for (std::size_t i = 0; i < body_contacts_.size(); ++i) {
+      const BodyContact& c = body_contacts_[i];
+      parts::write_body_contact_normal(normals_.body[i], c.offset_a, c.offset_b, out[c.slot]);
+    }
+    mark_broken(out);
+    return;
+  }
   update_motions(t);
   Eigen::Vector3d qa, ua;
   int body = -1;
@@ -367,12 +422,10 @@ void Assembly::contact_normals(double t, const integrators::Vector& q,
         corner_contact_normal(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
     parts::write_contact_normal(k, c.offset, out[c.slot]);
   }
-  // A body face needs g_T for B's column: the full kinematics, its normal fields kept.
   for (const auto& c : body_contacts_) {
-    const auto k = parts::corner_on_body(c.geometry, q.segment<3>(c.offset_a) + c.rest_a,
-                                         u.segment<3>(c.offset_a),
-                                         q.segment<3>(c.offset_b) + c.rest_b,
-                                         u.segment<3>(c.offset_b));
+    const auto k = parts::corner_on_body_normal(
+        c.geometry, q.segment<3>(c.offset_a) + c.rest_a, u.segment<3>(c.offset_a),
+        q.segment<3>(c.offset_b) + c.rest_b, u.segment<3>(c.offset_b));
     parts::write_body_contact_normal(k, c.offset_a, c.offset_b, out[c.slot]);
   }
   mark_broken(out);

@@ -197,6 +197,20 @@ class Assembly final : public integrators::SystemBase {
   // Workspaces of the const evaluations, sized at construction.
   mutable std::vector<Eigen::Vector3d> us_dot_;  // us_dot per body at the motions' time
   mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time
+  // The normal kinematics of every contact at one state, sized at construction when joints
+  // are watched: the limit watch and contact_normals() read the same accepted state,
+  // evaluated once. (t, q, u) is the state the watch evaluated them at.
+  struct NormalCache {
+    double t = std::numeric_limits<double>::quiet_NaN();
+    integrators::Vector q, u;
+    std::vector<ContactNormal> seat;             // per seat_contacts_
+    std::vector<parts::BodyContactNormal> body;  // per body_contacts_
+  };
+  mutable NormalCache normals_;
+  void evaluate_normals(double t, const integrators::Vector& q,
+                        const integrators::Vector& u) const;
+  // Whether normals_ holds (t, q, u) as the watch left it (bit for bit).
+  bool normals_at(double t, const integrators::Vector& q, const integrators::Vector& u) const;
   // The watched limit states and the contact gaps they read, sized at construction.
   LimitWatch watch_;
   std::vector<double> watch_gaps_;

@@ -16,7 +16,13 @@ void Assembly::build_limits() {
                 static_cast<int>(parts_.bodies.size()));
   const int bodies = static_cast<int>(parts_.bodies.size());
   watch_ = LimitWatch(spec, spec.deck_bodies > 0 ? std::min(spec.deck_bodies, bodies) : bodies);
-  if (watch_.watches_joints()) watch_gaps_.assign(parts_.contacts.size(), 0.0);
+  if (watch_.watches_joints()) {
+    watch_gaps_.assign(parts_.contacts.size(), 0.0);
+    normals_.q = integrators::Vector::Zero(dofs());
+    normals_.u = integrators::Vector::Zero(dofs());
+    normals_.seat.resize(seat_contacts_.size());
+    normals_.body.resize(body_contacts_.size());
+  }
   // The initial state is the first value of every watched quantity; a seat shorter than the
   // initial opening of its joint is bad input, not a result.
   const integrators::Vector q0 = initial_position(), u0 = initial_velocity();
@@ -32,24 +38,18 @@ void Assembly::build_limits() {
   }
 }
 
-// g_N of every contact, the numbers contact_normals() writes, without the dofs()-sized columns.
+// g_N of every contact, the numbers contact_normals() writes (and keeps for its call at the
+// same accepted state), without the dofs()-sized columns.
 void Assembly::watch_gaps(double t, const integrators::Vector& q, const integrators::Vector& u) {
-  update_motions(t);
-  for (const auto& c : seat_contacts_) {
-    const Eigen::Vector3d qa = q.segment<3>(c.offset) + c.rest;
-    const Eigen::Vector3d ua = u.segment<3>(c.offset);
-    watch_gaps_[c.slot] =
-        corner_contact_normal(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)])
-            .gap_normal;
+  evaluate_normals(t, q, u);
+  normals_.t = t;
+  normals_.q = q;
+  normals_.u = u;
+  for (std::size_t i = 0; i < seat_contacts_.size(); ++i) {
+    watch_gaps_[seat_contacts_[i].slot] = normals_.seat[i].gap_normal;
   }
-  // Body B as the obstacle at its pose: corner_on_body's g_N is corner_contact's with B so.
-  for (const auto& c : body_contacts_) {
-    PlanarMotion b;
-    b.position = q.segment<3>(c.offset_b) + c.rest_b;
-    b.velocity = u.segment<3>(c.offset_b);
-    watch_gaps_[c.slot] = corner_contact_normal(c.geometry, q.segment<3>(c.offset_a) + c.rest_a,
-                                                u.segment<3>(c.offset_a), b)
-                              .gap_normal;
+  for (std::size_t i = 0; i < body_contacts_.size(); ++i) {
+    watch_gaps_[body_contacts_[i].slot] = normals_.body[i].a.gap_normal;
   }
 }
 

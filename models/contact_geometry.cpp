@@ -121,6 +121,8 @@ ContactNormal corner_contact_normal(const CornerFace& c, const Eigen::Vector3d& 
   const double tx = -ny, ty = nx;  // t = J n
   const double dx = px - ax, dy = py - ay;
 
+  k.point.x() = px;
+  k.point.y() = py;
   k.gap_normal = nx * dx + ny * dy;
   const double gap_tangent = tx * dx + ty * dy;
   const double wn2 = rx * ny - ry * nx;  // r x n

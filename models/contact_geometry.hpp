@@ -74,6 +74,7 @@ struct ContactNormal {
   Eigen::Vector3d w_normal = Eigen::Vector3d::Zero();  // W_N [-, -, m]
   double what_normal = 0.0;      // [m/s]
   double gap_rate_normal = 0.0;  // gdot_N = W_N^T u + what_N [m/s]
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();  // corner position p [m]
 };
 ContactNormal corner_contact_normal(const CornerFace& c, const Eigen::Vector3d& q,
                                     const Eigen::Vector3d& u, const PlanarMotion& obstacle);

@@ -68,6 +68,20 @@ BodyContactKinematics corner_on_body(const CornerFace& c, const Eigen::Vector3d&
   return k;
 }
 
+BodyContactNormal corner_on_body_normal(const CornerFace& c, const Eigen::Vector3d& q_a,
+                                        const Eigen::Vector3d& u_a, const Eigen::Vector3d& q_b,
+                                        const Eigen::Vector3d& u_b) {
+  PlanarMotion b;
+  b.position = q_b;
+  b.velocity = u_b;
+  BodyContactNormal k;
+  k.a = corner_contact_normal(c, q_a, u_a, b);
+  const double dx = k.a.point.x() - q_b.x(), dy = k.a.point.y() - q_b.y();
+  const double nx = k.a.w_normal.x(), ny = k.a.w_normal.y();  // n
+  k.w_normal_b << -nx, -ny, -(dx * ny - dy * nx);
+  return k;
+}
+
 void write_contact(const ContactKinematics& k, int offset_a, double restitution,
                    double friction, integrators::ContactData& out) {
   // The same assignments as models::copy_contact, into the body's rows of a column of any
@@ -105,6 +119,16 @@ void write_contact_normal(const ContactNormal& k, int offset_a, integrators::Con
 }
 
 void write_body_contact_normal(const BodyContactKinematics& k, int offset_a, int offset_b,
+                               integrators::ContactData& out) {
+  out.gap_normal = k.a.gap_normal;
+  out.w_normal.setZero();
+  out.w_normal.segment<3>(offset_a) = k.a.w_normal;
+  out.w_normal.segment<3>(offset_b) = k.w_normal_b;
+  out.what_normal = 0.0;
+  out.far = is_far(k.a.gap_normal, k.a.gap_rate_normal);
+}
+
+void write_body_contact_normal(const BodyContactNormal& k, int offset_a, int offset_b,
                                integrators::ContactData& out) {
   out.gap_normal = k.a.gap_normal;
   out.w_normal.setZero();

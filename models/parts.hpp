@@ -167,6 +167,14 @@ struct BodyContactKinematics {
 BodyContactKinematics corner_on_body(const CornerFace& c, const Eigen::Vector3d& q_a,
                                      const Eigen::Vector3d& u_a, const Eigen::Vector3d& q_b,
                                      const Eigen::Vector3d& u_b);
+// Its normal part, the same numbers: corner_contact_normal() with B as the obstacle, and W_N,B.
+struct BodyContactNormal {
+  ContactNormal a;                                      // as corner_contact_normal(), for A
+  Eigen::Vector3d w_normal_b = Eigen::Vector3d::Zero();   // W_N,B [-, -, m]
+};
+BodyContactNormal corner_on_body_normal(const CornerFace& c, const Eigen::Vector3d& q_a,
+                                        const Eigen::Vector3d& u_a, const Eigen::Vector3d& q_b,
+                                        const Eigen::Vector3d& u_b);
 
 // Writes the contact data of body A's corner (its columns at offset_a) and, when w_*_b are
 // given, of body B (at offset_b) into `out`, whose vectors are sized dofs(): the other entries
@@ -180,6 +188,8 @@ void write_body_contact(const BodyContactKinematics& k, int offset_a, int offset
 // as models::copy_contact_normal; the other fields of `out` keep their values.
 void write_contact_normal(const ContactNormal& k, int offset_a, integrators::ContactData& out);
 void write_body_contact_normal(const BodyContactKinematics& k, int offset_a, int offset_b,
+                               integrators::ContactData& out);
+void write_body_contact_normal(const BodyContactNormal& k, int offset_a, int offset_b,
                                integrators::ContactData& out);
 
 // The distinct ground motions of an assembly, each evaluated once per distinct time t (an

@@ -101,6 +101,25 @@ TEST_CASE("closure: the first step with a gap <= 0 or a contact impulse") {
   CHECK(by_name(a)["closure_left"].time == 0.4);
 }
 
+TEST_CASE("closure: contact normals at the watched state are the ones evaluated afresh") {
+  Assembly watched = bridge({});
+  Assembly plain(nsb::models::bridge_parts(Bridge::Parameters::benchmark(), {}));
+  const ni::Vector q{{0.004, -0.002, 1e-3}}, u{{0.1, -0.2, 0.03}};
+  const ni::Vector other{{0.008, -0.004, 2e-3}};
+  watched.accept_step({.t = 0.25, .h = 1e-3, .q = &q, .u = &u});
+  auto a = watched.make_contact_buffer(), b = plain.make_contact_buffer();
+  for (const ni::Vector* at : {&q, &other}) {  // the watched state, then another
+    watched.contact_normals(0.25, *at, u, a);
+    plain.contact_normals(0.25, *at, u, b);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      CHECK(a[i].gap_normal == b[i].gap_normal);
+      CHECK(a[i].w_normal == b[i].w_normal);
+      CHECK(a[i].what_normal == b[i].what_normal);
+      CHECK(a[i].far == b[i].far);
+    }
+  }
+}
+
 TEST_CASE("drift: |(dx, dy + s theta)| / H against drift_ratio, margin = limit - peak") {
   const Bridge::Parameters bp = Bridge::Parameters::benchmark();
   nsb::models::BridgeLimits l;

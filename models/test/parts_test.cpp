@@ -136,6 +136,27 @@ TEST_CASE("contact writers fill the bodies' rows and zero the rest") {
   CHECK(n.far == d.far);
 }
 
+TEST_CASE("corner on a body: the normal part alone gives the same numbers") {
+  const State s = moving();
+  const auto k = corner_on_body(hinge(), s.qa, s.ua, s.qb, s.ub);
+  const auto n = corner_on_body_normal(hinge(), s.qa, s.ua, s.qb, s.ub);
+  CHECK(n.a.gap_normal == k.a.gap_normal);
+  CHECK(n.a.w_normal == k.a.w_normal);
+  CHECK(n.a.what_normal == k.a.what_normal);
+  CHECK(n.a.gap_rate_normal == k.a.gap_rate_normal);
+  CHECK(n.a.point == k.a.point);
+  CHECK(n.w_normal_b == k.w_normal_b);
+  nsb::integrators::ContactData full, part;
+  full.w_normal = Eigen::VectorXd::Constant(9, 7.0);
+  part.w_normal = Eigen::VectorXd::Constant(9, 7.0);
+  write_body_contact_normal(k, 6, 0, full);
+  write_body_contact_normal(n, 6, 0, part);
+  CHECK(part.gap_normal == full.gap_normal);
+  CHECK(part.w_normal == full.w_normal);
+  CHECK(part.what_normal == full.what_normal);
+  CHECK(part.far == full.far);
+}
+
 TEST_CASE("the motion table shares a record between supports and caches one time") {
   nsb::models::Record r{.t = {0.0, 0.5, 1.0, 1.5}, .a = {0.0, 1.0, -1.0, 0.0}, .source = "test"};
   nsb::models::GroundMotionOptions o;
