@@ -443,7 +443,8 @@ struct BridgeAdditions {
 // The bridge as an assembly of parts (models/bridge_parts.hpp), one deck (d == nullptr: the
 // same operations as models::Bridge) or segmented, with the additions: the connectors
 // (models/connector_scene.hpp) and their ground motions g, then the shear keys on the deck's
-// bodies, then the limit states watched on its segments.
+// bodies, then the limit states watched on its segments (docs/scenes.md: a bridge in segments
+// always watches its joints' closure; one deck only the limit states its scene asks for).
 std::unique_ptr<integrators::System> assemble(const Section& m, const Bridge::Parameters& p,
                                               const SegmentedDeck* d, const BridgeAdditions& a,
                                               const Bridge::Excitation& exc,
@@ -459,7 +460,9 @@ std::unique_ptr<integrators::System> assemble(const Section& m, const Bridge::Pa
       add_connectors(a.connectors, p, gaps, g, parts);
     }
     if (a.keys) add_shear_keys(parts, *a.keys, deck_bodies);
-    parts.limits = bridge_limit_spec(a.limits.limits, deck_bodies);
+    if (d != nullptr || a.limits.requested) {
+      parts.limits = bridge_limit_spec(a.limits.limits, deck_bodies);
+    }
     return std::make_unique<Assembly>(std::move(parts));
   } catch (const std::invalid_argument& e) {
     m.rethrow(e);
