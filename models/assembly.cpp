@@ -1,4 +1,5 @@
 #include "models/assembly.hpp"
+#include "models/field_checks.hpp"
 
 #include "models/rigid_deck.hpp"
 
@@ -12,14 +13,6 @@
 namespace nsb::models {
 
 namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
-
-std::string indexed(const char* list, std::size_t i) {
-  return std::string(list) + "[" + std::to_string(i) + "].";
-}
 
 // Coordinate names: x, y, theta for one body (as models::Bridge), x1, y1, theta1, ... else.
 std::vector<std::string> names(std::size_t bodies, std::initializer_list<const char*> base) {

@@ -1,4 +1,5 @@
 #include "models/bridge.hpp"
+#include "models/field_checks.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,10 +10,6 @@
 namespace nsb::models {
 
 namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
 
 bool finite_positive(double v) { return std::isfinite(v) && v > 0; }
 

@@ -1,4 +1,5 @@
 #include "models/bridge_parts.hpp"
+#include "models/field_checks.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -52,10 +53,6 @@ Assembly::Parts bridge_parts(const Bridge::Parameters& p, const Bridge::Excitati
 }
 
 namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
 
 double total_length(const SegmentedDeck& d) {
   double l = 0.0;

@@ -1,4 +1,5 @@
 #include "models/connector_set.hpp"
+#include "models/field_checks.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -7,14 +8,6 @@
 namespace nsb::models {
 
 namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
-
-std::string indexed(const char* list, std::size_t i) {
-  return std::string(list) + "[" + std::to_string(i) + "].";
-}
 
 // A point fixed in a frame at pose (x, y, theta): the frame origin and the rotated offset.
 Eigen::Vector2d rotated(double theta, const Eigen::Vector2d& r) {

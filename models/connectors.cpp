@@ -1,4 +1,5 @@
 #include "models/connectors.hpp"
+#include "models/field_checks.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +8,6 @@
 namespace nsb::models::connectors {
 
 namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
 
 bool finite_positive(double v) { return std::isfinite(v) && v > 0; }
 bool finite_non_negative(double v) { return std::isfinite(v) && v >= 0; }

@@ -1,4 +1,5 @@
 #include "models/deck_chain.hpp"
+#include "models/field_checks.hpp"
 
 #include "models/deck_geometry.hpp"
 
@@ -9,14 +10,6 @@
 namespace nsb::models {
 
 namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
-
-std::string indexed(const char* list, std::size_t i) {
-  return std::string(list) + "[" + std::to_string(i) + "].";
-}
 
 parts::RigidBody body(const DeckChain::Parameters& p, std::size_t i) {
   const auto& d = p.decks[i];

@@ -1,4 +1,5 @@
 #include "models/deck_geometry.hpp"
+#include "models/field_checks.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -7,10 +8,6 @@
 namespace nsb::models {
 
 namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
 
 double radians(double deg) { return deg * std::numbers::pi / 180.0; }
 

@@ -1,4 +1,5 @@
 #include "models/parts.hpp"
+#include "models/field_checks.hpp"
 
 #include "models/deck_geometry.hpp"
 #include "models/rigid_deck.hpp"
@@ -11,10 +12,6 @@
 namespace nsb::models::parts {
 
 namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
 
 bool finite_positive(double v) { return std::isfinite(v) && v > 0; }
 

@@ -1,4 +1,5 @@
 #include "models/shear_keys.hpp"
+#include "models/field_checks.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -6,10 +7,6 @@
 namespace nsb::models {
 
 namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument(field + ": " + what);
-}
 
 // One key: corner `corner` of body `body` against a face of seat `seat` on side s = +-1.
 void add_key(Assembly::Parts& parts, const ShearKeyParameters& keys, int body, int corner,
