@@ -1,6 +1,7 @@
 // Connector keys of a bridge scene (models/connector_scene.hpp): which system a scene
 // builds, and bad input naming file:line:col and the key.
 #include "models/scene.hpp"
+#include "models/test/scene_files.hpp"
 
 #include "models/assembly.hpp"
 #include "models/bridge.hpp"
@@ -18,30 +19,8 @@ using nsb::models::load_scene;
 
 namespace {
 
-struct Scratch {
-  fs::path dir = fs::temp_directory_path() / ("nsb-connector-test-" + std::to_string(::getpid()));
-  Scratch() { fs::create_directories(dir); }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-};
-
-fs::path write(const std::string& name, const std::string& text) {
-  static const Scratch scratch;
-  const fs::path p = scratch.dir / name;
-  std::ofstream(p) << text;
-  return p;
-}
-
-std::string error_of(const std::string& name, const std::string& text) {
-  try {
-    load_scene(write(name, text));
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return {};
-}
+using nsb::models::test_files::error_of;
+using nsb::models::test_files::write;
 
 const std::string kDeck = R"([model]
 kind = "bridge"

@@ -1,6 +1,7 @@
 // Scene files (models/scene.hpp): every shipped scene loads; every bad input gives an error
 // naming the file and the key or line; overrides apply before validation.
 #include "models/scene.hpp"
+#include "models/test/scene_files.hpp"
 
 #include "integrators/run.hpp"
 #include "models/bridge.hpp"
@@ -23,39 +24,9 @@ namespace ni = nsb::integrators;
 
 namespace {
 
-// A scratch folder for bad scene files, removed at the end of the test run.
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    dir = fs::temp_directory_path() / ("nsb-scene-test-" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path p = dir / name;
-    std::ofstream(p) << text;
-    return p;
-  }
-};
-const Scratch& scratch() {
-  static Scratch s;
-  return s;
-}
-
-// The error message of loading `text` as a scene (empty when it loads).
-std::string error_of(const std::string& name, const std::string& text,
-                     const std::vector<std::string>& overrides = {}) {
-  const fs::path p = scratch().write(name, text);
-  try {
-    load_scene(p, overrides);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return {};
-}
+using nsb::models::test_files::error_of;
+using nsb::models::test_files::scratch_dir;
+using nsb::models::test_files::write;
 
 bool contains(const std::string& s, const std::string& part) {
   const bool ok = s.find(part) != std::string::npos;
@@ -184,7 +155,7 @@ TEST_CASE("scale_to = \"sa\": errors name the file, the line and the key") {
     std::string text, line, key, what;
   };
   // A record of zeros: its PSA is zero at every period.
-  const fs::path zero = scratch().write("zero.txt", "0 0\n0.01 0\n0.02 0\n0.03 0\n");
+  const fs::path zero = write("zero.txt", "0 0\n0.01 0\n0.02 0\n0.03 0\n");
   std::string no_record = bridge_scene(record);
   no_record.replace(no_record.find("transverse_record"), 17, "# transverse_record");
   const std::vector<Case> cases = {
@@ -329,7 +300,7 @@ initial_position = 0.2
     CHECK(contains(e, "not found"));
   }
   SUBCASE("record with non-increasing time") {
-    scratch().write("bad-time.txt", "0.0 0.1\n0.1 0.2\n0.1 0.3\n0.2 0.0\n");
+    write("bad-time.txt", "0.0 0.1\n0.1 0.2\n0.1 0.3\n0.2 0.0\n");
     const auto e = error_of("bad-time.toml", bridge_scene("bad-time.txt"));
     CHECK(contains(e, "bad-time.toml:14:"));
     CHECK(contains(e, "model.excitation.transverse_record"));
@@ -378,7 +349,7 @@ mass = "heavy"
   SUBCASE("missing file") {
     std::string e;
     try {
-      load_scene(scratch().dir / "absent.toml");
+      load_scene(scratch_dir() / "absent.toml");
     } catch (const std::invalid_argument& ex) {
       e = ex.what();
     }
@@ -410,7 +381,7 @@ position = 5.0
 height = 2.0
 stiffness_transverse = 3000.0
 )";
-  const fs::path p = scratch().write("explicit.toml", text);
+  const fs::path p = write("explicit.toml", text);
   const auto scene = load_scene(p);
   const auto& b = dynamic_cast<const nsb::models::Bridge&>(*scene.system);
   CHECK(b.parameters().bents[0].longitudinal.k0 == doctest::Approx(1000.0));
@@ -427,7 +398,7 @@ stiffness_transverse = 3000.0
 
 TEST_CASE("per-support delays and a prescribed seat rotation") {
   // Angular acceleration 1e-3 rad/s^2 for 1 s, then zero: a two-column record in rad/s^2.
-  scratch().write("rot.txt", "0.0 0.001\n0.5 0.001\n1.0 0.001\n1.01 0.0\n2.0 0.0\n");
+  write("rot.txt", "0.0 0.001\n0.5 0.001\n1.0 0.001\n1.01 0.0\n2.0 0.0\n");
   const std::string text = R"([model]
 kind = "bridge"
 [[model.bents]]
@@ -454,7 +425,7 @@ time_scale = 0.5
   for (const char* rec : {"ground-motions/RSN1084_NORTHR_SCS142.AT2", "ground-motions/RSN1084_NORTHR_SCS052.AT2"}) {
     t.replace(t.find(rec), std::string(rec).size(), data + rec);
   }
-  const fs::path p = scratch().write("delays.toml", t);
+  const fs::path p = write("delays.toml", t);
   const auto scene = load_scene(p);
   const auto& b = dynamic_cast<const nsb::models::Bridge&>(*scene.system);
   const auto& e = b.excitation();
@@ -480,21 +451,21 @@ step = 1e-3
 theta = 1.0
 lcp_fallback = false
 )";
-  const auto scene = load_scene(scratch().write("options.toml", text));
+  const auto scene = load_scene(write("options.toml", text));
   const auto& ed = std::get<ni::EventDrivenOptions>(scene.run);
   CHECK(ed.end_time == 0.5);
   CHECK(ed.max_step == 1e-3);
   CHECK(ed.max_events_per_window == 50);
   CHECK(ed.solver == nsb::lcp::Solver::kPgs);
   // The Moreau–Jean keys of the same table reach the run when --method switches to it.
-  const auto mj = load_scene(scratch().write("options.toml", text), {"solver.method=moreau"});
+  const auto mj = load_scene(write("options.toml", text), {"solver.method=moreau"});
   const auto& o = std::get<ni::MoreauJeanOptions>(mj.run);
   CHECK(o.step == 1e-3);
   CHECK(o.theta == 1.0);
   CHECK(!o.lcp_fallback);
   CHECK(o.solver == nsb::lcp::Solver::kPgs);
   // Compliance keeps the Hertz stiffness and its factor as two fields.
-  const auto cp = load_scene(scratch().write("options.toml", text),
+  const auto cp = load_scene(write("options.toml", text),
                              {"solver.method=compliance", "solver.contact_stiffness=1e5",
                               "solver.stiffness_factor=100", "solver.damping_law=flores"});
   const auto& c = std::get<ni::ComplianceOptions>(cp.run);

@@ -2,6 +2,7 @@
 // one segment reproduces [model.deck] bit for bit, the outputs name each body's coordinates,
 // and every rule of the layout is an error naming the file, line and key.
 #include "models/scene.hpp"
+#include "models/test/scene_files.hpp"
 
 #include "integrators/moreau_jean.hpp"
 #include "integrators/recorder.hpp"
@@ -20,31 +21,8 @@ using nsb::models::load_scene;
 
 namespace {
 
-// A scratch folder for the scene files, removed at the end of the test run.
-struct Scratch {
-  fs::path dir = fs::temp_directory_path() / ("nsb-segments-test-" + std::to_string(::getpid()));
-  Scratch() { fs::create_directories(dir); }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-};
-
-fs::path write(const std::string& name, const std::string& text) {
-  static const Scratch scratch;
-  const fs::path p = scratch.dir / name;
-  std::ofstream(p) << text;
-  return p;
-}
-
-std::string error_of(const std::string& name, const std::string& text) {
-  try {
-    load_scene(write(name, text));
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return {};
-}
+using nsb::models::test_files::error_of;
+using nsb::models::test_files::write;
 
 bool contains(const std::string& s, const std::string& part) {
   const bool ok = s.find(part) != std::string::npos;
