@@ -107,7 +107,6 @@ ContactStatus ContactStage::solve_chain(bool& closed_form) {
     r.gdot_t_plus[0] = 0.0;
     r.status = lcp::Status::kSolved;
     r.solver_used = options_.solver;
-    r.used_fallback = false;
     r.residual = 0.0;
     closed_form = true;
     ++counts_.by_status[static_cast<int>(lcp::Status::kSolved)];
@@ -126,7 +125,7 @@ ContactStatus ContactStage::solve_chain(bool& closed_form) {
     if (a > 0 && !options_.fallback) break;
     if (s == lcp::Solver::kEnumeration && a > 0 && !enumerable) continue;
     tried[static_cast<int>(s)] = true;
-    solver_.solve(p, s, solve_options_, false, r);
+    solver_.solve(p, s, solve_options_, r);
     const bool finite = r.lambda_n.allFinite() && r.lambda_t.allFinite() &&
                         r.lambda_n.size() == k && r.lambda_t.size() == k;
     if (finite && r.residual < best) {
@@ -138,14 +137,12 @@ ContactStatus ContactStage::solve_chain(bool& closed_form) {
     if (accept(r)) {
       impulses_.head(k) = r.lambda_n;
       if (size > k) impulses_.segment(k, k) = r.lambda_t;
-      r.used_fallback = a > 0;
       ++counts_.by_status[static_cast<int>(r.status)];
       if (a == 0) return ContactStatus::kSolved;
       ++counts_.fallbacks;
       return ContactStatus::kSolvedByFallback;
     }
   }
-  r.used_fallback = options_.fallback;
   ++counts_.by_status[static_cast<int>(r.status)];
   ++counts_.unsolved;
   return ContactStatus::kUnsolved;

@@ -10,9 +10,10 @@
 //
 // The fallback chain, one for every caller: the configured solver, then Lemke, PGS on the
 // natural form, and enumeration of the complementary bases when eq. (6) has at most
-// lcp::EnumerationOptions::max_size unknowns; a solver already tried is skipped. Each solver
-// runs with FrictionalSolver::solve(..., fallback = false). An answer is accepted when the
-// solver reports kSolved, its impulses are finite and its residual (the frictional residual
+// lcp::EnumerationOptions::max_size unknowns; a solver already tried is skipped. This is the
+// only fallback policy: lcp's solvers each run alone (lcp::FrictionalSolver), and whether a
+// problem needed the chain is its ContactStatus (kSolvedByFallback). An answer is accepted
+// when the solver reports kSolved, its impulses are finite and its residual (the frictional residual
 // of lcp::frictional_residual, which every solver fills into FrictionalResult::residual) is
 // at most options.tolerance. If the problem's data are not finite the stage solves nothing
 // and says so: the caller stops with RunStatus::kDiverged.

@@ -5,12 +5,26 @@
 #include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
 
+#include <array>
 #include <stdexcept>
 #include <string>
 
 namespace nsb::integrators {
 
 namespace c = config;
+
+namespace {
+
+// The LCP solvers a scene's solver.lcp_solver may name, spelled as lcp::to_string spells them.
+constexpr auto kSolverNames = [] {
+  std::array<c::Name<lcp::Solver>, lcp::kSolvers.size()> names{};
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    names[i] = {lcp::to_string(lcp::kSolvers[i]), lcp::kSolvers[i]};
+  }
+  return names;
+}();
+
+}  // namespace
 
 std::span<const c::Field<MoreauJeanOptions>> MoreauJeanOptions::fields() {
   using O = MoreauJeanOptions;
@@ -22,8 +36,7 @@ std::span<const c::Field<MoreauJeanOptions>> MoreauJeanOptions::fields() {
                           "time step h; at most end_time; the last step is shortened to end "
                           "at end_time"),
       c::number<&O::theta>("theta", "-", c::closed(0.5, 1.0), "θ of the θ-method"),
-      c::choice<&lcp::kSolverNames, &O::solver>("lcp_solver",
-                                                "solver of each step's contact problem"),
+      c::choice<&kSolverNames, &O::solver>("lcp_solver", "solver of each step's contact problem"),
       c::number<&O::lcp_tolerance>("lcp_tolerance", "-", c::positive(),
                                    "residual at which an LCP counts as solved"),
       c::boolean<&O::lcp_fallback>("lcp_fallback",
@@ -53,8 +66,7 @@ std::span<const c::Field<EventDrivenOptions>> EventDrivenOptions::fields() {
                               "longest support motion)"),
       c::number<&O::tolerance>("tolerance", "-", c::open(0.0, 1.0),
                                "absolute and relative error tolerance of the smooth phases"),
-      c::choice<&lcp::kSolverNames, &O::solver>("lcp_solver",
-                                                "solver of the impact and contact LCPs"),
+      c::choice<&kSolverNames, &O::solver>("lcp_solver", "solver of the impact and contact LCPs"),
       c::number<&O::lcp_tolerance>("lcp_tolerance", "-", c::positive(),
                                    "residual at which an LCP counts as solved"),
       c::number<&O::event_time_tolerance>("event_time_tolerance", "s", c::positive(),

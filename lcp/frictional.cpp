@@ -312,8 +312,8 @@ void FrictionalSolver::assemble(const FrictionalProblem& fp, Eigen::Index) {
   write_eq6(fp, matrix_.data(), q_.data());
 }
 
-bool FrictionalSolver::run_lemke(const FrictionalProblem& fp, const SolveOptions& options,
-                                 bool own_limit, FrictionalResult& result) {
+void FrictionalSolver::run_lemke(const FrictionalProblem& fp, const SolveOptions& options,
+                                 FrictionalResult& result) {
   const Eigen::Index n = eq6_size(fp);
   assemble(fp, n);
   Eigen::Map<Matrix> M(matrix_.data(), n, n);
@@ -321,7 +321,7 @@ bool FrictionalSolver::run_lemke(const FrictionalProblem& fp, const SolveOptions
   Eigen::Map<Vector> z(z_.data(), n);
   LemkeOptions o;
   o.tolerance = options.tolerance;
-  o.max_pivots = own_limit ? 0 : options.max_iterations;
+  o.max_pivots = options.max_iterations;
   result.status = lemke_.run(M, q, o, z);
   result.iterations = lemke_.pivots();
   if (result.status == Status::kRayTermination || result.status == Status::kRoundOff) {
@@ -348,20 +348,17 @@ bool FrictionalSolver::run_lemke(const FrictionalProblem& fp, const SolveOptions
   }
   result.solver_used = Solver::kLemke;
   read_eq6_into(fp, z_.data(), result);
-  return result.status == Status::kSolved;
 }
 
 void FrictionalSolver::solve(const FrictionalProblem& fp, Solver solver,
-                             const SolveOptions& options, bool fallback,
-                             FrictionalResult& result) {
+                             const SolveOptions& options, FrictionalResult& result) {
   fp.validate();
   options.validate();
   reserve(fp.contacts());
-  result.used_fallback = false;
   result.status = Status::kNotRun;
   switch (solver) {
     case Solver::kLemke:
-      run_lemke(fp, options, false, result);
+      run_lemke(fp, options, result);
       return;
     case Solver::kPgs: {
       PgsOptions o;
@@ -406,25 +403,19 @@ void FrictionalSolver::solve(const FrictionalProblem& fp, Solver solver,
       break;
     }
   }
-  if (result.status != Status::kSolved && fallback) {
-    // The fallback uses Lemke's own pivot limit: options.max_iterations was meant for the
-    // solver that was asked for.
-    run_lemke(fp, options, true, result);
-    result.used_fallback = true;
-  }
 }
 
 FrictionalResult FrictionalSolver::solve(const FrictionalProblem& fp, Solver solver,
-                                         const SolveOptions& options, bool fallback) {
+                                         const SolveOptions& options) {
   FrictionalResult r;
-  solve(fp, solver, options, fallback, r);
+  solve(fp, solver, options, r);
   return r;
 }
 
 FrictionalResult solve_frictional(const FrictionalProblem& fp, Solver solver,
-                                  const SolveOptions& options, bool fallback) {
+                                  const SolveOptions& options) {
   FrictionalSolver s(fp.contacts());
-  return s.solve(fp, solver, options, fallback);
+  return s.solve(fp, solver, options);
 }
 
 }  // namespace nsb::lcp

@@ -50,7 +50,6 @@ struct FrictionalResult {
   Vector gdot_t_plus;   // post-impact tangential velocities
   Status status = Status::kNotRun;
   Solver solver_used = Solver::kLemke;  // the solver that produced the answer
-  bool used_fallback = false;           // true if the requested solver failed and Lemke ran
   int iterations = 0;
   double residual = std::numeric_limits<double>::infinity();  // see frictional_residual
   bool ok() const { return status == Status::kSolved; }
@@ -81,17 +80,17 @@ FrictionalResult read_eq6(const FrictionalProblem& fp, const Vector& z);
 double frictional_residual(const FrictionalProblem& fp, const Vector& lambda_n,
                            const Vector& lambda_t);
 
-// Solves fp: Lemke, Newton–FB and enumeration on eq. (6); PGS on the natural form
-// (normal impulses in [0, inf), tangential in [-mu Lambda_N, mu Lambda_N]). If the chosen
-// solver does not reach kSolved and fallback is true, Lemke runs (with its own pivot limit)
-// and used_fallback is set. When Lemke ends on a secondary ray or reports round-off
-// (kRayTermination, kRoundOff), it is retried on eq. (6) with
+// Solves fp with the chosen solver only: Lemke, Newton–FB and enumeration on eq. (6); PGS on
+// the natural form (normal impulses in [0, inf), tangential in [-mu Lambda_N, mu Lambda_N]).
+// A solver that fails says so in the status; trying another one is the caller's policy (the
+// contact stage's fallback chain, integrators/contact_stage.hpp). When Lemke ends on a
+// secondary ray or reports round-off (kRayTermination, kRoundOff), it is retried on eq. (6) with
 // a diagonal shift of 1e-14 to 1e-12 (relative to the diagonal); such an answer is accepted
 // only if it solves the unshifted LCP to options.tolerance. This handles a body wedged
 // between contacts whose impulses can balance each other, where the solution set is
 // unbounded and round-off otherwise ends the pivoting path on a ray.
 FrictionalResult solve_frictional(const FrictionalProblem& fp, Solver solver,
-                                  const SolveOptions& options = {}, bool fallback = true);
+                                  const SolveOptions& options = {});
 
 // PGS on the natural form (no LCP of eq. 6): one sweep visits the contacts in order and sets
 //   Lambda_N,i <- max(0, Lambda_N,i - omega gdot_N0,i / G_NN,ii)
@@ -113,15 +112,15 @@ class FrictionalSolver {
  public:
   explicit FrictionalSolver(Eigen::Index max_contacts = 0);
   void reserve(Eigen::Index contacts);
-  // Same semantics and result as solve_frictional(fp, solver, options, fallback).
+  // Same semantics and result as solve_frictional(fp, solver, options).
   void solve(const FrictionalProblem& fp, Solver solver, const SolveOptions& options,
-             bool fallback, FrictionalResult& result);
+             FrictionalResult& result);
   FrictionalResult solve(const FrictionalProblem& fp, Solver solver,
-                         const SolveOptions& options = {}, bool fallback = true);
+                         const SolveOptions& options = {});
 
  private:
   void assemble(const FrictionalProblem& fp, Eigen::Index n);
-  bool run_lemke(const FrictionalProblem& fp, const SolveOptions& options, bool own_limit,
+  void run_lemke(const FrictionalProblem& fp, const SolveOptions& options,
                  FrictionalResult& result);
   Eigen::Index capacity_ = 0;
   std::vector<double> matrix_;  // eq. (6) M, column-major, up to (3m)^2

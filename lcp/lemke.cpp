@@ -69,11 +69,12 @@ void Lemke::reserve(Eigen::Index n) {
 // it is the most negative q_i / d_i. Afterwards only rows with a positive entry u_i of the
 // entering column can block, ranked by (B^-1 q, B^-1)_i / u_i.
 template <int N>
-Eigen::Index Lemke::ratio_test(Eigen::Index entering, bool initial) {
+Eigen::Index Lemke::ratio_test(Eigen::Index entering, PivotKind kind) {
   const Eigen::Index n = fixed::size<N>(n_);
   const double* T = tableau_.data();
   const double* u = T + entering * n;
   const double* qcol = T + (2 * n + 1) * n;
+  const bool initial = kind == PivotKind::kFirst;
   const double sign = initial ? -1.0 : 1.0;
   double unorm = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) unorm = std::max(unorm, std::abs(u[i]));
@@ -271,15 +272,15 @@ template <int N>
 inline Status Lemke::complementary_pivots(int limit, Eigen::Index& entering) {
   const Eigen::Index n = fixed::size<N>(n_);
   const Eigen::Index z0 = 2 * n;
-  bool initial = true;
+  PivotKind kind = PivotKind::kFirst;
   while (true) {
     if (pivots_ >= limit) return Status::kMaxIterations;
-    const Eigen::Index row = ratio_test<N>(entering, initial);
+    const Eigen::Index row = ratio_test<N>(entering, kind);
     if (row < 0) return Status::kRayTermination;
     const Eigen::Index leaving = basis_[row];
     pivot<N>(row, entering);
     ++pivots_;
-    initial = false;
+    kind = PivotKind::kLater;
     if (leaving == z0) return Status::kSolved;
     entering = leaving < n ? leaving + n : leaving - n;  // the complement of the leaving one
   }

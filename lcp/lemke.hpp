@@ -88,9 +88,11 @@ class Lemke {
                        Eigen::Ref<Vector> z);
   template <int N>
   void pivot(Eigen::Index row, Eigen::Index entering);
+  // The first pivot (z0 entering) ranks the rows differently from every later one.
+  enum class PivotKind { kFirst, kLater };
   // Leaving row for the entering variable; -1: no entry above the pivot tolerance.
   template <int N>
-  Eigen::Index ratio_test(Eigen::Index entering, bool initial);
+  Eigen::Index ratio_test(Eigen::Index entering, PivotKind kind);
   void check(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,
              Eigen::Index z_size) const;
   bool ray_verified(const Eigen::Ref<const Matrix>& M, const Eigen::Ref<const Vector>& q,

@@ -10,12 +10,11 @@
 
 namespace nsb::lcp {
 
-std::string_view to_string(Solver s) {
-  return config::name_of(kSolverNames, s);
-}
-
 std::optional<Solver> parse_solver(std::string_view name) {
-  return config::value_of(kSolverNames, name);
+  for (const Solver s : kSolvers) {
+    if (to_string(s) == name) return s;
+  }
+  return std::nullopt;
 }
 
 void SolveOptions::validate() const {

@@ -1,25 +1,31 @@
 // Choosing an LCP solver by name, with one signature for all of them.
 #pragma once
 
-#include "config/schema.hpp"
 #include "lcp/lcp.hpp"
 
 #include <array>
-
 #include <optional>
 #include <string_view>
 
 namespace nsb::lcp {
 
 enum class Solver { kLemke, kPgs, kNewtonFb, kEnumeration };
-// The one list of solver names (scene keys, the CLI, summary.json).
-inline constexpr std::array<config::Name<Solver>, 4> kSolverNames{{{"lemke", Solver::kLemke},
-                                                                  {"pgs", Solver::kPgs},
-                                                                  {"nfb", Solver::kNewtonFb},
-                                                                  {"enum", Solver::kEnumeration}}};
+// Every solver, in the order their names are listed (scene keys, the CLI, docs).
+inline constexpr std::array<Solver, 4> kSolvers{Solver::kLemke, Solver::kPgs, Solver::kNewtonFb,
+                                                Solver::kEnumeration};
 
-std::string_view to_string(Solver s);
-// "lemke" | "pgs" | "nfb" | "enum"; std::nullopt for anything else.
+// The one spelling of each solver's name (scene keys, the CLI, summary.json, .dat manifests):
+// "lemke" | "pgs" | "nfb" | "enum".
+constexpr std::string_view to_string(Solver s) {
+  switch (s) {
+    case Solver::kLemke: return "lemke";
+    case Solver::kPgs: return "pgs";
+    case Solver::kNewtonFb: return "nfb";
+    case Solver::kEnumeration: return "enum";
+  }
+  return "unknown";
+}
+// The solver named `name` (to_string's spelling); std::nullopt for anything else.
 std::optional<Solver> parse_solver(std::string_view name);
 
 // Settings common to all solvers. Each solver maps them onto its own options struct.

@@ -59,7 +59,7 @@ Impact solve_with_lcp(const an::DeckBody& g, const std::vector<int>& corners,
   fp.gdot_n_minus = fp.gdot_free.head(m);
   fp.restitution = Eigen::VectorXd::Constant(m, e);
   fp.friction = Eigen::VectorXd::Constant(m, mu);
-  const auto r = lcp::solve_frictional(fp, solver, {}, /*fallback=*/false);
+  const auto r = lcp::solve_frictional(fp, solver);
   Impact out;
   out.ok = r.ok();
   if (!out.ok) return out;

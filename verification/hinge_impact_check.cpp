@@ -188,7 +188,7 @@ TEST_CASE("hinge impacts: every LCP solver and both integrators agree with the e
               fp.gdot_n_minus = t.problem.gdot_minus.head(t.problem.restitution.size());
               fp.restitution = t.problem.restitution;
               fp.friction = t.problem.friction;
-              const auto r = lcp::solve_frictional(fp, solvers[s], {}, /*fallback=*/false);
+              const auto r = lcp::solve_frictional(fp, solvers[s]);
               if (!r.ok()) continue;
               ++solved[s];
               const double d = (after(t, r.lambda_n, r.lambda_t) - oracle).cwiseAbs().maxCoeff();

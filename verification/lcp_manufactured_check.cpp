@@ -147,7 +147,7 @@ TEST_CASE("eq. 6 from random planar rigid bodies: all solvers against enumeratio
     INFO("trial " << trial << ", " << contacts << " contacts, eps " << eps << ", mu " << mu);
     REQUIRE(e.ok());
     for (Solver s : {Solver::kLemke, Solver::kPgs, Solver::kNewtonFb}) {
-      const FrictionalResult r = solve_frictional(b.problem, s, {}, false);
+      const FrictionalResult r = solve_frictional(b.problem, s);
       INFO("solver " << to_string(s) << ": " << to_string(r.status));
       if (s == Solver::kLemke) REQUIRE(r.ok());
       if (!r.ok()) continue;

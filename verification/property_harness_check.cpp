@@ -644,7 +644,7 @@ TEST_CASE("randomised free-deck impacts equal the enumeration oracle of eq. (6)"
       w.col(2 + k) = cols.w_tangent;
     }
     for (auto solver : solvers) {
-      const auto r = nsb::lcp::solve_frictional(fp, solver, {}, false);
+      const auto r = nsb::lcp::solve_frictional(fp, solver);
       INFO("solver " << nsb::lcp::to_string(solver));
       // Lemke and enumeration are exact pivoting methods and must solve; PGS and Newton–FB
       // may stop short of 1e-12 on the singular G of two corners sharing W_T (counted).

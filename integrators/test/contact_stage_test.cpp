@@ -2,6 +2,8 @@
 // matrices, the fallback chain, and the statuses, with expected values derived in comments.
 #include "integrators/contact_stage.hpp"
 
+#include "lcp/enumeration.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -132,6 +134,43 @@ TEST_CASE("the fallback chain solves what the configured solver cannot") {
     CHECK(stage.solve() == ContactStatus::kUnsolved);
     CHECK(stage.counts().unsolved == 1);
     CHECK(stage.impulses().cwiseAbs().maxCoeff() == 0.0);
+  }
+}
+
+TEST_CASE("the chain's order: a configured solver that fails hands over to Lemke, second") {
+  // Five decoupled particles (10 DOF, A^-1 = I): contact i has W_N = e_2i, W_T = e_2i+1, so
+  // G = I (10 x 10) and eq. (6) has 15 unknowns, more than enumeration's max_size (12):
+  // enumeration, configured first, returns kTooLarge. The chain (configured, Lemke, PGS,
+  // enumeration) then runs Lemke. By hand, with what_N = -1, what_T = 0.1, mu = 0.3, eps = 0:
+  // Lambda_N = 1 closes each contact (gdot_N+ = -1 + 1 = 0); stopping the slip needs
+  // |Lambda_T| = 0.1 <= mu Lambda_N = 0.3, so each sticks with Lambda_T = -0.1.
+  constexpr int kContacts = 5;
+  std::vector<ContactData> c(kContacts);
+  std::vector<int> index;
+  for (int i = 0; i < kContacts; ++i) {
+    ContactData& ci = c[static_cast<std::size_t>(i)];
+    ci.w_normal = Vector::Zero(2 * kContacts);
+    ci.w_tangent = Vector::Zero(2 * kContacts);
+    ci.w_normal[2 * i] = 1.0;
+    ci.w_tangent[2 * i + 1] = 1.0;
+    ci.what_normal = -1.0;
+    ci.what_tangent = 0.1;
+    ci.friction = 0.3;
+    index.push_back(i);
+  }
+  REQUIRE(3 * kContacts > lcp::EnumerationOptions{}.max_size);
+  ContactStageOptions o;
+  o.solver = lcp::Solver::kEnumeration;
+  ContactStage stage(2 * kContacts, kContacts, o);
+  stage.build(c, index, true, Matrix::Identity(2 * kContacts, 2 * kContacts),
+              Vector::Zero(2 * kContacts), ContactLevel::kVelocity);
+  CHECK(stage.solve() == ContactStatus::kSolvedByFallback);
+  CHECK(stage.result().solver_used == lcp::Solver::kLemke);
+  CHECK(stage.counts().fallbacks == 1);
+  CHECK(stage.counts().unsolved == 0);
+  for (int i = 0; i < kContacts; ++i) {
+    CHECK(stage.lambda_n(i) == doctest::Approx(1.0));
+    CHECK(stage.lambda_t(i) == doctest::Approx(-0.1));
   }
 }
 

@@ -77,7 +77,7 @@ TEST_CASE("hand-solved particle impacts: sliding both ways and sticking") {
   for (const Case& c : cases) {
     const FrictionalProblem fp = particle(2.0, c.vx, -2.0, 0.5, 0.4);
     for (Solver s : kAllSolvers) {
-      const FrictionalResult r = solve_frictional(fp, s, options_for(s), false);
+      const FrictionalResult r = solve_frictional(fp, s, options_for(s));
       INFO("vx = " << c.vx << ", solver " << to_string(s));
       REQUIRE(r.ok());
       const double tol = (s == Solver::kPgs || s == Solver::kNewtonFb) ? kIterative : kHand;
@@ -87,7 +87,6 @@ TEST_CASE("hand-solved particle impacts: sliding both ways and sticking") {
       CHECK(std::abs(r.gdot_t_plus(0) - c.gdot_t) < 10 * tol);
       CHECK(r.residual <= 1e-12);
       CHECK(r.solver_used == s);
-      CHECK_FALSE(r.used_fallback);
     }
   }
 }
@@ -158,7 +157,7 @@ TEST_CASE("random planar rigid bodies, 1 to 4 contacts: Newton's and Coulomb's l
       if (s == Solver::kEnumeration && contacts == 4) continue;
       INFO("trial " << trial << ", " << contacts << " contacts, mu = " << mu << ", eps = " << eps
                     << ", solver " << to_string(s));
-      const FrictionalResult r = solve_frictional(fp, s, options_for(s), false);
+      const FrictionalResult r = solve_frictional(fp, s, options_for(s));
       // Lemke and enumeration must solve eq. 6 here; the iterative ones may stall on the
       // singular Delassus matrices of 2+ frictional contacts (rank 3 < 2m), which is what the
       // fallback is for.
@@ -215,9 +214,12 @@ TEST_CASE("expected failure: restitution with a wedged frictional body has no so
     if (e.status == Status::kNoSolution) {
       ++infeasible;
       CHECK((l.status == Status::kRayTermination || l.status == Status::kRoundOff));
-      const FrictionalResult f = solve_frictional(b.problem, Solver::kPgs);
-      CHECK_FALSE(f.ok());  // the fallback cannot succeed either
-      CHECK(f.used_fallback);
+      // Neither PGS nor Lemke with its regularized retries (the contact stage's chain
+      // before enumeration) can succeed either.
+      CHECK_FALSE(solve_frictional(b.problem, Solver::kPgs).ok());
+      const FrictionalResult f = solve_frictional(b.problem, Solver::kLemke);
+      CHECK_FALSE(f.ok());
+      CHECK(f.solver_used == Solver::kLemke);
     }
     if (l.ok()) CHECK(l.residual <= 1e-12);
   }
@@ -228,10 +230,10 @@ TEST_CASE("one contact: the impulses are unique, and every solver finds the same
   std::mt19937 rng(99);
   for (int trial = 0; trial < 100; ++trial) {
     const auto b = testing::rigid_body_impact(rng, 1, 0.3 * (trial % 3), 0.1 + 0.1 * (trial % 8));
-    const FrictionalResult ref = solve_frictional(b.problem, Solver::kEnumeration, {}, false);
+    const FrictionalResult ref = solve_frictional(b.problem, Solver::kEnumeration);
     REQUIRE(ref.ok());
     for (Solver s : kAllSolvers) {
-      const FrictionalResult r = solve_frictional(b.problem, s, options_for(s), false);
+      const FrictionalResult r = solve_frictional(b.problem, s, options_for(s));
       INFO("trial " << trial << ", solver " << to_string(s));
       REQUIRE(r.ok());
       CHECK(std::abs(r.lambda_n(0) - ref.lambda_n(0)) <= kIterative * (1 + ref.lambda_n(0)));
@@ -246,7 +248,7 @@ TEST_CASE("frictionless problems have no tangential unknowns") {
   REQUIRE(b.problem.frictionless());
   CHECK(eq6_size(b.problem) == 3);
   for (Solver s : kAllSolvers) {
-    const FrictionalResult r = solve_frictional(b.problem, s, options_for(s), false);
+    const FrictionalResult r = solve_frictional(b.problem, s, options_for(s));
     REQUIRE(r.ok());
     CHECK(r.lambda_t.isZero(0.0));
     CHECK(r.gdot_t_plus.isZero(0.0));
@@ -278,22 +280,21 @@ TEST_CASE("the LCP of eq. 6 has zero diagonal entries: plain PGS cannot run, the
   CHECK(warm.iterations == 0);
 }
 
-TEST_CASE("fallback: a failed solver hands over to Lemke") {
-  // Two coupled frictional contacts: one PGS sweep cannot solve it.
+TEST_CASE("a failed solver says so and hands over to no other; Lemke solves the problem") {
+  // Two coupled frictional contacts: one PGS sweep cannot solve it. Trying another solver is
+  // the contact stage's fallback chain (integrators/contact_stage.hpp), not lcp's.
   std::mt19937 rng(12);
   const FrictionalProblem fp = testing::rigid_body_impact(rng, 2, 0.0, 0.4).problem;
   SolveOptions one;
   one.max_iterations = 1;
   one.tolerance = 1e-14;
-  const FrictionalResult no = solve_frictional(fp, Solver::kPgs, one, false);
+  const FrictionalResult no = solve_frictional(fp, Solver::kPgs, one);
   CHECK(no.status == Status::kMaxIterations);
-  CHECK_FALSE(no.used_fallback);
-  const FrictionalResult yes = solve_frictional(fp, Solver::kPgs, one, true);
-  CHECK(yes.ok());
-  CHECK(yes.used_fallback);
-  CHECK(yes.solver_used == Solver::kLemke);
-  const FrictionalResult lemke_only = solve_frictional(fp, Solver::kLemke, {}, false);
-  CHECK((yes.lambda_n - lemke_only.lambda_n).lpNorm<Eigen::Infinity>() == 0.0);
+  CHECK(no.solver_used == Solver::kPgs);
+  CHECK(no.iterations == 1);
+  const FrictionalResult lemke_only = solve_frictional(fp, Solver::kLemke);
+  CHECK(lemke_only.ok());
+  CHECK(lemke_only.solver_used == Solver::kLemke);
 }
 
 TEST_CASE("FrictionalSolver reuses its workspace and matches solve_frictional") {
@@ -304,11 +305,11 @@ TEST_CASE("FrictionalSolver reuses its workspace and matches solve_frictional") 
     const int contacts = 1 + (trial * 3) % 4;
     const auto b = testing::rigid_body_impact(rng, contacts, 0.0, 0.5);
     for (Solver s : {Solver::kLemke, Solver::kPgs}) {
-      solver.solve(b.problem, s, {}, true, reused);
-      const FrictionalResult fresh = solve_frictional(b.problem, s, {}, true);
+      solver.solve(b.problem, s, {}, reused);
+      const FrictionalResult fresh = solve_frictional(b.problem, s);
       INFO("trial " << trial << ", solver " << to_string(s));
       CHECK(reused.status == fresh.status);
-      CHECK(reused.used_fallback == fresh.used_fallback);
+      CHECK(reused.solver_used == fresh.solver_used);
       CHECK((reused.lambda_n - fresh.lambda_n).lpNorm<Eigen::Infinity>() == 0.0);
       CHECK((reused.lambda_t - fresh.lambda_t).lpNorm<Eigen::Infinity>() == 0.0);
       CHECK(reused.ok());
@@ -345,13 +346,13 @@ TEST_CASE("FrictionalSolver: no heap allocation per call once sized (Lemke, PGS,
   for (int k = 0; k < 50; ++k) problems.push_back(testing::rigid_body_impact(rng, 3, 0.0, 0.5).problem);
   FrictionalSolver solver(4);
   FrictionalResult result;
-  solver.solve(problems[0], Solver::kLemke, {}, true, result);  // sizes the result vectors
-  solver.solve(problems[0], Solver::kNewtonFb, {}, true, result);  // sizes its eq. (6) LCP
+  solver.solve(problems[0], Solver::kLemke, {}, result);  // sizes the result vectors
+  solver.solve(problems[0], Solver::kNewtonFb, {}, result);  // sizes its eq. (6) LCP
   for (Solver s : {Solver::kLemke, Solver::kPgs, Solver::kNewtonFb}) {
     const long before = g_allocations.load();
     int solved = 0;
     for (const auto& fp : problems) {
-      solver.solve(fp, s, {}, true, result);
+      solver.solve(fp, s, {}, result);
       solved += result.ok();
     }
     const long allocations = g_allocations.load() - before;
