@@ -25,6 +25,7 @@
 #pragma once
 
 #include "integrators/recorder.hpp"
+#include "integrators/run_hooks.hpp"
 #include "integrators/system.hpp"
 
 #include <array>
@@ -129,9 +130,11 @@ struct ComplianceOptions {
 // progress is called every few thousand steps with the time reached; it may be empty.
 RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder,
                      const Progress& progress = {});
-// The run API's entry for this method (integrators/run.hpp).
+// The run API's entry for this method (integrators/run.hpp). Compliance solves no contact
+// problem, so hooks.contact_observer sees nothing; a restart in hooks is a bad call.
 inline RunResult run_method(System& system, const ComplianceOptions& options, Recorder& recorder,
-                            const Progress& progress) {
+                            const Progress& progress, const RunHooks& hooks) {
+  require_no_restart(hooks, ComplianceOptions::kMethod);
   return compliance(system, options, recorder, progress);
 }
 

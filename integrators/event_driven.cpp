@@ -1,6 +1,7 @@
 #include "integrators/event_driven.hpp"
 
 #include "integrators/event_integrator.hpp"
+#include "io/csv.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +30,7 @@ bool all_finite(const State& x) {
 }  // namespace
 
 EventDriven::EventDriven(System& system, const EventDrivenOptions& options, Recorder& recorder,
-                         const Progress& progress)
+                         const Progress& progress, const RunHooks& hooks)
     : sys_(system),
       opt_(options),
       rec_(recorder),
@@ -65,7 +66,7 @@ EventDriven::EventDriven(System& system, const EventDrivenOptions& options, Reco
   ContactStageOptions stage_options;
   stage_options.solver = opt_.solver;
   stage_options.tolerance = opt_.lcp_tolerance;
-  stage_options.observer = opt_.contact_observer;
+  stage_options.observer = hooks.contact_observer;
   stage_ = ContactStage(n_, m_, stage_options);
   touching_.reserve(static_cast<std::size_t>(m_));
   candidates_.reserve(static_cast<std::size_t>(m_));
@@ -100,7 +101,7 @@ bool EventDriven::start() {
   t_ = sys_.initial_time();
   if (!(opt_.end_time > t_)) {
     throw std::invalid_argument("event_driven options: end_time must be > the initial time " +
-                                format_number(t_) + " s");
+                                io::three_digits(t_) + " s");
   }
   x_.assign(static_cast<std::size_t>(2 * n_ + kEnergyTerms), 0.0);
   {
@@ -166,7 +167,7 @@ bool EventDriven::attempt_step(double& ta, double& tb) {
   ta = dense_.previous_time();
   tb = std::min(dense_.current_time(), opt_.end_time);
   if (!(dense_.current_time_step() > kMinStep * std::max(1.0, std::abs(ta)))) {
-    r.message = "step size underflow at t = " + format_number(ta) + " s";
+    r.message = "step size underflow at t = " + io::three_digits(ta) + " s";
     warn(ta, 0, r.message);
     book_.stall(ta);
   } else {
@@ -174,7 +175,7 @@ bool EventDriven::attempt_step(double& ta, double& tb) {
     if (all_finite(x_)) return true;
     // The step went non-finite (a force blew up): stop at its start, the last finite state.
     book_.diverge(ta);
-    r.message = "non-finite state in the step from t = " + format_number(ta) + " s";
+    r.message = "non-finite state in the step from t = " + io::three_digits(ta) + " s";
     warn(ta, 0, r.message);
   }
   t_ = ta;
@@ -284,7 +285,7 @@ StepVerdict EventDriven::accept_step() {
   }
   if (verdict == StepVerdict::kUnseated) {
     book_.unseat(t_);
-    book_.result().message = "unseated at t = " + format_number(t_) + " s";
+    book_.result().message = "unseated at t = " + io::three_digits(t_) + " s";
   }
   return verdict;
 }
@@ -343,9 +344,10 @@ void EventDriven::record_sample(double t, const State& x, bool force) {
 }  // namespace detail
 
 RunResult event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder,
-                       const Progress& progress) {
+                       const Progress& progress, const RunHooks& hooks) {
   options.validate();
-  detail::EventDriven integrator(system, options, recorder, progress);
+  require_no_restart(hooks, EventDrivenOptions::kMethod);
+  detail::EventDriven integrator(system, options, recorder, progress, hooks);
   return integrator.run();
 }
 

@@ -25,6 +25,7 @@
 #pragma once
 
 #include "integrators/recorder.hpp"
+#include "integrators/run_hooks.hpp"
 #include "integrators/system.hpp"
 #include "lcp/solve.hpp"
 
@@ -32,8 +33,6 @@
 #include <string_view>
 
 namespace nsb::integrators {
-
-class ContactObserver;  // contact_stage.hpp
 
 struct EventDrivenOptions {
   static constexpr std::string_view kMethod = "event_driven";  // solver.method in scene files
@@ -56,9 +55,6 @@ struct EventDrivenOptions {
   int max_events_per_window = 2000; // bound on events in any window of length event_window,
                                     //   > 0; reaching it gives a kWarning and forces closure
   double event_window = 1e-2;       // [s], > 0
-  // Shown every contact problem of the run (contact_stage.hpp), e.g. to write it to a file;
-  // not a scene key (the run pipeline sets it: runs::RunRequest::dump_lcp). Not owned.
-  ContactObserver* contact_observer = nullptr;
   // The schema of these fields (keys of a scene's [solver] table, units, ranges).
   static std::span<const config::Field<EventDrivenOptions>> fields();
   void validate() const;            // throws std::invalid_argument naming the key
@@ -66,17 +62,18 @@ struct EventDrivenOptions {
 
 // Integrates `system` from its initial state to options.end_time. Fills the recorder with
 // samples at its sample_dt (evaluated on the dense output) and with every event; calls
-// progress (may be empty) now and then; returns the run's statistics with method
-// "event_driven". Throws std::invalid_argument for bad options. Numerical trouble ends the
+// progress (may be empty) now and then; shows every contact problem to
+// hooks.contact_observer when it is set; returns the run's statistics with method
+// "event_driven". Throws std::invalid_argument for bad options or a restart in hooks. Numerical trouble ends the
 // run with completed = false, a message and a status: kContactUnsolved (an impact or contact
 // problem that no solver of the contact stage's chain solves), kDiverged (a non-finite
 // state), kStalled (a step size that underflows, the event bound reached twice in a row).
 RunResult event_driven(System& system, const EventDrivenOptions& options, Recorder& recorder,
-                       const Progress& progress = {});
+                       const Progress& progress = {}, const RunHooks& hooks = {});
 // The run API's entry for this method (integrators/run.hpp).
 inline RunResult run_method(System& system, const EventDrivenOptions& options, Recorder& recorder,
-                            const Progress& progress) {
-  return event_driven(system, options, recorder, progress);
+                            const Progress& progress, const RunHooks& hooks) {
+  return event_driven(system, options, recorder, progress, hooks);
 }
 
 }  // namespace nsb::integrators

@@ -12,6 +12,7 @@
 #include "integrators/event_driven.hpp"
 #include "integrators/event_location.hpp"
 #include "integrators/run_bookkeeping.hpp"
+#include "io/csv.hpp"
 
 // Only the Odeint parts used here: <boost/numeric/odeint.hpp> pulls in uBLAS, which does not
 // compile as C++20.
@@ -41,7 +42,7 @@ enum EnergyIndex { kDamping = 0, kGround, kExternal, kNormal, kFriction, kEnergy
 class EventDriven {
  public:
   EventDriven(System& system, const EventDrivenOptions& options, Recorder& recorder,
-              const Progress& progress);
+              const Progress& progress, const RunHooks& hooks);
   RunResult run();
 
  private:
@@ -114,7 +115,7 @@ class EventDriven {
   static std::size_t idx(int i) { return static_cast<std::size_t>(i); }
   void warn(double t, int contact, const std::string& what) {
     rec_.event(t, contact, EventKind::kWarning, what);
-    book_.result().warnings.push_back("t = " + format_number(t) + " s, contact " +
+    book_.result().warnings.push_back("t = " + io::three_digits(t) + " s, contact " +
                                       std::to_string(contact) + ": " + what);
   }
 

@@ -2,6 +2,7 @@
 
 #include "integrators/contact_stage.hpp"
 #include "integrators/run_bookkeeping.hpp"
+#include "io/csv.hpp"
 
 #include <Eigen/LU>
 
@@ -98,7 +99,7 @@ double gap_rate(const ContactData& c, const Vector& u) {
 class MoreauJean {
  public:
   MoreauJean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
-             const Progress& progress);
+             const Progress& progress, const RunHooks& hooks);
   RunResult run();
 
  private:
@@ -120,6 +121,7 @@ class MoreauJean {
 
   System& system_;
   const MoreauJeanOptions& options_;
+  RunHooks hooks_;
   Recorder& recorder_;
   const Matrix& mass_;
   int n_ = 0;  // degrees of freedom
@@ -166,9 +168,10 @@ class MoreauJean {
 };
 
 MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
-                       const Progress& progress)
+                       const Progress& progress, const RunHooks& hooks)
     : system_(system),
       options_(options),
+      hooks_(hooks),
       recorder_(recorder),
       mass_(system.mass()),
       n_(system.dofs()),
@@ -181,11 +184,11 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   q_ = system.initial_position();
   u_ = system.initial_velocity();
   grid_origin_ = t_;
-  if (options.resume != nullptr) resume(*options.resume);
+  if (hooks.resume != nullptr) resume(*hooks.resume);
   if (!(options.end_time > t_)) {
-    throw std::invalid_argument("moreau_jean: end_time (" + format_number(options.end_time) +
+    throw std::invalid_argument("moreau_jean: end_time (" + io::three_digits(options.end_time) +
                                 ") must exceed the system's initial time (" +
-                                format_number(t_) + ")");
+                                io::three_digits(t_) + ")");
   }
   if ((options.end_time - t_) / options.step > kMaxSteps) {
     throw std::invalid_argument("moreau_jean: step is too small for end_time (more than 1e10 "
@@ -212,7 +215,7 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   stage_options.solver = options.solver;
   stage_options.tolerance = options.lcp_tolerance;
   stage_options.fallback = options.lcp_fallback;
-  stage_options.observer = options.contact_observer;
+  stage_options.observer = hooks.contact_observer;
   stage_ = ContactStage(n_, m_, stage_options);
   lambda_n_ = Vector::Zero(m_);
   lambda_t_ = Vector::Zero(m_);
@@ -227,11 +230,11 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   // The initial state is accepted as it is: evaluate and commit it, so that f_k, K and C
   // belong to the committed state at t0 (a resumed run's K and C are the saved ones).
   system_.forces(t_, q_, u_, f_k_);
-  if (options.resume == nullptr) {
+  if (hooks.resume == nullptr) {
     system_.tangent(t_, q_, u_, K_, C_);
   } else {
-    K_ = options.resume->stiffness;
-    C_ = options.resume->damping;
+    K_ = hooks.resume->stiffness;
+    C_ = hooks.resume->damping;
   }
   system_.commit();
   system_.contact_data(t_, q_, u_, contacts_);
@@ -242,7 +245,7 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   const EnergyState e0 = system_.energy(t_, q_);
   mu_tmp_.noalias() = mass_ * u_;
   energy_.initial = 0.5 * u_.dot(mu_tmp_) + e0.stored;
-  if (options.resume != nullptr) energy_ = options.resume->energy;
+  if (hooks.resume != nullptr) energy_ = hooks.resume->energy;
 }
 
 // Starts from a saved state (MoreauJeanCheckpoint): its time must lie on its grid,
@@ -253,9 +256,9 @@ void MoreauJean::resume(const MoreauJeanCheckpoint& from) {
   const auto k = static_cast<std::int64_t>(std::llround((from.time - from.grid_origin) / h));
   const double on_grid = from.grid_origin + static_cast<double>(k) * h;
   if (!(k >= 0 && std::abs(on_grid - from.time) <= kTimeSlack * h)) {
-    throw std::invalid_argument("moreau_jean: resume.time (" + format_number(from.time) +
+    throw std::invalid_argument("moreau_jean: resume.time (" + io::three_digits(from.time) +
                                 ") is not on the step grid of resume.grid_origin (" +
-                                format_number(from.grid_origin) + ") and step");
+                                io::three_digits(from.grid_origin) + ") and step");
   }
   if (from.position.size() != n_ || from.velocity.size() != n_ || !all_finite(from.position) ||
       !all_finite(from.velocity) || from.stiffness.rows() != n_ || from.stiffness.cols() != n_ ||
@@ -325,8 +328,8 @@ RunResult MoreauJean::run() {
   if (!book_.diverged() && !std::isfinite(error)) {
     diverge(t_, "non-finite energy balance");
   }
-  if (completed && !book_.diverged() && options_.checkpoint != nullptr) {
-    save(*options_.checkpoint);
+  if (completed && !book_.diverged() && hooks_.checkpoint != nullptr) {
+    save(*hooks_.checkpoint);
   }
   return book_.finish(t_, completed, energy_, &stage_.counts());
 }
@@ -335,7 +338,7 @@ bool MoreauJean::diverge(double t1, const std::string& what) {
   system_.revert();
   book_.diverge(t1);
   RunResult& r = book_.result();
-  r.message = what + " at t = " + format_number(t1) +
+  r.message = what + " at t = " + io::three_digits(t1) +
               " s (the step or the model's forces are unstable)";
   recorder_.event(t1, 0, EventKind::kWarning, r.message);
   r.warnings.push_back(r.message);
@@ -345,7 +348,7 @@ bool MoreauJean::diverge(double t1, const std::string& what) {
 // The system stopped the run at the end of the accepted step t1 (a deck end unseated).
 bool MoreauJean::unseat(double t1) {
   book_.unseat(t1);
-  book_.result().message = "unseated at t = " + format_number(t1) + " s";
+  book_.result().message = "unseated at t = " + io::three_digits(t1) + " s";
   return false;
 }
 
@@ -486,7 +489,7 @@ bool MoreauJean::solve_contacts(double t1) {
       const std::string note = "contact problem not solved by any solver of the chain (last: " +
                                std::string(lcp::to_string(r.solver_used)) + ", " +
                                std::string(lcp::to_string(r.status)) + ", residual " +
-                               format_number(r.residual) + ")";
+                               io::three_digits(r.residual) + ")";
       recorder_.event(t1, 0, EventKind::kWarning, note);
       book_.result().warnings.push_back(note);
     }
@@ -582,8 +585,8 @@ void MoreauJean::sample(bool force) {
 }  // namespace
 
 RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
-                      const Progress& progress) {
-  MoreauJean integrator(system, options, recorder, progress);
+                      const Progress& progress, const RunHooks& hooks) {
+  MoreauJean integrator(system, options, recorder, progress, hooks);
   return integrator.run();
 }
 

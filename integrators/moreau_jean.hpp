@@ -20,6 +20,7 @@
 #pragma once
 
 #include "integrators/recorder.hpp"
+#include "integrators/run_hooks.hpp"
 #include "integrators/system.hpp"
 #include "lcp/solve.hpp"
 
@@ -28,8 +29,6 @@
 
 
 namespace nsb::integrators {
-
-class ContactObserver;  // contact_stage.hpp
 
 // The scheme's state at the end of an accepted step, from which a run continues as the run
 // that saved it would have, given the system in its state of that step (e.g. a copy of a
@@ -63,14 +62,6 @@ struct MoreauJeanOptions {
   // Normal or tangential contact velocity [m/s] below which a contact counts as resting or
   // sticking, for events only (it does not change the dynamics); > 0.
   double event_velocity_tolerance = 1e-6;
-  // Shown every contact problem of the run (contact_stage.hpp), e.g. to write it to a file;
-  // not a scene key (the run pipeline sets it: runs::RunRequest::dump_lcp). Not owned.
-  ContactObserver* contact_observer = nullptr;
-  // Not scene keys (a restart, MoreauJeanCheckpoint; not owned): `resume` starts the run from
-  // a saved state instead of the system's initial one; `checkpoint` receives the state at the
-  // end of a run that reached end_time.
-  const MoreauJeanCheckpoint* resume = nullptr;
-  MoreauJeanCheckpoint* checkpoint = nullptr;
   // The schema of these fields (keys of a scene's [solver] table, units, ranges).
   static std::span<const config::Field<MoreauJeanOptions>> fields();
   void validate() const;       // throws std::invalid_argument naming the key
@@ -78,17 +69,18 @@ struct MoreauJeanOptions {
 
 // Integrates system from its initial state to options.end_time. Samples the history into
 // recorder (contact forces lambda = Lambda / h) and records per-contact events; calls
-// progress (may be empty) every few thousand steps. Throws std::invalid_argument for bad
+// progress (may be empty) every few thousand steps; hooks (run_hooks.hpp) may show every
+// contact problem to an observer, resume from a checkpoint and save one at the end. Throws std::invalid_argument for bad
 // options or a system whose sizes are inconsistent; every numerical outcome is the
 // RunResult's status: kDiverged (a non-finite force, state, contact problem or energy; the
 // run stops), kContactUnsolved (a problem no solver of the chain solved; the run goes on with
 // the best answer), kCompletedWithFallbacks, kCompleted.
 RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
-                      const Progress& progress = {});
+                      const Progress& progress = {}, const RunHooks& hooks = {});
 // The run API's entry for this method (integrators/run.hpp).
 inline RunResult run_method(System& system, const MoreauJeanOptions& options, Recorder& recorder,
-                            const Progress& progress) {
-  return moreau_jean(system, options, recorder, progress);
+                            const Progress& progress, const RunHooks& hooks) {
+  return moreau_jean(system, options, recorder, progress, hooks);
 }
 
 }  // namespace nsb::integrators

@@ -59,19 +59,17 @@ void validate(const RunConfig& config) {
   std::visit([](const auto& o) { o.validate(); }, config);
 }
 
-RunConfig with_contact_observer(RunConfig config, ContactObserver* observer) {
-  std::visit(
-      [observer](auto& o) {
-        if constexpr (requires { o.contact_observer; }) o.contact_observer = observer;
-      },
-      config);
-  return config;
+void require_no_restart(const RunHooks& hooks, std::string_view method) {
+  if (hooks.resume != nullptr || hooks.checkpoint != nullptr) {
+    throw std::invalid_argument(std::string(method) +
+                                ": RunHooks::resume and checkpoint are for moreau runs only");
+  }
 }
 
 RunResult integrate(System& system, const RunConfig& config, Recorder& recorder,
-                    const Progress& progress) {
-  return std::visit([&](const auto& o) { return run_method(system, o, recorder, progress); },
-                    config);
+                    const Progress& progress, const RunHooks& hooks) {
+  return std::visit(
+      [&](const auto& o) { return run_method(system, o, recorder, progress, hooks); }, config);
 }
 
 }  // namespace nsb::integrators

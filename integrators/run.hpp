@@ -12,7 +12,8 @@
 //   static constexpr std::string_view kMethod = "<name>";     // the scene's solver.method
 //   static std::span<const config::Field<Options>> fields();  // its [solver] keys
 //   void validate() const;
-// and an overload  RunResult run_method(System&, const Options&, Recorder&, const Progress&);
+// and an overload
+//   RunResult run_method(System&, const Options&, Recorder&, const Progress&, const RunHooks&);
 // then one registration: its options type in RunConfig below.
 #pragma once
 
@@ -20,6 +21,7 @@
 #include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "integrators/recorder.hpp"
+#include "integrators/run_hooks.hpp"
 #include "integrators/system.hpp"
 
 #include <string_view>
@@ -42,15 +44,12 @@ RunConfig default_config(std::string_view name);
 double end_time(const RunConfig& config);
 // Throws std::invalid_argument naming the field, as the method's options do.
 void validate(const RunConfig& config);
-// The same configuration with every contact problem of the run shown to observer (not
-// owned; nullptr: none). Compliance solves no contact problem, so its configuration is
-// returned unchanged.
-RunConfig with_contact_observer(RunConfig config, ContactObserver* observer);
-
 // Integrates system from its initial state with the method config holds, recording into
-// recorder; progress (recorder.hpp) is called by every method. Returns the result with the
-// RunStatus the method set itself; throws std::invalid_argument only for a bad call.
+// recorder; progress (recorder.hpp) is called by every method; hooks (run_hooks.hpp) hold the
+// run's contact observer and restart, which are not part of a scene. Returns the result with
+// the RunStatus the method set itself; throws std::invalid_argument only for a bad call
+// (a restart asked of a method other than moreau among them).
 RunResult integrate(System& system, const RunConfig& config, Recorder& recorder,
-                    const Progress& progress = {});
+                    const Progress& progress = {}, const RunHooks& hooks = {});
 
 }  // namespace nsb::integrators

@@ -39,10 +39,10 @@ RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
   integrators::Recorder history(*scene.system, scene.output.sample_dt);
   std::optional<LcpDump> dump;
   if (!prepared.dump_lcp.empty()) dump.emplace(prepared.dump_lcp);
-  integrators::RunResult result = integrators::integrate(
-      *scene.system,
-      dump ? integrators::with_contact_observer(scene.run, &*dump) : scene.run, history,
-      progress);
+  integrators::RunHooks hooks;
+  if (dump) hooks.contact_observer = &*dump;
+  integrators::RunResult result =
+      integrators::integrate(*scene.system, scene.run, history, progress, hooks);
   if (dump) dump->write_manifest();
   Digest digest = make_digest(history, result, scene.system->limit_states());
   digest.input = scene.input;

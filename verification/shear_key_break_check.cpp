@@ -164,9 +164,10 @@ Saved save_at(double at) {
   Saved saved;
   auto options = std::get<ni::MoreauJeanOptions>(scene.run);
   options.end_time = at;
-  options.checkpoint = &saved.point;
+  ni::RunHooks hooks;
+  hooks.checkpoint = &saved.point;
   ni::Recorder rec(*scene.system, 0.0);
-  REQUIRE(ni::succeeded(ni::moreau_jean(*scene.system, options, rec).status));
+  REQUIRE(ni::succeeded(ni::moreau_jean(*scene.system, options, rec, {}, hooks).status));
   REQUIRE(saved.point.time == at);
   const auto* assembly = dynamic_cast<const nm::Assembly*>(scene.system.get());
   REQUIRE(assembly != nullptr);
@@ -177,9 +178,10 @@ Saved save_at(double at) {
 // `s` run from `from` to the end of the window, with the scene's options otherwise.
 ni::Recorder resumed(ni::System& s, const ni::MoreauJeanCheckpoint& from) {
   auto options = std::get<ni::MoreauJeanOptions>(load("bridge-shear-keys-capacity.toml").run);
-  options.resume = &from;
+  ni::RunHooks hooks;
+  hooks.resume = &from;
   ni::Recorder rec(s, 0.0);
-  REQUIRE(ni::succeeded(ni::moreau_jean(s, options, rec).status));
+  REQUIRE(ni::succeeded(ni::moreau_jean(s, options, rec, {}, hooks).status));
   return rec;
 }
 

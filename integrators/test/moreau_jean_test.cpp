@@ -1,6 +1,7 @@
 // Unit tests of the Moreau–Jean scheme on small systems defined here, with the expected values
 // from closed forms derived in the comments and from Siconos's reference output.
 #include "integrators/moreau_jean.hpp"
+#include "integrators/run.hpp"
 #include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
@@ -14,6 +15,7 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 // Counts every heap allocation of this test executable, to check that a step allocates
@@ -335,16 +337,17 @@ void check_resumed_run(const S& system, double h, double until, double end) {
   const RunResult r = moreau_jean(whole, o, straight);
   MoreauJeanCheckpoint saved;
   o.end_time = until;
-  o.checkpoint = &saved;
+  RunHooks save;
+  save.checkpoint = &saved;
   Recorder head(first, 0.0);
-  moreau_jean(first, o, head);
+  moreau_jean(first, o, head, {}, save);
   CHECK(saved.time == until);
   S second = first;
   o.end_time = end;
-  o.checkpoint = nullptr;
-  o.resume = &saved;
+  RunHooks resume;
+  resume.resume = &saved;
   Recorder tail(second, 0.0);
-  const RunResult rt = moreau_jean(second, o, tail);
+  const RunResult rt = moreau_jean(second, o, tail, {}, resume);
   REQUIRE(straight.rows() == head.rows() + tail.rows() - 1);
   const std::size_t offset = head.rows() - 1;
   for (std::size_t i = 1; i < tail.rows(); ++i) {
@@ -374,21 +377,35 @@ TEST_CASE("a checkpoint off its step grid or past end_time is refused") {
   o.step = 1e-3;
   o.end_time = 0.5;
   MoreauJeanCheckpoint saved;
-  o.checkpoint = &saved;
+  RunHooks save;
+  save.checkpoint = &saved;
   Recorder rec(ball, 0.0);
-  moreau_jean(ball, o, rec);
-  o.checkpoint = nullptr;
-  o.resume = &saved;
+  moreau_jean(ball, o, rec, {}, save);
+  RunHooks resume;
+  resume.resume = &saved;
   o.end_time = 1.0;
   saved.time += 0.25e-3;
   Recorder off(ball, 0.0);
-  CHECK_THROWS_WITH_AS(moreau_jean(ball, o, off),
+  CHECK_THROWS_WITH_AS(moreau_jean(ball, o, off, {}, resume),
                        doctest::Contains("resume.time (0.5) is not on the step grid"),
                        std::invalid_argument);
   saved.time = 1.0;
   Recorder late(ball, 0.0);
-  CHECK_THROWS_WITH_AS(moreau_jean(ball, o, late), doctest::Contains("must exceed"),
+  CHECK_THROWS_WITH_AS(moreau_jean(ball, o, late, {}, resume), doctest::Contains("must exceed"),
                        std::invalid_argument);
+}
+
+TEST_CASE("a restart is for Moreau–Jean only: the other methods refuse one in their hooks") {
+  ts::Ball ball(ball_on_platform(1.0, 0.0, 0.5));
+  MoreauJeanCheckpoint saved;
+  RunHooks hooks;
+  hooks.checkpoint = &saved;
+  for (const std::string_view method : {"event_driven", "compliance"}) {
+    Recorder rec(ball, 0.0);
+    CHECK_THROWS_WITH_AS(integrate(ball, default_config(method), rec, {}, hooks),
+                         doctest::Contains("RunHooks::resume and checkpoint are for moreau runs"),
+                         std::invalid_argument);
+  }
 }
 
 TEST_CASE("a step allocates nothing") {
