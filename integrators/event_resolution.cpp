@@ -1,4 +1,5 @@
 #include "integrators/event_integrator.hpp"
+#include "io/csv.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -39,14 +40,14 @@ bool EventDriven::stage_failed(double t, int contact, ContactStatus status, cons
   std::string& message = book_.result().message;
   if (status == ContactStatus::kNonFiniteInput) {
     book_.diverge(t);
-    message = std::string(problem) + ": non-finite data at t = " + format_number(t) + " s";
+    message = std::string(problem) + ": non-finite data at t = " + io::three_digits(t) + " s";
   } else {
     book_.note_unsolved(t);
     const lcp::FrictionalResult& r = stage_.result();
     message = std::string(problem) + " not solved by any solver of the chain at t = " +
-              format_number(t) + " s (last: " + std::string(lcp::to_string(r.solver_used)) +
+              io::three_digits(t) + " s (last: " + std::string(lcp::to_string(r.solver_used)) +
               ", " + std::string(lcp::to_string(r.status)) + ", residual " +
-              format_number(r.residual) + ")";
+              io::three_digits(r.residual) + ")";
   }
   warn(t, contact, message);
   return true;
@@ -158,15 +159,15 @@ bool EventDriven::zeno_guard(double t, int trigger_contact, bool initial, bool& 
   if (count >= 2 * opt_.max_events_per_window) {
     warn(t, trigger_contact, "event bound reached again under forced closure; run stopped");
     book_.result().message = "more than " + std::to_string(2 * opt_.max_events_per_window) +
-                     " events within " + format_number(opt_.event_window) + " s at t = " +
-                     format_number(t) + " s";
+                     " events within " + io::three_digits(opt_.event_window) + " s at t = " +
+                     io::three_digits(t) + " s";
     book_.stall(t);
     return false;
   }
   if (count >= opt_.max_events_per_window && !forced) {
     warn(t, trigger_contact,
          "event bound reached (" + std::to_string(count) + " events within " +
-             format_number(opt_.event_window) + " s): touching contacts forced closed");
+             io::three_digits(opt_.event_window) + " s): touching contacts forced closed");
     forced_closure_until_ = t + opt_.event_window;
     forced = true;
   }
@@ -189,7 +190,7 @@ void EventDriven::find_touching(double t, const Vector& q, const Vector& u, bool
     touching_.push_back(i);
     if (c.gap_rate(u) < -closing_velocity_) any_impact = true;
     if (initial && c.gap_normal < -gap_tolerance_) {
-      warn(t, i + 1, "initial penetration g_N = " + format_number(c.gap_normal) + " m");
+      warn(t, i + 1, "initial penetration g_N = " + io::three_digits(c.gap_normal) + " m");
     }
   }
 }
@@ -285,7 +286,7 @@ bool EventDriven::contact_problem(double t, Vector& q, Vector& u) {
     book_.note_unsolved(t);
     warn(t, candidates_.front() + 1,
          "contact problem (eq. 6, accelerations) not solved by any solver of the chain "
-         "(residual " + format_number(stage_.result().residual) +
+         "(residual " + io::three_digits(stage_.result().residual) +
              "): touching contacts kept closed in their current modes");
     return true;
   }
@@ -346,7 +347,7 @@ bool EventDriven::handle_event(double t, State& x, int trigger_contact, bool ini
   Vector& u = u_event_;
   if (!q.allFinite() || !u.allFinite()) {
     book_.diverge(t);
-    book_.result().message = "non-finite state at t = " + format_number(t) + " s";
+    book_.result().message = "non-finite state at t = " + io::three_digits(t) + " s";
     warn(t, trigger_contact, book_.result().message);
     return false;
   }

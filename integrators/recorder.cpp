@@ -57,12 +57,6 @@ void finish_status(RunResult& r, bool diverged, bool stalled, bool unseated) {
   }
 }
 
-std::string format_number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", v);
-  return buffer;
-}
-
 void EnergyBalance::close() {
   const double lhs = kinetic + stored;
   const double rhs = initial + external + ground - damping - hysteretic + impacts + friction;

@@ -137,10 +137,6 @@ void finish_status(RunResult& r, bool diverged, bool stalled, bool unseated = fa
 // not throw; it may be empty. Every integrator takes one.
 using Progress = std::function<void(double t)>;
 
-// A number for a warning or message: printf's %.3g (1e-09, 0.0123, 4.56e+03), so that a
-// residual of 1e-9 does not print as 0.000000 as std::to_string would.
-std::string format_number(double v);
-
 // What a history column holds, so that callers find columns by type rather than by name.
 enum class ColumnKind {
   kTime,         // t [s]

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 namespace nsb::io {
 
@@ -22,6 +23,12 @@ std::string shortest(double x) {
   if (std::isnan(x)) return "nan";
   if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
   return csv_number(x);
+}
+
+std::string three_digits(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", x);
+  return buffer;
 }
 
 std::string csv_quote(std::string_view s) {

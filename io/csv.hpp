@@ -18,6 +18,11 @@ void append_csv_number(std::string& out, double v);
 // read by people (the terminal).
 std::string shortest(double x);
 
+// x with three significant digits, as printf's %.3g writes it (1e-09, 0.0123, 4.57e+03): for
+// a number in a message or warning, where the reader wants its size, not every digit. Files
+// never use it; they hold csv_number's round-trip text.
+std::string three_digits(double x);
+
 // s as a CSV field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
 std::string csv_quote(std::string_view s);
 

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/csv.hpp"
 #include "models/scene.hpp"
 #include "paper-figures/figure.hpp"
 #include "paper-figures/figures.hpp"
@@ -15,7 +16,6 @@
 namespace nsb::paper_figures {
 
 namespace fs = std::filesystem;
-using sweep::format_number;
 using uncertainty::index_of;
 using uncertainty::kv;
 
@@ -98,7 +98,7 @@ std::size_t index_of(const std::string& key) {
   throw std::logic_error("uncertainty: no assumption " + key);
 }
 
-std::string kv(const std::string& key, double v) { return key + "=" + format_number(v); }
+std::string kv(const std::string& key, double v) { return key + "=" + io::csv_number(v); }
 
 }  // namespace uncertainty
 
@@ -235,7 +235,7 @@ std::vector<Point> oat_points() {
       Point p{as[k].key + "-" + end, nominal_point(), std::vector<std::string>(as.size()),
               as[k].key, end};
       p.values[k] = std::string(end) == "low" ? as[k].low : as[k].high;
-      p.labels[k] = format_number(p.values[k]);
+      p.labels[k] = io::csv_number(p.values[k]);
       oat.push_back(std::move(p));
     }
   }
@@ -257,7 +257,7 @@ std::vector<Point> latin_points(std::size_t samples, std::uint64_t seed) {
       const double v = as[k].two_values ? (u < 0.5 ? as[k].low : as[k].high)
                                         : as[k].low + u * (as[k].high - as[k].low);
       p.values.push_back(v);
-      p.labels.push_back(format_number(v));
+      p.labels.push_back(io::csv_number(v));
     }
     lhs.push_back(std::move(p));
   }

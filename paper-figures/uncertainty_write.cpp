@@ -6,11 +6,11 @@
 #include <iomanip>
 #include <sstream>
 
+#include "io/csv.hpp"
 #include "sweep/csv.hpp"
 
 namespace nsb::paper_figures {
 
-using sweep::format_number;
 
 namespace uncertainty {
 
@@ -25,7 +25,7 @@ std::vector<std::pair<std::string, std::string>> check_columns(const std::vector
 
 namespace {
 
-std::string csv_number(double v) { return std::isfinite(v) ? format_number(v) : std::string(); }
+std::string csv_number(double v) { return std::isfinite(v) ? io::csv_number(v) : std::string(); }
 
 }  // namespace
 
@@ -36,7 +36,7 @@ std::string csv_row(const std::vector<std::string>& lead, const std::vector<doub
                     double tornado_peak) {
   std::string row;
   for (const auto& l : lead) row += sweep::csv_quote(l) + ",";
-  for (double v : values) row += format_number(v) + ",";
+  for (double v : values) row += io::csv_number(v) + ",";
   for (const auto& c : claims) row += to_string(verdict_of(c)) + ",";
   for (const auto& [id, q] : cols) {
     double v = std::numeric_limits<double>::quiet_NaN();
@@ -148,7 +148,7 @@ std::string uncertainty_markdown(const UncertaintyResult& r, bool quick) {
     << "Latin hypercube of " << r.samples
     << " samples over every assumption at once (uncertainty.csv). C4 and C4' run the "
        "compliance method at tolerance "
-    << format_number(uncertainty::kStudyComplianceTolerance)
+    << io::csv_number(uncertainty::kStudyComplianceTolerance)
     << " and k factors 1e-4, 1e-3, 1e-2 and 1e2 (those their checks read), C5 and C5' at the "
        "scenes' tolerance (docs/benchmarks/compliance.md, \"Tolerance of the uncertainty "
        "study\").";

@@ -3,6 +3,7 @@
 // the record's, converted once: summary.json's text parsed by Python's json module, each
 // history column copied into one numpy array (docs/python.md).
 #include "integrators/run.hpp"
+#include "io/csv.hpp"
 #include "io/files.hpp"
 #include "python/bindings.hpp"
 #include "python/progress.hpp"
@@ -155,7 +156,7 @@ Result run(const py::object& scene, const std::optional<std::string>& method,
 
 std::string scene_repr(const Scene& s) {
   return "Scene('" + s.path.string() + "', name='" + s.name + "', method='" + s.method +
-         "', end_time=" + integrators::format_number(s.end_time) + ")";
+         "', end_time=" + io::three_digits(s.end_time) + ")";
 }
 
 void bind_scene(py::module_& m) {

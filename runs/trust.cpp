@@ -17,7 +17,7 @@ namespace {
 constexpr double kRoundoffDepth = 1e-9;
 
 // Three significant digits for messages (printf's %.3g).
-std::string brief(double x) { return integrators::format_number(x); }
+std::string brief(double x) { return io::three_digits(x); }
 
 // The smallest and largest value of column c over the rows at times up to `until` [s].
 ColumnPeak peak_until(const integrators::Recorder& history, std::size_t c, double until) {

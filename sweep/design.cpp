@@ -1,5 +1,6 @@
 #include "sweep/design.hpp"
 
+#include "io/csv.hpp"
 #include "models/scene.hpp"
 #include "sweep/csv.hpp"
 #include "sweep/expand.hpp"
@@ -35,8 +36,6 @@ std::string_view to_string(Mode m) {
   }
   return "grid";
 }
-
-std::string format_number(double v) { return io::csv_number(v); }
 
 namespace {
 
@@ -94,7 +93,7 @@ Level value_level(const Context& c, const toml::node& n, const std::string& key,
     return {s, {fkey + "=" + s}};
   }
   if (n.is_floating_point()) {
-    const std::string s = format_number(number(c, n, key));
+    const std::string s = io::csv_number(number(c, n, key));
     return {s, {fkey + "=" + s}};
   }
   if (n.is_boolean()) {
@@ -267,7 +266,7 @@ Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, 
     const std::string name = geometric ? "logspace" : "linspace";
     if (const auto* n = t.get(name)) {
       for (const double v : spaced(c, *n, where + "." + name, geometric)) {
-        const std::string s = format_number(v);
+        const std::string s = io::csv_number(v);
         f.levels.push_back({s, {f.key + "=" + s}});
       }
     }
@@ -571,8 +570,8 @@ void validate_design(const Design& d) {
       attempt(l.overrides, at + ": factor " + f.key + " = " + l.label);
     if (f.range) {
       for (const double v : *f.range) {
-        attempt({f.key + "=" + format_number(v)},
-                at + ": factor " + f.key + " = " + format_number(v));
+        attempt({f.key + "=" + io::csv_number(v)},
+                at + ": factor " + f.key + " = " + io::csv_number(v));
       }
     }
   }

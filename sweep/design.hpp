@@ -90,9 +90,4 @@ const std::vector<std::string>& base_coordinates(const Design& design);
 std::vector<std::vector<double>> latin_hypercube(std::size_t samples, std::size_t factors,
                                                  std::uint64_t seed);
 
-// The shortest text that reads back to the same double ("0.1", "1e-05"), empty when not
-// finite (io::csv_number): labels and results.csv use it so that they do not depend on the
-// platform's printf.
-std::string format_number(double v);
-
 }  // namespace nsb::sweep

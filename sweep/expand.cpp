@@ -1,3 +1,4 @@
+#include "io/csv.hpp"
 #include "sweep/expand.hpp"
 
 #include <algorithm>
@@ -83,7 +84,7 @@ void expand_latin(Design& d) {
       const Factor& f = d.factors[k];
       if (f.range) {
         const double v = (*f.range)[0] + draw[k][i] * ((*f.range)[1] - (*f.range)[0]);
-        const std::string s = format_number(v);
+        const std::string s = io::csv_number(v);
         run.labels.push_back(s);
         run.overrides.push_back(f.key + "=" + s);
       } else {

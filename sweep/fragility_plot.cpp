@@ -1,5 +1,6 @@
 // fragility.png and the files of a sweep's fragility (sweep/fragility_sweep.hpp).
 #include "io/gnuplot.hpp"
+#include "io/csv.hpp"
 #include "sweep/fragility_sweep.hpp"
 
 #include <algorithm>
@@ -104,7 +105,7 @@ std::string fragility_script(const FragilityReport& report) {
   std::string script = data;
   script += "set xlabel " + quoted(report.im) + " noenhanced\n";
   script += "set ylabel \"P(limit state reached)\"\n";
-  script += "set xrange [0:" + format_number(x_max) + "]\nset yrange [0:1]\n";
+  script += "set xrange [0:" + io::csv_number(x_max) + "]\nset yrange [0:1]\n";
   script += "set key left top\nset grid\n";
   script += "plot " + plot + "\n";
   return script;

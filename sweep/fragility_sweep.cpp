@@ -1,6 +1,7 @@
 #include "sweep/fragility_sweep.hpp"
 
 #include "integrators/recorder.hpp"
+#include "io/csv.hpp"
 #include "io/json.hpp"
 #include "sweep/runner.hpp"
 
@@ -310,7 +311,7 @@ MomentsFit fit_capacities(const Table& t, const Columns& c, std::size_t response
     m.status = "censored";
     m.message = std::to_string(m.censored) + " of " + std::to_string(m.records) +
                 " records did not reach the limit state by the highest IM (" +
-                format_number(highest) +
+                io::csv_number(highest) +
                 "): their capacities are unknown, and the method of moments needs every one";
     return m;
   }

@@ -1,6 +1,7 @@
 #include "sweep/plots.hpp"
 
 #include "integrators/recorder.hpp"
+#include "io/csv.hpp"
 #include "io/gnuplot.hpp"
 #include "sweep/design.hpp"
 
@@ -184,7 +185,7 @@ void draw_ida(const std::vector<IdaPoint>& ida, const fs::path& dir, const PlotO
   std::vector<std::string> curves;
   for (const auto& p : ida) {
     (p.unseated ? lost : csv) +=
-        csv_quote(p.curve) + "," + format_number(p.pga) + "," + format_number(p.response) + "\n";
+        csv_quote(p.curve) + "," + io::csv_number(p.pga) + "," + io::csv_number(p.response) + "\n";
     if (!p.unseated && (curves.empty() || curves.back() != p.curve)) curves.push_back(p.curve);
   }
   write_file_atomically(dir / "ida.csv", csv);
@@ -220,14 +221,14 @@ void draw_exceedance(const Table& t, const fs::path& dir, const PlotOptions& o,
   std::string ex =
       csv_quote(o.pga_key) + ",runs,exceeding,share" + (lost ? ",unseated\n" : "\n");
   for (const auto& e : points) {
-    ex += format_number(e.pga) + "," + std::to_string(e.runs) + "," +
-          std::to_string(e.exceeding) + "," + format_number(e.share) +
+    ex += io::csv_number(e.pga) + "," + std::to_string(e.runs) + "," +
+          std::to_string(e.exceeding) + "," + io::csv_number(e.share) +
           (lost ? "," + std::to_string(e.unseated) : std::string()) + "\n";
   }
   write_file_atomically(dir / "exceedance.csv", ex);
   files.push_back(dir / "exceedance.csv");
   const std::string title = "share of runs with " + o.response + " > " +
-                            format_number(o.limit) +
+                            io::csv_number(o.limit) +
                             (lost ? " or unseated (unseated runs count as exceeding)" : "");
   render(o, dir, "exceedance",
          "set datafile separator ','\nset termoption noenhanced\nset grid\nset yrange [0:1]\nset "
@@ -242,8 +243,8 @@ void draw_tornado(const std::vector<TornadoBar>& bars, const fs::path& dir, cons
                   std::vector<fs::path>& files) {
   std::string csv = "factor,low,high,base,low_level,high_level\n";
   for (const auto& b : bars) {
-    csv += csv_quote(b.factor) + "," + format_number(b.low) + "," + format_number(b.high) + "," +
-           format_number(b.base) + "," + csv_quote(b.low_level) + "," + csv_quote(b.high_level) +
+    csv += csv_quote(b.factor) + "," + io::csv_number(b.low) + "," + io::csv_number(b.high) + "," +
+           io::csv_number(b.base) + "," + csv_quote(b.low_level) + "," + csv_quote(b.high_level) +
            "\n";
   }
   write_file_atomically(dir / "tornado.csv", csv);
@@ -254,8 +255,8 @@ void draw_tornado(const std::vector<TornadoBar>& bars, const fs::path& dir, cons
          "set datafile separator ','\nset termoption noenhanced\nset grid x\nset xlabel " +
              io::gnuplot_string(axis_label(o.response)) +
              "\nset title 'one factor at a time, about the base run'\nset yrange [-1:" + n +
-             "]\nset style fill solid 0.5\nset arrow from " + format_number(bars[0].base) +
-             ", graph 0 to " + format_number(bars[0].base) +
+             "]\nset style fill solid 0.5\nset arrow from " + io::csv_number(bars[0].base) +
+             ", graph 0 to " + io::csv_number(bars[0].base) +
              ", graph 1 nohead dt 2\nplot 'tornado.csv' skip 1 using (($2+$3)/2):(" + n +
              "-1-$0):2:3:(" + n + "-1.4-$0):(" + n +
              "-0.6-$0):yticlabels(1) with boxxyerror notitle\n",

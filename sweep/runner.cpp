@@ -2,6 +2,7 @@
 
 #include "integrators/recorder.hpp"
 #include "io/build_info.hpp"
+#include "io/csv.hpp"
 #include "runs/files.hpp"
 #include "runs/run.hpp"
 #include "sweep/csv.hpp"
@@ -89,7 +90,7 @@ std::string rejected_row(const Design& d, std::size_t index, const std::string& 
   std::string row = row_prefix(d, index) + ",rejected";
   // Every numeric column stays empty; message and wall_s are the last two.
   for (std::size_t k = 1; k + 2 < result_columns(base_coordinates(d)).size(); ++k) row += ",";
-  return row.append(",").append(csv_quote(message)).append(",").append(format_number(wall));
+  return row.append(",").append(csv_quote(message)).append(",").append(io::csv_number(wall));
 }
 
 // The results.csv fields of a record after the run's labels: every column of
@@ -106,18 +107,18 @@ std::string record_fields(const Design& d, const runs::RunRecord& record, double
     for (const auto& c : digest.coordinates) {
       if (c.name == name) last = &c;
     }
-    f.append(",").append(last ? format_number(last->peak) : std::string());
+    f.append(",").append(last ? io::csv_number(last->peak) : std::string());
   }
-  if (!coordinates.empty()) f.append(",").append(last ? format_number(last->residual) : "");
+  if (!coordinates.empty()) f.append(",").append(last ? io::csv_number(last->residual) : "");
   f.append(",").append(std::to_string(digest.count(integrators::EventKind::kImpact)));
   for (const double v : {digest.max_penetration, digest.energy.error, result.end_time})
-    f.append(",").append(format_number(v));
+    f.append(",").append(io::csv_number(v));
   for (const std::int64_t n :
        {result.steps, result.lcp_solves, result.lcp_fallbacks, result.lcp_unsolved})
     f.append(",").append(std::to_string(n));
-  f.append(",").append(succeeded ? std::string() : format_number(result.failure_time));
+  f.append(",").append(succeeded ? std::string() : io::csv_number(result.failure_time));
   f.append(",").append(csv_quote(result.completed ? std::string() : result.message));
-  return f.append(",").append(format_number(wall));
+  return f.append(",").append(io::csv_number(wall));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "integrators/run_bookkeeping.hpp"
+#include "io/csv.hpp"
 
 #include <doctest/doctest.h>
 
@@ -115,7 +116,7 @@ TEST_CASE("every method stops at the first accepted step at or after the unseati
     CHECK(r.end_time == s.last_t);
     CHECK(r.failure_time == s.last_t);
     CHECK(rec.at(rec.rows() - 1, 0) == s.last_t);
-    CHECK(r.message == "unseated at t = " + format_number(s.last_t) + " s");
+    CHECK(r.message == "unseated at t = " + io::three_digits(s.last_t) + " s");
     if (method == "moreau") {
       CHECK(s.last_t < 0.25 + 1e-3 + 1e-12);
       CHECK(s.calls == r.steps);

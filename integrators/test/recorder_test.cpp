@@ -58,14 +58,6 @@ TEST_CASE("a negative sample interval is a caller's mistake") {
   CHECK_THROWS_AS(nsb::integrators::Recorder(p, -1.0), std::invalid_argument);
 }
 
-TEST_CASE("numbers in warnings print as %.3g, not as std::to_string's fixed six decimals") {
-  using nsb::integrators::format_number;
-  CHECK(format_number(1e-9) == "1e-09");  // std::to_string gives "0.000000"
-  CHECK(format_number(0.0123456) == "0.0123");
-  CHECK(format_number(4567.0) == "4.57e+03");
-  CHECK(format_number(0.501) == "0.501");
-}
-
 TEST_CASE("a run's status follows the severity of what it met") {
   using nsb::integrators::RunResult;
   using nsb::integrators::RunStatus;

@@ -47,6 +47,13 @@ TEST_CASE("a non-finite number: empty in CSV, null in JSON, spelled out for peop
   CHECK(shortest(0.25) == "0.25");
 }
 
+TEST_CASE("three_digits: numbers in messages print as %.3g, not std::to_string's six decimals") {
+  CHECK(nsb::io::three_digits(1e-9) == "1e-09");  // std::to_string gives "0.000000"
+  CHECK(nsb::io::three_digits(0.0123456) == "0.0123");
+  CHECK(nsb::io::three_digits(4567.0) == "4.57e+03");
+  CHECK(nsb::io::three_digits(0.501) == "0.501");
+}
+
 TEST_CASE("integers") {
   std::string s;
   append_integer(s, -9223372036854775807LL);

@@ -2,6 +2,7 @@
 // the base point, the overrides of a point, and the claims from hand-made numbers. Expected
 // values are worked out by hand beside each case.
 #include "paper-figures/uncertainty.hpp"
+#include "io/csv.hpp"
 #include "paper-figures/uncertainty_steps.hpp"
 
 #include <doctest/doctest.h>
@@ -168,7 +169,7 @@ TEST_CASE("C4's runs: excitation 5 under the compliance method, both laws, the s
     CHECK(has(o, "model.excitation.target_pga=0.83"));
     CHECK(has(o, "solver.method=compliance"));
     const double tol = nsb::paper_figures::uncertainty::kStudyComplianceTolerance;
-    CHECK(has(o, "solver.tolerance=" + nsb::sweep::format_number(tol)));
+    CHECK(has(o, "solver.tolerance=" + nsb::io::csv_number(tol)));
     if (r.name == "exc5-k100") {
       CHECK(has(o, "solver.stiffness_factor=100"));
       CHECK(has(o, "solver.damping_law=hertzdamp"));

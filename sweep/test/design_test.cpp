@@ -3,6 +3,8 @@
 // of linspace and logspace, the Latin-hypercube stratification property), not from the code.
 #include "sweep/design.hpp"
 
+#include "io/csv.hpp"
+
 #include <doctest/doctest.h>
 #include <unistd.h>
 
@@ -303,13 +305,13 @@ values = [0.5]
         std::string::npos);
 }
 
-TEST_CASE("format_number: shortest text that reads back to the same double") {
-  CHECK(nsb::sweep::format_number(0.1) == "0.1");
-  CHECK(nsb::sweep::format_number(1e-5) == "1e-05");
-  CHECK(nsb::sweep::format_number(0.1 + 0.2) == "0.30000000000000004");
-  CHECK(nsb::sweep::format_number(std::nan("")).empty());
+TEST_CASE("labels and results.csv: io::csv_number, the shortest text that reads back to the same double") {
+  CHECK(nsb::io::csv_number(0.1) == "0.1");
+  CHECK(nsb::io::csv_number(1e-5) == "1e-05");
+  CHECK(nsb::io::csv_number(0.1 + 0.2) == "0.30000000000000004");
+  CHECK(nsb::io::csv_number(std::nan("")).empty());
   for (const double v : {1.0 / 3.0, 2.0 / 3.0 * 1e-300, 123456.789e10}) {
-    CHECK(std::stod(nsb::sweep::format_number(v)) == v);
+    CHECK(std::stod(nsb::io::csv_number(v)) == v);
   }
 }
 
