@@ -8,6 +8,7 @@
 //                         [--tolerance TOL] [--factors f1,f2,...] [--repeat N] [--reference-step H]
 //                         [--event-driven] [--csv FILE] [--history-dir DIR]
 // Writes one CSV row per run; compliance_plot.gp turns it into pictures.
+#include "benchmarks/output.hpp"
 #include "integrators/compliance.hpp"
 #include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
@@ -142,7 +143,7 @@ struct Settings {
   int repeat = 3;
   double reference_step = 1e-4;
   bool event_driven = false;
-  std::string csv = "compliance_bench.csv";
+  std::string csv = (nsb::benchmarks::kOutputDir / "compliance_bench.csv").string();
   std::string history_dir;
 };
 
@@ -159,7 +160,7 @@ void add_options(CLI::App& app, Settings& s) {
       ->check(CLI::PositiveNumber);
   app.add_option("--reference-step", s.reference_step, "Moreau–Jean step of the reference [s]");
   app.add_flag("--event-driven", s.event_driven, "also time the event-driven method");
-  app.add_option("--csv", s.csv, "output CSV");
+  app.add_option("--csv", s.csv, "output CSV (default out/compliance_bench.csv)");
   app.add_option("--history-dir", s.history_dir, "write theta(t) of every run here");
 }
 
@@ -171,7 +172,7 @@ class Bench {
         law_(nsb::integrators::parse_damping_law(s.law_name)),
         e_eff_(nsb::integrators::hunt_crossley_restitution(
             nsb::integrators::damping_factor(law_, s.restitution))),
-        out_(s.csv) {
+        out_(nsb::benchmarks::open_output(s.csv)) {
     std::vector<std::string> base{"model.seats.restitution=" + number(s.restitution)};
     std::vector<std::string> reference{"model.seats.restitution=" + number(e_eff_)};
     if (s.end_time > 0.0) {

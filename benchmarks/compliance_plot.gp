@@ -1,10 +1,10 @@
 # Plots of compliance_bench output. Usage (in the folder holding the CSV files):
-#   gnuplot -e "csv='compliance_bench.csv'; hist='hist'" benchmarks/compliance_plot.gp
+#   gnuplot -e "csv='out/compliance_bench.csv'; hist='hist'" benchmarks/compliance_plot.gp
 # Writes compliance_cost.png (CPU time and steps against k / k0), compliance_error.png
 # (theta error against k / k0, and against CPU time beside Moreau–Jean), compliance_fig8.png
 # (first pounding: penetration and duration against k / k0) and, if hist is set,
 # compliance_theta.png (theta(t) of each stiffness beside the nonsmooth reference).
-if (!exists("csv")) csv = 'compliance_bench.csv'
+if (!exists("csv")) csv = 'out/compliance_bench.csv'
 set datafile separator ','
 set terminal pngcairo size 900,600 noenhanced
 set key autotitle columnhead

@@ -6,8 +6,9 @@
 // With Siconos Numerics, its lcp_lexicolemke, lcp_pgs and lcp_newton_FB run on the same
 // problems with the same tolerance, and the ratio ours / theirs of the median times is printed.
 //
-// Usage: lcp_bench [--quick] [--csv FILE]   (CSV default: lcp_bench.csv in the working dir)
+// Usage: lcp_bench [--quick] [--csv FILE]   (CSV default: out/lcp_bench.csv)
 #include "benchmarks/lcp_bench_timing.hpp"
+#include "benchmarks/output.hpp"
 #include "benchmarks/siconos_lcp.hpp"
 #include "io/build_info.hpp"
 #include "lcp/frictional.hpp"
@@ -346,9 +347,9 @@ void time_eq6_ours(const Eq6Set& set, bool quick, FrictionalSolver& solver,
     const std::string label = std::string("frictional_") + std::string(to_string(s));
     measure_bodies(
         set, quick, label.c_str(),
-        [&](std::size_t k) { solver.solve(problems[k], s, {}, false, out); },
+        [&](std::size_t k) { solver.solve(problems[k], s, {}, out); },
         [&](std::size_t k) {
-          solver.solve(problems[k], s, {}, false, out);
+          solver.solve(problems[k], s, {}, out);
           return std::make_pair(out.ok(), std::make_pair(out.iterations, out.residual));
         });
   }
@@ -507,7 +508,7 @@ void run_collection(bool quick) {
 }
 
 void write_csv(const std::string& csv) {
-  std::ofstream out(csv);
+  std::ofstream out = nsb::benchmarks::open_output(csv);
   out << "set,problem,n,solver,median_us,status,iterations,residual,siconos_error\n";
   for (const Row& r : rows)
     out << r.set << ',' << r.problem << ',' << r.n << ',' << r.solver << ',' << r.median_us << ','
@@ -519,7 +520,7 @@ void write_csv(const std::string& csv) {
 
 int main(int argc, char** argv) {
   bool quick = false;
-  std::string csv = "lcp_bench.csv";
+  std::string csv = (nsb::benchmarks::kOutputDir / "lcp_bench.csv").string();
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quick") {

@@ -17,11 +17,13 @@
 //
 //   lcp_compare_bench [--quick] [--from DIR] [--harvest-into DIR] [--excitations 1,..,7]
 //                     [--every K] [--csv FILE] [--profiles FILE]
+//   --csv, --profiles   the outputs (default out/lcp_compare.csv, out/lcp_compare_profiles.csv)
 //   --from DIR          read DIR/exc<k>/ (each a --dump-lcp folder) instead of harvesting
 //   --harvest-into DIR  keep the harvested folders in DIR/exc<k>/ (default: a temporary folder,
 //                       removed at the end)
 //   --every K           keep every K-th problem of each harvested collection (default 1)
 //   --quick             excitation 3, every 8th problem, shorter timing (the CTest smoke run)
+#include "benchmarks/output.hpp"
 #include "benchmarks/performance_profile.hpp"
 #include "benchmarks/siconos_lcp.hpp"
 #include "io/build_info.hpp"
@@ -74,7 +76,8 @@ struct Options {
   fs::path from, harvest_into;
   std::vector<int> excitations{1, 2, 3, 4, 5, 6, 7};
   int every = 1;
-  std::string csv = "lcp_compare.csv", profiles = "lcp_compare_profiles.csv";
+  std::string csv = (benchmarks::kOutputDir / "lcp_compare.csv").string();
+  std::string profiles = (benchmarks::kOutputDir / "lcp_compare_profiles.csv").string();
 };
 
 struct Item {
@@ -400,7 +403,8 @@ int run(const Options& o) {
 #ifdef NSB_HAVE_SICONOS
   for (const auto& [id, name] : kSiconosSolvers) names.push_back(name);
 #endif
-  std::ofstream csv(o.csv), profiles(o.profiles);
+  std::ofstream csv = benchmarks::open_output(o.csv);
+  std::ofstream profiles = benchmarks::open_output(o.profiles);
   csv << "set,problem,n,solver,tolerance,status,solved,iterations,residual,time_us\n";
   profiles << "group,measure,tolerance,solver,tau,rho\n";
   for (double tol : kTolerances) {

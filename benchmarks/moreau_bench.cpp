@@ -4,8 +4,9 @@
 // Scene loading (records, splines) is outside the timing. The process CPU time is reported
 // beside the wall time, since a shared machine inflates the latter. Writes CSV for moreau_plot.gp.
 //
-//   moreau_bench [repeats = 3] [csv = moreau_bench.csv] [excitation = all (1..7)]
+//   moreau_bench [repeats = 3] [csv = out/moreau_bench.csv] [excitation = all (1..7)]
 //                [step = both (1e-4 and 1e-3)]
+#include "benchmarks/output.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "io/build_info.hpp"
 #include "models/scene.hpp"
@@ -25,7 +26,7 @@ namespace {
 
 struct Arguments {
   int repeats = 3;
-  std::string csv_path = "moreau_bench.csv";
+  std::string csv_path = (nsb::benchmarks::kOutputDir / "moreau_bench.csv").string();
   int only = 0;            // one excitation only (1..7), for quick measurements while profiling
   double only_step = 0.0;  // one step only [s], for profiles of a single configuration
 };
@@ -33,7 +34,7 @@ struct Arguments {
 // The positional arguments of the usage line above; false (after a message) if one is invalid.
 bool parse_arguments(int argc, char** argv, Arguments& a) {
   a.repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
-  a.csv_path = argc > 2 ? argv[2] : "moreau_bench.csv";
+  if (argc > 2) a.csv_path = argv[2];
   a.only = argc > 3 ? std::atoi(argv[3]) : 0;
   if (argc > 3 && (a.only < 1 || a.only > 7)) {
     std::fprintf(stderr, "moreau_bench: excitation must be 1..7, got '%s'\n", argv[3]);
@@ -121,7 +122,7 @@ int main(int argc, char** argv) {
   std::printf("moreau_bench: Moreau-Jean on the benchmark bridge, %d repeats (median)\n",
               args.repeats);
   std::printf("build %s, revision %s\n", NSB_BUILD_TYPE, nsb::io::build_info().revision.c_str());
-  std::ofstream csv(args.csv_path);
+  std::ofstream csv = nsb::benchmarks::open_output(args.csv_path);
   csv << "excitation,step,duration,steps,steps_with_lcp,lcp_share,wall_median,wall_min,"
          "wall_per_simulated_second,speedup,cpu_median,cpu_speedup,peak_rotation,energy_error\n";
   std::printf("%3s %7s %8s %8s %8s %9s %9s %11s %9s %9s %9s %12s %10s\n", "exc", "h", "T [s]",

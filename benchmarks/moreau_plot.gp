@@ -1,6 +1,6 @@
 # Plots moreau_bench's CSV: speed-up over real time and peak rotation per excitation.
-#   gnuplot -e "csv='moreau_bench.csv'; out='moreau_bench.png'" benchmarks/moreau_plot.gp
-if (!exists("csv")) csv = 'moreau_bench.csv'
+#   gnuplot -e "csv='out/moreau_bench.csv'; out='moreau_bench.png'" benchmarks/moreau_plot.gp
+if (!exists("csv")) csv = 'out/moreau_bench.csv'
 if (!exists("out")) out = 'moreau_bench.png'
 set terminal pngcairo size 1000,420
 set output out

@@ -6,7 +6,8 @@
 // (scenes/bridge-two-frame.toml: two segments joined by a hinge, four bents) on its own, at
 // the same step and window. Scene loading is outside the timing.
 //
-//   parts_bench [repeats = 5] [csv = parts_bench.csv] [end time = the scene's, 40 s]
+//   parts_bench [repeats = 5] [csv = out/parts_bench.csv] [end time = the scene's, 40 s]
+#include "benchmarks/output.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "io/build_info.hpp"
 #include "models/bridge_parts.hpp"
@@ -70,7 +71,7 @@ Timing time_two_frame(int repeats, double end_time) {
 int main(int argc, char** argv) {
   using namespace nsb;
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
-  const std::string csv_path = argc > 2 ? argv[2] : "parts_bench.csv";
+  const std::string csv_path = argc > 2 ? argv[2] : (nsb::benchmarks::kOutputDir / "parts_bench.csv").string();
   const double end_arg = argc > 3 ? std::atof(argv[3]) : 0.0;
   if (argc > 3 && !(end_arg > 0.0)) {
     std::fprintf(stderr, "parts_bench: end time must be a number > 0 [s], got '%s'\n", argv[3]);
@@ -119,7 +120,7 @@ int main(int argc, char** argv) {
   std::printf("%-8s %8.2f %10.4f %10.4f %9.0f\n", "parts", end_time, cp, wp, end_time / cp);
   std::printf("%-8s %8.2f %10.4f %10.4f %9.0f\n", "2-frame", end_time, cf, wf, end_time / cf);
   std::printf("parts / bridge: cpu %.3f, wall %.3f (%lld steps each)\n", cp / cb, wp / wb, steps);
-  std::ofstream csv(csv_path);
+  std::ofstream csv = nsb::benchmarks::open_output(csv_path);
   csv << "model,end_time,steps,cpu_median,wall_median,cpu_ratio\n";
   csv << "bridge," << end_time << ',' << steps << ',' << cb << ',' << wb << ",1\n";
   csv << "parts," << end_time << ',' << steps << ',' << cp << ',' << wp << ',' << cp / cb << '\n';

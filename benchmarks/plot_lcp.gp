@@ -1,7 +1,7 @@
 # Plots the CSV written by lcp_bench (median solve times, log scale).
-#   gnuplot -e "csv='lcp_bench.csv'; out='lcp_bench.png'" benchmarks/plot_lcp.gp
+#   gnuplot -e "csv='out/lcp_bench.csv'; out='lcp_bench.png'" benchmarks/plot_lcp.gp
 # Two panels: eq. (6) problems by number of contacts, and dense SPD problems by size.
-if (!exists("csv")) csv = 'lcp_bench.csv'
+if (!exists("csv")) csv = 'out/lcp_bench.csv'
 if (!exists("out")) out = 'lcp_bench.png'
 set terminal pngcairo size 1200,500 font ",10"
 set output out

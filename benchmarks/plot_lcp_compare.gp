@@ -1,12 +1,12 @@
 # Plots the performance profiles written by lcp_compare_bench (Dolan & Moré 2002):
-#   gnuplot -e "csv='lcp_compare_profiles.csv'; group='bridge'; out='lcp-compare-bridge.png'" \
+#   gnuplot -e "csv='out/lcp_compare_profiles.csv'; group='bridge'; out='lcp-compare-bridge.png'" \
 #           benchmarks/plot_lcp_compare.gp
 # group: bridge (the harvested problems of excitations 1..7) or siconos (Siconos's collection).
 # Four panels: the profile of the CPU time to a solution and of the residual reached, at the
 # tolerances 1e-8 and 1e-12. rho_s(tau) is the share of the problems on which solver s is
 # within a factor tau of the best. With Siconos linked, add its solvers:
 #   -e "solvers='lemke pgs nfb enum siconos_lexicolemke siconos_pgs siconos_newton_fb'"
-if (!exists("csv")) csv = 'lcp_compare_profiles.csv'
+if (!exists("csv")) csv = 'out/lcp_compare_profiles.csv'
 if (!exists("group")) group = 'bridge'
 if (!exists("out")) out = 'lcp-compare-'.group.'.png'
 if (!exists("solvers")) solvers = "lemke pgs nfb enum"

@@ -1,7 +1,7 @@
 # Work–precision plot of work_precision_bench's CSV (log–log: error against wall time).
-# gnuplot -e "csv='work_precision/work_precision.csv'; png='docs/benchmarks/work-precision.png'" \
+# gnuplot -e "csv='out/work_precision/work_precision.csv'; png='docs/benchmarks/work-precision.png'" \
 #         benchmarks/plot_work_precision.gp
-if (!exists("csv")) csv = 'work_precision/work_precision.csv'
+if (!exists("csv")) csv = 'out/work_precision/work_precision.csv'
 if (!exists("png")) png = 'docs/benchmarks/work-precision.png'
 set terminal pngcairo size 1400,1000 font ",11" noenhanced
 set output png

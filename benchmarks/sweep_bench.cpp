@@ -7,7 +7,8 @@
 // parallel run adds (1 = none), independent of the load.
 // The MPI counterpart is benchmarks/sweep_mpi_bench.sh.
 //
-//   sweep_bench [repeats = 3] [csv = sweep_bench.csv] [end_time = scene's] [workers = all cores]
+//   sweep_bench [repeats = 3] [csv = out/sweep_bench.csv] [end_time = scene's] [workers = all cores]
+#include "benchmarks/output.hpp"
 #include "io/build_info.hpp"
 #include "sweep/runner.hpp"
 
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
   namespace fs = std::filesystem;
   using namespace nsb::sweep;
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
-  const std::string csv_path = argc > 2 ? argv[2] : "sweep_bench.csv";
+  const std::string csv_path = argc > 2 ? argv[2] : (nsb::benchmarks::kOutputDir / "sweep_bench.csv").string();
   const std::string end_time = argc > 3 ? argv[3] : "";
   const int cores = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
   const int workers = argc > 4 ? std::max(1, std::atoi(argv[4])) : cores;
@@ -60,7 +61,7 @@ int main(int argc, char** argv) {
   // one) must not write into each other's runs.
   const fs::path scratch = fs::temp_directory_path() /
                            ("nsb_sweep_bench-" + std::to_string(static_cast<long>(::getpid())));
-  std::ofstream csv(csv_path);
+  std::ofstream csv = nsb::benchmarks::open_output(csv_path);
   csv << "workers,repeat,wall_s,cpu_s,runs,runs_per_s\n";
   std::vector<double> medians, cpu_medians;
   std::size_t runs = 0;

@@ -2,13 +2,14 @@
 # Parallel efficiency of `nsbridge sweep` over MPI: the Fig. 6 design (36 runs) in one process
 # with one worker, and under `mpirun -np RANKS` with one worker per rank. Medians of REPEATS
 # give efficiency = T(1 process) / (RANKS * T(RANKS ranks)) (goal >= 0.8 at 2 ranks).
-#   bash benchmarks/sweep_mpi_bench.sh [NSBRIDGE] [REPEATS = 3] [RANKS = 2] [CSV]
+#   bash benchmarks/sweep_mpi_bench.sh [NSBRIDGE] [REPEATS = 3] [RANKS = 2] [CSV = out/sweep_mpi_bench.csv]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 nsb=${1:-$root/build/app/nsbridge}
 repeats=${2:-3}
 ranks=${3:-2}
-csv=${4:-sweep_mpi_bench.csv}
+csv=${4:-out/sweep_mpi_bench.csv}
+mkdir -p "$(dirname "$csv")"
 design=$root/scenes/sweeps/fig6.toml
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

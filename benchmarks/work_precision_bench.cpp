@@ -2,10 +2,11 @@
 // 1e-3 .. 1e-10) and Moreau–Jean (h = 1e-2 .. 1e-5), on the bridge (excitation 5) and the
 // bouncing ball. The reference of each scene is its tightest event-driven run.
 //
-// Usage: work_precision_bench [--out DIR] [--end-time T] [--repeats N] [--quick]
+// Usage: work_precision_bench [--out DIR = out/work_precision] [--end-time T] [--repeats N] [--quick]
 // Writes DIR/work_precision.csv (one row per run) and prints the same table.
 // Plot: gnuplot -e "csv='DIR/work_precision.csv'; png='docs/benchmarks/work-precision.png'"
 //       benchmarks/plot_work_precision.gp
+#include "benchmarks/output.hpp"
 #include "integrators/event_driven.hpp"
 #include "integrators/compliance.hpp"
 #include "integrators/moreau_jean.hpp"
@@ -120,7 +121,7 @@ Run measure(const std::string& scene, const std::string& method, double paramete
 }
 
 struct Arguments {
-  std::filesystem::path out = "work_precision";
+  std::filesystem::path out = nsb::benchmarks::kOutputDir / "work_precision";
   double bridge_end = 22.0;  // [s]
   int repeats = 3;
   bool quick = false;
