@@ -353,6 +353,9 @@ TEST_CASE("FrictionalSolver: no heap allocation per call once sized (Lemke, PGS,
     int solved = 0;
     for (const auto& fp : problems) {
       solver.solve(fp, s, {}, result);
+      // A failure goes on to Lemke, as the contact stage's chain takes it: that call must not
+      // allocate either (Newton-FB fails on 1 of these 50 problems).
+      if (!result.ok()) solver.solve(fp, Solver::kLemke, {}, result);
       solved += result.ok();
     }
     const long allocations = g_allocations.load() - before;
