@@ -198,12 +198,14 @@ step = 1.0e-3
 
 }  // namespace
 
-TEST_CASE("scene: seat_length and [model.limit_states] make the bridge an Assembly") {
+TEST_CASE("scene: seat_length and [model.limit_states] make the bridge watch its joints") {
   const auto s = nsb::models::load_scene(
       scene_file(kBridge + "[model.abutments]\nseat_length = 0.3\n"));
-  CHECK(dynamic_cast<const Assembly*>(s.system.get()) != nullptr);
+  const auto* watched = dynamic_cast<const Assembly*>(s.system.get());
+  REQUIRE(watched != nullptr);
+  CHECK(watched->parts().limits.joints.size() == 2);  // left and right abutments
   const auto plain = nsb::models::load_scene(scene_file(kBridge));
-  CHECK(dynamic_cast<const Assembly*>(plain.system.get()) == nullptr);
+  CHECK(plain.system->limit_states().empty());  // a plain bridge watches nothing
   // drift_ratio needs every bent's height: the error names the bent and the key.
   try {
     nsb::models::load_scene(scene_file(kBridge + "[model.limit_states]\ndrift_ratio = 0.02\n"));
