@@ -1,6 +1,5 @@
-# Moreau–Jean on the benchmark bridge, excitation 7, h = 1e-4: models::Bridge against the same
-# bridge assembled from parts (models/bridge_parts.hpp), alternating in one run; then the
-# two-frame bridge (scenes/bridge-two-frame.toml) on its own. Run:
+# Moreau–Jean on two bridges assembled from parts, h = 1e-4: the benchmark bridge of
+# excitation 7 and the two-frame bridge (scenes/bridge-two-frame.toml), alternating. Run:
 # build/benchmarks/parts_bench [repeats] [csv file] [end time]. Smoke run: one repetition of
 # 2 s of each: ~1 s.
 nsb_add_benchmark(parts_bench SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/parts_bench.cpp

@@ -1,8 +1,6 @@
 #include "models/assembly.hpp"
 #include "models/field_checks.hpp"
 
-#include "models/rigid_deck.hpp"
-
 #include <cmath>
 #include <cstring>
 #include <initializer_list>
@@ -14,7 +12,7 @@ namespace nsb::models {
 
 namespace {
 
-// Coordinate names: x, y, theta for one body (as models::Bridge), x1, y1, theta1, ... else.
+// Coordinate names: x, y, theta for one body, x1, y1, theta1, ... for several.
 std::vector<std::string> names(std::size_t bodies, std::initializer_list<const char*> base) {
   std::vector<std::string> out;
   for (std::size_t b = 0; b < bodies; ++b) {
@@ -116,7 +114,7 @@ void Assembly::build_bents(const integrators::Matrix& mass) {
                         .x = takeda::Spring(p.longitudinal), .y = takeda::Spring(p.transverse),
                         .ground_x = motions_.add(p.ground_longitudinal, false),
                         .ground_y = motions_.add(p.ground_transverse, false)});
-      // K0 += k0_x b_x b_x^T + k0_y b_y b_y^T, written as models::Bridge writes it.
+      // K0 += k0_x b_x b_x^T + k0_y b_y b_y^T.
       const Eigen::Vector3d by(0.0, 1.0, p.position);
       body.k0(0, 0) += p.longitudinal.k0;
       body.k0 += p.transverse.k0 * by * by.transpose();
@@ -221,6 +219,11 @@ void Assembly::seat_pose(std::size_t p, PlanarMotion& m) const {
 PlanarMotion Assembly::prescribed_motion(int p, double t) const {
   update_motions(t);
   return seats_.at(static_cast<std::size_t>(p));
+}
+
+Eigen::Vector3d Assembly::quasi_static_velocity(int b, double t) const {
+  update_motions(t);
+  return us_dot_.at(static_cast<std::size_t>(b));
 }
 
 integrators::Matrix Assembly::damping_matrix() const {

@@ -24,9 +24,8 @@
 // immutable, are shared): the system's half of a saved state from which a run restarts
 // (integrators::MoreauJeanCheckpoint holds the integrator's half).
 //
-// With one body, bents and contacts in the order of models::Bridge, the assembly performs the
-// same floating-point operations in the same order as models::Bridge
-// (verification/parts_bridge_check.cpp).
+// A bridge of one deck (models/bridge_parts.hpp) is one body, two prescribed seats, its bents
+// and four contacts; a free deck is one body without bents or damping against two fixed seats.
 //
 // Units: kN, t, m, s, rad.
 #pragma once
@@ -73,6 +72,9 @@ class Assembly final : public integrators::SystemBase {
   const RayleighDamping& rayleigh_damping() const { return rayleigh_; }
   // Pose of prescribed body p at time t, with derivatives.
   PlanarMotion prescribed_motion(int p, double t) const;
+  // us_dot(t) of body b: the velocity of its supports' quasi-static displacement (zero
+  // without damping).
+  Eigen::Vector3d quasi_static_velocity(int b, double t) const;
   // Trial spring forces of bent j from the last forces() call [kN].
   double bent_force_longitudinal(int j) const;
   double bent_force_transverse(int j) const;
@@ -90,9 +92,9 @@ class Assembly final : public integrators::SystemBase {
   // g_N, W_N, what_N and far only; prescribed faces use corner_contact_normal.
   void contact_normals(double t, const integrators::Vector& q, const integrators::Vector& u,
                        std::vector<integrators::ContactData>& out) const override;
-  // As models::Bridge::power: damping = (u - us_dot)^T C (u - us_dot); ground = work rate of
-  // the bents' support reactions on the support motion - us_dot^T C (u - us_dot). The seats'
-  // work enters through the contact impulses (their rheonomic terms).
+  // damping = (u - us_dot)^T C (u - us_dot); ground = work rate of the bents' support
+  // reactions on the support motion - us_dot^T C (u - us_dot). The seats' work enters through
+  // the contact impulses (their rheonomic terms), which the system does not know.
   integrators::PowerTerms power(double t, const integrators::Vector& q,
                                 const integrators::Vector& u) const override;
   // stored: elastic energy of the bents; hysteretic: dissipated by them (trial state).
@@ -123,8 +125,7 @@ class Assembly final : public integrators::SystemBase {
     Eigen::Vector3d qs_x = Eigen::Vector3d::Zero(), qs_y = Eigen::Vector3d::Zero();
   };
   // One body's share of the smooth force: its bents bents_[bent_begin, bent_end), its damping
-  // block C_bb and its initial stiffness K0_bb. Summing body by body into fixed-size vectors
-  // performs models::Bridge's operations for a single body.
+  // block C_bb and its initial stiffness K0_bb, summed body by body into fixed-size vectors.
   struct BodyForces {
     int offset = 0;
     std::size_t bent_begin = 0, bent_end = 0;

@@ -2,21 +2,17 @@
 #include "models/field_checks.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace nsb::models {
 
-Assembly::Parts bridge_parts(const Bridge::Parameters& p, const Bridge::Excitation& excitation) {
-  p.validate();
-  if (!excitation.bents.empty() && excitation.bents.size() != p.bents.size()) {
-    std::ostringstream s;
-    s << "excitation.bents: " << excitation.bents.size() << " motions for " << p.bents.size()
-      << " bents; give none or one per bent";
-    throw std::invalid_argument(s.str());
-  }
+namespace {
+
+// The parts of p without its checks: the deck, seats, bents, damping and contacts.
+Assembly::Parts deck_parts(const BridgeDesign& p) {
+  const BridgeDesign::Excitation& excitation = p.excitation;
   Assembly::Parts parts;
   parts.bodies.push_back({.mass = p.mass, .inertia = p.inertia, .length = p.deck.length,
                           .width = p.deck.width, .skew_deg = p.deck.skew_deg,
@@ -39,8 +35,12 @@ Assembly::Parts bridge_parts(const Bridge::Parameters& p, const Bridge::Excitati
     }
     parts.bents.push_back(b);
   }
-  parts.damping = parts::RayleighParts{.ratio_i = p.damping_ratio_i, .ratio_j = p.damping_ratio_j,
-                                       .mode_i = p.damping_mode_i, .mode_j = p.damping_mode_j};
+  // Rayleigh damping needs the bents' stiffness K0; a free deck has none.
+  if (!p.bents.empty()) {
+    parts.damping = parts::RayleighParts{.ratio_i = p.damping_ratio_i,
+                                         .ratio_j = p.damping_ratio_j,
+                                         .mode_i = p.damping_mode_i, .mode_j = p.damping_mode_j};
+  }
   const auto corners = p.deck.corner_faces();
   for (int i = 0; i < 4; ++i) {
     const auto& c = corners[static_cast<std::size_t>(i)];
@@ -50,6 +50,13 @@ Assembly::Parts bridge_parts(const Bridge::Parameters& p, const Bridge::Excitati
                               .restitution = p.restitution, .friction = p.friction});
   }
   return parts;
+}
+
+}  // namespace
+
+Assembly::Parts bridge_parts(const BridgeDesign& p) {
+  p.validate();
+  return deck_parts(p);
 }
 
 namespace {
@@ -70,7 +77,7 @@ double SegmentedDeck::rest_position(std::size_t i) const {
   return x + 0.5 * segments[i].length;
 }
 
-void SegmentedDeck::validate(const std::vector<Bridge::Bent>& bents) const {
+void SegmentedDeck::validate(const std::vector<BridgeDesign::Bent>& bents) const {
   require(!segments.empty(), "segments", "at least one segment is needed");
   require(hinges.size() + 1 == segments.size(), "hinges",
           "one fewer than the segments (hinge k joins segments k and k + 1)");
@@ -93,7 +100,7 @@ void SegmentedDeck::validate(const std::vector<Bridge::Bent>& bents) const {
   }
 }
 
-bool torsionally_restrained(const std::vector<Bridge::Bent>& bents,
+bool torsionally_restrained(const std::vector<BridgeDesign::Bent>& bents,
                             const std::vector<int>& bent_segment, int segment) {
   const double* first = nullptr;
   for (std::size_t j = 0; j < bents.size() && j < bent_segment.size(); ++j) {
@@ -107,17 +114,19 @@ bool torsionally_restrained(const std::vector<Bridge::Bent>& bents,
   return false;
 }
 
-Assembly::Parts bridge_parts(const Bridge::Parameters& p, const SegmentedDeck& deck,
-                             const Bridge::Excitation& excitation) {
+Assembly::Parts bridge_parts(const BridgeDesign& p, const SegmentedDeck& deck) {
   deck.validate(p.bents);
-  Bridge::Parameters one = p;  // the one-segment parameters give seats, bents and damping
+  BridgeDesign one = p;  // the one-segment design gives seats, bents and damping
   one.mass = deck.segments[0].mass;
   one.inertia = deck.segments[0].inertia;
   one.deck.length = total_length(deck);
   one.deck.width = deck.segments[0].width;
-  one.initial_position = deck.segments[0].initial_position;
-  one.initial_velocity = deck.segments[0].initial_velocity;
-  Assembly::Parts parts = bridge_parts(one, excitation);
+  // The segments carry their own initial states (checked by RigidBody::validate and, for
+  // penetration, by the assembly at each segment's pose).
+  one.initial_position.setZero();
+  one.initial_velocity.setZero();
+  one.validate();
+  Assembly::Parts parts = deck_parts(one);
   const std::size_t n = deck.segments.size();
   parts.bodies.clear();
   for (std::size_t i = 0; i < n; ++i) {

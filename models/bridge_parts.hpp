@@ -1,15 +1,15 @@
-// The benchmark bridge of models/bridge.hpp as an assembly of parts (models/assembly.hpp):
+// A bridge design (models/bridge_design.hpp) as an assembly of parts (models/assembly.hpp):
 // one rigid deck, the two abutment seats as prescribed bodies, one Takeda bent per
-// Bridge::Bent, Rayleigh damping on modes i and j, and the four deck-corner contacts in the
-// order of models/deck_geometry.hpp. From the same parameters and excitation, the assembly
-// performs models::Bridge's floating-point operations in the same order
-// (verification/parts_bridge_check.cpp).
+// BridgeDesign::Bent, Rayleigh damping on modes i and j (with bents), and the four deck-corner
+// contacts in the order of models/deck_geometry.hpp. verification/parts_bridge_check.cpp
+// holds the benchmark scenes' histories to values recorded with the bridge model this
+// assembly replaced.
 //
 // Units: kN, t, m, s, rad.
 #pragma once
 
 #include "models/assembly.hpp"
-#include "models/bridge.hpp"
+#include "models/bridge_design.hpp"
 #include "models/deck_chain.hpp"
 
 #include <limits>
@@ -17,26 +17,26 @@
 
 namespace nsb::models {
 
-// Throws std::invalid_argument as Bridge's constructor does: bad parameters (the field named
-// as in Bridge::Parameters::validate) or a bent excitation of the wrong size.
-Assembly::Parts bridge_parts(const Bridge::Parameters& p, const Bridge::Excitation& excitation);
+// Throws std::invalid_argument naming the field (BridgeDesign::validate): bad values, a bent
+// excitation of the wrong size, an initial penetration.
+Assembly::Parts bridge_parts(const BridgeDesign& p);
 
 // A bridge deck cut into segments (frames) joined by hinges (docs/bridge.md, "Bridges in
 // parts"). Layout at rest: the segments lie along global x at y = 0, theta = 0, left to
 // right, hinge k clear distance gap_k along the axis between segments k and k + 1; the whole
 // deck (segments and hinge gaps, total length L_tot) is centred on x = 0, so that one segment
-// is models::Bridge's deck. Segment i's coordinates are its displacement from its rest centre
+// is the deck of the one-deck bridge. Segment i's coordinates are its displacement from its rest centre
 // (parts::RigidBody::rest), as the one deck's are: segments[i].initial_position is that
 // displacement at t = 0.
 struct SegmentedDeck {
   std::vector<parts::RigidBody> segments;  // >= 1; their skew_deg is replaced by the bridge's
   std::vector<DeckChain::Joint> hinges;    // segments - 1; hinge k joins segments k and k + 1
-  std::vector<int> bent_segment;           // the segment of each Bridge::Parameters bent
+  std::vector<int> bent_segment;           // the segment of each BridgeDesign bent
   // Centre x of segment i at rest [m].
   double rest_position(std::size_t i) const;
   // Throws std::invalid_argument naming the field ("hinges: ...", "bent_segment[2]: ...",
   // "segments[1]: ..." for a segment without two bents at distinct positions).
-  void validate(const std::vector<Bridge::Bent>& bents) const;
+  void validate(const std::vector<BridgeDesign::Bent>& bents) const;
 };
 
 // Whether the segment carries bents at two distinct positions at least: the bents' initial
@@ -44,7 +44,7 @@ struct SegmentedDeck {
 // sum ky s^2]], is then positive definite (Cauchy-Schwarz is strict), so the segment has
 // torsional stiffness, the Rayleigh damping C = a0 M + a1 K0 and the quasi-static support
 // motion K0^-1 (...) exist. One bent leaves the rotation about its position free.
-bool torsionally_restrained(const std::vector<Bridge::Bent>& bents,
+bool torsionally_restrained(const std::vector<BridgeDesign::Bent>& bents,
                             const std::vector<int>& bent_segment, int segment);
 inline constexpr const char* kTwoBents =
     "needs bents at two distinct positions at least (torsional stiffness; the bents' K0 is "
@@ -58,17 +58,16 @@ inline constexpr const char* kTwoBents =
 //   hinge k (1 <= k < N): corners 0, 1 (left end) of segment k against the right end face of
 //     segment k - 1 (models/deck_chain.hpp: why only this pair);
 //   right seat: corners 2, 3 of segment N - 1.
-// With one segment at its rest centre this is bridge_parts(p, excitation): the same parts in
-// the same order. Throws std::invalid_argument for bad parameters.
-Assembly::Parts bridge_parts(const Bridge::Parameters& p, const SegmentedDeck& deck,
-                             const Bridge::Excitation& excitation);
+// With one segment at its rest centre this is bridge_parts(p): the same parts in the same
+// order. Throws std::invalid_argument for bad parameters.
+Assembly::Parts bridge_parts(const BridgeDesign& p, const SegmentedDeck& deck);
 
 // The limit states a bridge's scene asks for (docs/limit-states.md): the seat lengths of the
 // abutments and hinges, the bents' heights and the limits of [model.limit_states].
 struct BridgeLimits {
   double abutment_seat = std::numeric_limits<double>::infinity();  // [m]; inf: not watched
   std::vector<double> hinge_seats;   // [m] per hinge (segments - 1); inf: not watched
-  std::vector<double> bent_heights;  // [m] per bent, as Bridge::Parameters::bents
+  std::vector<double> bent_heights;  // [m] per bent, as BridgeDesign::bents
   double drift_ratio = 0.0;          // [-]; 0: not watched
   double residual_rotation = 0.0;    // [rad]; 0: not watched
 };

@@ -3,7 +3,6 @@
 // bents, the seats, the excitation, and the support motions made from the records.
 #include "models/scene_builders.hpp"
 
-#include "models/bridge.hpp"
 #include "models/bridge_parts.hpp"
 #include "models/connector_scene.hpp"
 #include "models/excitation_scaling.hpp"
@@ -100,7 +99,7 @@ class MotionSet {
  public:
   MotionSet() = default;
   MotionSet(std::optional<Record> r, GroundMotionOptions o) : record_(std::move(r)), options_(o) {}
-  Bridge::Motion at_delay(double delay) {
+  parts::Motion at_delay(double delay) {
     if (!record_) return nullptr;
     auto& m = cache_[delay];
     if (!m) {
@@ -114,7 +113,7 @@ class MotionSet {
  private:
   std::optional<Record> record_;
   GroundMotionOptions options_;
-  std::map<double, Bridge::Motion> cache_;
+  std::map<double, parts::Motion> cache_;
 };
 
 // Reads the sub-table `key` of [model] with fields into p; p keeps its values when the
@@ -130,7 +129,7 @@ std::optional<Section> read_table(const Section& m, std::string_view key,
   return s;
 }
 
-void read_damping(const Section& m, Bridge::Parameters& p) {
+void read_damping(const Section& m, BridgeDesign& p) {
   const auto s = read_table(m, "damping", bridge_damping_fields(), p);
   if (s && p.damping_mode_i == p.damping_mode_j) s->fail("mode_j", "must differ from mode_i");
 }
@@ -164,7 +163,7 @@ struct BentsRead {
   std::vector<double> heights;
 };
 
-BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridge::Parameters& p,
+BentsRead read_bents(const Section& m, const std::vector<double>& lengths, BridgeDesign& p,
                      bool need_height) {
   BentsRead out;
   const bool one = !m.has("segments");
@@ -218,7 +217,7 @@ struct SeatMotions {
   double rotation_scale = 1.0;                    // factor on the rotation records
 };
 
-SeatMotions read_seats(const Section& m, Bridge::Parameters& p) {
+SeatMotions read_seats(const Section& m, BridgeDesign& p) {
   SeatMotions out;
   const auto* t = m.subtable("seats");
   if (t == nullptr) return out;
@@ -383,7 +382,7 @@ ExcitationRecords read_excitation(const Section& m, const FirstPeriod& first_per
 
 // The support motions of every bent and seat, and the end of the longest bent motion [s].
 // ground: the zero-delay motions (x, y) of the connectors to the ground.
-Bridge::Excitation support_motions(const ExcitationRecords& e, const SeatMotions& seats,
+BridgeDesign::Excitation support_motions(const ExcitationRecords& e, const SeatMotions& seats,
                                    const std::vector<double>& bent_delays, double& end,
                                    std::array<parts::Motion, 2>& ground) {
   GroundMotionOptions ox = e.options, oy = e.options;
@@ -392,7 +391,7 @@ Bridge::Excitation support_motions(const ExcitationRecords& e, const SeatMotions
   MotionSet mx(e.longitudinal, ox), my(e.transverse, oy);
   GroundMotionOptions rot = e.options;
   rot.scale = seats.rotation_scale;
-  Bridge::Excitation exc;
+  BridgeDesign::Excitation exc;
   ground = {mx.at_delay(0.0), my.at_delay(0.0)};
   for (double delay : bent_delays) {
     exc.bents.push_back({mx.at_delay(delay), my.at_delay(delay), nullptr});
@@ -417,7 +416,7 @@ Bridge::Excitation support_motions(const ExcitationRecords& e, const SeatMotions
 
 // [[model.segments]] and [[model.hinges]] with [model] skew_deg; or the one segment of
 // [model.deck], which must not be given with them.
-SegmentedDeck read_segments(const Section& m, Bridge::Parameters& p) {
+SegmentedDeck read_segments(const Section& m, BridgeDesign& p) {
   if (m.has("deck")) {
     m.fail("deck", "give either [model.deck] (one segment) or [[model.segments]], not both");
   }
@@ -440,17 +439,16 @@ struct BridgeAdditions {
   bool any() const { return connectors.any() || keys.has_value() || limits.requested; }
 };
 
-// The bridge as an assembly of parts (models/bridge_parts.hpp), one deck (d == nullptr: the
-// same operations as models::Bridge) or segmented, with the additions: the connectors
+// The bridge as an assembly of parts (models/bridge_parts.hpp), one deck (d == nullptr) or
+// segmented, with the additions: the connectors
 // (models/connector_scene.hpp) and their ground motions g, then the shear keys on the deck's
 // bodies, then the limit states watched on its segments (docs/scenes.md: a bridge in segments
 // always watches its joints' closure; one deck only the limit states its scene asks for).
-std::unique_ptr<integrators::System> assemble(const Section& m, const Bridge::Parameters& p,
+std::unique_ptr<integrators::System> assemble(const Section& m, const BridgeDesign& p,
                                               const SegmentedDeck* d, const BridgeAdditions& a,
-                                              const Bridge::Excitation& exc,
                                               const std::array<parts::Motion, 2>& g) {
   try {
-    Assembly::Parts parts = d != nullptr ? bridge_parts(p, *d, exc) : bridge_parts(p, exc);
+    Assembly::Parts parts = d != nullptr ? bridge_parts(p, *d) : bridge_parts(p);
     const std::size_t deck_bodies = parts.bodies.size();
     if (a.connectors.any()) {
       std::vector<double> gaps;
@@ -470,9 +468,8 @@ std::unique_ptr<integrators::System> assemble(const Section& m, const Bridge::Pa
 }
 
 // The bridge of [[model.segments]]: an assembly of parts.
-std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::Parameters& p,
+std::unique_ptr<integrators::System> segmented_bridge(const Section& m, BridgeDesign& p,
                                                       SegmentedDeck& d, const BentsRead& bents,
-                                                      const Bridge::Excitation& exc,
                                                       const BridgeAdditions& a,
                                                       const std::array<parts::Motion, 2>& g) {
   d.bent_segment = bents.segments;
@@ -481,7 +478,7 @@ std::unique_ptr<integrators::System> segmented_bridge(const Section& m, Bridge::
       m.fail("bents", "segment " + std::to_string(i) + " " + kTwoBents);
     }
   }
-  return assemble(m, p, &d, a, exc, g);
+  return assemble(m, p, &d, a, g);
 }
 
 }  // namespace
@@ -495,7 +492,7 @@ BridgeScene build_bridge(Section& m) {
       if (m.has(key)) m.fail(key, "belongs to a bridge in [[model.segments]]");
     }
   }
-  Bridge::Parameters p = Bridge::Parameters::benchmark();
+  BridgeDesign p = BridgeDesign::benchmark();
   p.bents.clear();
   SegmentedDeck segments;
   if (segmented) segments = read_segments(m, p);
@@ -517,17 +514,19 @@ BridgeScene build_bridge(Section& m) {
   add.connectors = read_connectors(m, lengths, p.deck);
   BridgeScene out;
   std::array<parts::Motion, 2> ground{};
-  // The system for a set of support motions: the one-deck bridge, or an assembly when the
-  // deck is segmented or the bridge has parts the benchmark has not.
-  const auto make = [&](Bridge::Excitation exc) -> std::unique_ptr<integrators::System> {
-    if (segmented) return segmented_bridge(m, p, segments, bents, exc, add, ground);
-    if (add.any()) return assemble(m, p, nullptr, add, exc, ground);
-    try {
-      return std::make_unique<Bridge>(p, std::move(exc));
-    } catch (const std::invalid_argument& e) {
-      if (deck && std::string(e.what()).rfind("initial_position", 0) == 0) deck->rethrow(e);
-      m.rethrow(e);
+  // The system for a set of support motions: one deck, segmented, with the additions.
+  const auto make = [&](BridgeDesign::Excitation exc) -> std::unique_ptr<integrators::System> {
+    p.excitation = std::move(exc);
+    if (segmented) return segmented_bridge(m, p, segments, bents, add, ground);
+    if (deck) {
+      // The deck's own errors (an initial penetration) at its key in [model.deck].
+      try {
+        p.validate();
+      } catch (const std::invalid_argument& e) {
+        if (std::string(e.what()).rfind("initial_position", 0) == 0) deck->rethrow(e);
+      }
     }
+    return assemble(m, p, nullptr, add, ground);
   };
   const FirstPeriod first_period = [&] {
     const std::vector<double> periods = integrators::natural_periods(*make({}));
@@ -536,6 +535,7 @@ BridgeScene build_bridge(Section& m) {
   const ExcitationRecords excitation = read_excitation(m, first_period, out.time_scale);
   out.system = make(support_motions(excitation, seats, bents.delays, out.motion_end, ground));
   out.input = describe_excitation(excitation, *out.system);
+  if (!segmented) out.design = p;
   return out;
 }
 

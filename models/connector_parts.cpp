@@ -38,7 +38,7 @@ void add_hinge_restrainers(const BridgeConnectors& c, const std::vector<double>&
 
 // The backwall body of abutment a (0 left, 1 right) on its backfill, pile and ties; the
 // deck-corner contacts of that end move from the prescribed seat to its face.
-int add_backfill_seat(const AbutmentSettings& s, const Bridge::Parameters& p, std::size_t a,
+int add_backfill_seat(const AbutmentSettings& s, const BridgeDesign& p, std::size_t a,
                       const std::array<parts::Motion, 2>& ground, Assembly::Parts& parts) {
   const double side = a == 0 ? -1.0 : 1.0;  // the backfill lies beyond the wall on this side
   const double w = s.width > 0 ? s.width : p.deck.width;
@@ -79,7 +79,7 @@ int add_backfill_seat(const AbutmentSettings& s, const Bridge::Parameters& p, st
 
 // One cable per abutment from the deck end (body 0, or the last deck body) to its seat:
 // the prescribed seat or the backwall body seat_body[a] (>= 0).
-void add_abutment_restrainers(const RestrainerSettings& r, const Bridge::Parameters& p,
+void add_abutment_restrainers(const RestrainerSettings& r, const BridgeDesign& p,
                               std::size_t deck_bodies, const std::array<int, 2>& seat_body,
                               Assembly::Parts& parts) {
   const double gaps[2] = {p.deck.gap_left, p.deck.gap_right};
@@ -107,7 +107,7 @@ void add_abutment_restrainers(const RestrainerSettings& r, const Bridge::Paramet
 
 }  // namespace
 
-void add_connectors(const BridgeConnectors& c, const Bridge::Parameters& p,
+void add_connectors(const BridgeConnectors& c, const BridgeDesign& p,
                     const std::vector<double>& hinge_gaps,
                     const std::array<parts::Motion, 2>& ground, Assembly::Parts& parts) {
   const std::size_t deck_bodies = parts.bodies.size();

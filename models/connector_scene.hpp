@@ -9,7 +9,7 @@
 
 #include "config/schema.hpp"
 #include "models/assembly.hpp"
-#include "models/bridge.hpp"
+#include "models/bridge_design.hpp"
 #include "models/connectors.hpp"
 #include "models/scene_reader.hpp"
 
@@ -79,7 +79,7 @@ BridgeConnectors read_connectors(const Section& m, const std::vector<double>& le
 // width and skew; ground the zero-delay support motions (x, y) of the bearings and
 // backfills. A backfill seat replaces the prescribed seat as the obstacle of that end's two
 // deck-corner contacts. Hinge k joins bodies k and k + 1.
-void add_connectors(const BridgeConnectors& c, const Bridge::Parameters& p,
+void add_connectors(const BridgeConnectors& c, const BridgeDesign& p,
                     const std::vector<double>& hinge_gaps,
                     const std::array<parts::Motion, 2>& ground, Assembly::Parts& parts);
 

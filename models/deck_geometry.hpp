@@ -1,6 +1,6 @@
-// The deck's plan geometry, one type for every model of the deck: the free rigid deck
-// (models/rigid_deck.hpp), the bridge (models/bridge.hpp) and the closed-form impact and
-// rotation-criterion references (models/analytic.hpp).
+// The deck's plan geometry, one type for every model of the deck: the bridge and the free
+// rigid deck (models/bridge_design.hpp) and the closed-form impact and rotation-criterion
+// references (models/analytic.hpp).
 //
 // Geometry (docs/bridge.md): deck centre (x, y), rotation theta (counter-clockwise), axis along
 // global x at theta = 0; length L along the axis, width W across it; skew angle alpha. The deck

@@ -2,7 +2,6 @@
 #include "models/field_checks.hpp"
 
 #include "models/deck_geometry.hpp"
-#include "models/rigid_deck.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +19,7 @@ DeckGeometry plan(const RigidBody& b) {
           .gap_left = 0.0};
 }
 
-// `far` exactly as models::copy_contact: the contact cannot close within kFarHorizon.
+// `far`: the contact cannot close within kFarHorizon (models/parts.hpp).
 bool is_far(double gap_normal, double gap_rate_normal) {
   return gap_normal > kFarGap + kFarHorizon * std::max(0.0, -gap_rate_normal);
 }
@@ -81,8 +80,6 @@ BodyContactNormal corner_on_body_normal(const CornerFace& c, const Eigen::Vector
 
 void write_contact(const ContactKinematics& k, int offset_a, double restitution,
                    double friction, integrators::ContactData& out) {
-  // The same assignments as models::copy_contact, into the body's rows of a column of any
-  // size (a 3-DOF system gets exactly copy_contact's numbers).
   // A column of a 3-DOF system is the body's alone; a longer one is zero outside the body.
   out.gap_normal = k.gap_normal;
   if (out.w_normal.size() != 3) out.w_normal.setZero();

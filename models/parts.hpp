@@ -8,7 +8,7 @@
 // (length L along the body axis, width W, skew alpha; corners 0..3 numbered as there).
 // A prescribed body (an abutment seat, or the fixed ground) moves with the support excitation:
 // its pose is (reference point + (u_x(t), u_y(t)), phi(t)) (eq. 2 of Shi & Dimitrakopoulos
-// 2017, multi-support excitation), as models::Bridge poses its seats.
+// 2017, multi-support excitation).
 //
 // Units: kN, t, m, s, rad.
 #pragma once
@@ -25,6 +25,22 @@
 #include <memory>
 #include <string>
 #include <vector>
+
+namespace nsb::models {
+
+// A contact is reported `far` when g_N > kFarGap + kFarHorizon * max(0, -gdot_N): it cannot
+// close within kFarHorizon unless its closing speed grows by more than kFarGap / kFarHorizon
+// = 1 m/s, which neither the free deck (no forces) nor the bridge (bent forces of a few
+// hundred kN on 140 t give < 5 m/s^2, i.e. < 0.5 m/s within 0.1 s) can do between two
+// contact evaluations of any step up to 0.1 s.
+inline constexpr double kFarGap = 0.1;      // [m]
+inline constexpr double kFarHorizon = 0.1;  // [s]
+
+// Initial gaps below -kPenetrationTolerance are rejected as an initial penetration; the
+// tolerance absorbs round-off of the corner coordinates (1e-12 of a 30 m deck is ~1e-11 m).
+inline constexpr double kPenetrationTolerance = 1e-9;  // [m]
+
+}  // namespace nsb::models
 
 namespace nsb::models::parts {
 
@@ -43,7 +59,7 @@ struct RigidBody {
   // The rest pose the coordinates are measured from: the body's pose is rest + q, so that q
   // is the displacement from the rest layout of several bodies (a bridge in segments). The
   // contacts see the pose; the bents act on q (their springs are unstretched at q = 0).
-  // Zero: q is the pose itself (models::Bridge's deck, whose rest centre is the origin).
+  // Zero: q is the pose itself (a bridge of one deck, whose rest centre is the origin).
   Eigen::Vector3d rest = Eigen::Vector3d::Zero();  // [m, m, rad]
   // Throws std::invalid_argument naming the field, prefixed with `prefix`.
   void validate(const std::string& prefix) const;
@@ -74,8 +90,8 @@ struct PrescribedBody {
 
 // A bent between a body and the ground: two Takeda springs (models/takeda.hpp) at the position
 // s along the body axis, acting on the displacement of that point from rest (q = (x, y,
-// theta), RigidBody::rest) relative to the bent's own support motion (small rotations, as
-// models::Bridge):
+// theta), RigidBody::rest) relative to the bent's own support motion (small rotations; the
+// bent kinematics are linear in theta, |theta| < 0.01 rad in the benchmark):
 //   F_x = Takeda_x(x - u_gx(t)),   F_y = Takeda_y(y + s theta - u_gy(t)),
 //   f_b -= F_x (1, 0, 0) + F_y (0, 1, s).
 struct Bent {
@@ -178,14 +194,14 @@ BodyContactNormal corner_on_body_normal(const CornerFace& c, const Eigen::Vector
 
 // Writes the contact data of body A's corner (its columns at offset_a) and, when w_*_b are
 // given, of body B (at offset_b) into `out`, whose vectors are sized dofs(): the other entries
-// are zeroed. `far` as models::copy_contact (models/rigid_deck.hpp). write_contact takes
+// are zeroed. `far` as kFarGap and kFarHorizon say (above). write_contact takes
 // what_N, what_T from `k` (a prescribed obstacle); write_body_contact sets them to zero.
 void write_contact(const ContactKinematics& k, int offset_a, double restitution,
                    double friction, integrators::ContactData& out);
 void write_body_contact(const BodyContactKinematics& k, int offset_a, int offset_b,
                         double restitution, double friction, integrators::ContactData& out);
 // The normal fields only (System::contact_normals): gap_normal, w_normal, what_normal, far,
-// as models::copy_contact_normal; the other fields of `out` keep their values.
+// as write_contact writes them; the other fields of `out` keep their values.
 void write_contact_normal(const ContactNormal& k, int offset_a, integrators::ContactData& out);
 void write_body_contact_normal(const BodyContactKinematics& k, int offset_a, int offset_b,
                                integrators::ContactData& out);

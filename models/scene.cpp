@@ -80,10 +80,15 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   if (scene.kind == "bridge") {
     BridgeScene bridge = build_bridge(m);
     scene.system = std::move(bridge.system);
+    scene.design = std::move(bridge.design);
     scene.input = bridge.input;
     if (!solver.has("end_time") && bridge.motion_end > 0) set_end_time(scene.run, bridge.motion_end);
     // Every record of a scene shares the excitation's time_scale.
     scene.record_step = ctx.record_step * bridge.time_scale;
+  } else if (scene.kind == "rigid_deck") {
+    BridgeScene deck = build_rigid_deck(m);
+    scene.system = std::move(deck.system);
+    scene.design = std::move(deck.design);
   } else if (scene.kind == "deck_chain") {
     scene.system = build_deck_chain(m);
   } else {

@@ -10,11 +10,13 @@
 
 #include "integrators/run.hpp"
 #include "integrators/system.hpp"
+#include "models/bridge_design.hpp"
 #include "models/excitation_scaling.hpp"
 #include "models/scene_schema.hpp"
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,11 @@ struct Scene {
   std::string kind;                   // [model] kind
   std::filesystem::path path;
   std::unique_ptr<integrators::System> system;
+  // The design of a bridge of one deck ([model] kind = "bridge" with [model.deck]) or of a
+  // free deck (kind = "rigid_deck"), as built into `system` (models/bridge_design.hpp): what
+  // the figures, claims and checks read of the bridge. Empty for the other kinds and for a
+  // bridge in segments.
+  std::optional<BridgeDesign> design;
   integrators::RunConfig run;          // the [solver] table: the options of its method
   OutputSettings output;
   double record_step = 0.0;            // shortest sampling interval of the scene's ground-motion

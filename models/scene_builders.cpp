@@ -1,5 +1,6 @@
-// The simple systems of scene files: their [model] keys read by field (models/scene_schema.hpp),
-// the conditions between keys checked here, the rest by the models' own validate().
+// The simple systems and the free rigid deck of scene files: their [model] keys read by field
+// (models/scene_schema.hpp), the conditions between keys checked here, the rest by the models'
+// own validate().
 #include "models/scene_builders.hpp"
 
 #include "models/scene_schema.hpp"
@@ -41,13 +42,6 @@ void check_oscillator(const Section& m, const ImpactOscillator::Parameters& p) {
   }
 }
 
-// A free deck has no benchmark to take its size from.
-void check_rigid_deck(const Section& m, const RigidDeck::Parameters&) {
-  for (const char* k : {"mass", "inertia", "length", "width"}) {
-    if (!m.has(k)) m.fail_table(std::string("missing key ") + k + " (required for rigid_deck)");
-  }
-}
-
 }  // namespace
 
 std::unique_ptr<integrators::System> build_simple_system(const std::string& kind, Section& m) {
@@ -55,8 +49,25 @@ std::unique_ptr<integrators::System> build_simple_system(const std::string& kind
   if (kind == "impact_oscillator") {
     return build<ImpactOscillator>(m, impact_oscillator_fields(), &check_oscillator);
   }
-  if (kind == "sliding_block") return build<SlidingBlock>(m, sliding_block_fields());
-  return build<RigidDeck>(m, rigid_deck_fields(), &check_rigid_deck);
+  return build<SlidingBlock>(m, sliding_block_fields());
+}
+
+BridgeScene build_rigid_deck(Section& m) {
+  m.only(model_keys(rigid_deck_fields()));
+  BridgeDesign p = BridgeDesign::free_deck();
+  m.read_all(rigid_deck_fields(), p);
+  // A free deck has no benchmark to take its size from.
+  for (const char* k : {"mass", "inertia", "length", "width"}) {
+    if (!m.has(k)) m.fail_table(std::string("missing key ") + k + " (required for rigid_deck)");
+  }
+  BridgeScene out;
+  try {
+    out.system = std::make_unique<Assembly>(bridge_parts(p));
+  } catch (const std::invalid_argument& e) {
+    m.rethrow(e);
+  }
+  out.design = std::move(p);
+  return out;
 }
 
 }  // namespace nsb::models

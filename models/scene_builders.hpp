@@ -11,6 +11,7 @@
 #include "models/scene_reader.hpp"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,18 +29,25 @@ integrators::RunConfig read_solver(Section& s);
 // the [solver] key they name.
 void check_solver(const Section& s, const integrators::RunConfig& config);
 
-// bouncing_ball, impact_oscillator, sliding_block or rigid_deck from the [model] table.
+// bouncing_ball, impact_oscillator or sliding_block from the [model] table.
 std::unique_ptr<integrators::System> build_simple_system(const std::string& kind, Section& m);
 
-// The bridge of [model] kind = "bridge", the end of its longest bent support motion [s] (0
-// without an excitation), the time scale of its records and their scaling.
+// The bridge of [model] kind = "bridge" (an assembly of parts), its design (one deck: the
+// bridge as built, before the parts the scene adds; a bridge in segments has none), the end
+// of its longest bent support motion [s] (0 without an excitation), the time scale of its
+// records and their scaling.
 struct BridgeScene {
   std::unique_ptr<integrators::System> system;
+  std::optional<BridgeDesign> design;
   InputMotion input;  // the scaling of each excitation component
   double motion_end = 0.0;
   double time_scale = 1.0;
 };
 BridgeScene build_bridge(Section& m);
+
+// The free deck of [model] kind = "rigid_deck": a design without bents, built as an assembly
+// of one body against two fixed seats (models/bridge_parts.hpp); no excitation.
+BridgeScene build_rigid_deck(Section& m);
 
 // The deck bodies of [[model.<key>]] (models/scene_schema.hpp, segment_fields): at least one,
 // mass, inertia, length and width required, every width equal to the first.

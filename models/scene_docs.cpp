@@ -85,7 +85,7 @@ void add_method_tables(std::vector<DocTable>& out) {
 }
 
 void add_bridge_tables(std::vector<DocTable>& out) {
-  const Bridge::Parameters bridge = Bridge::Parameters::benchmark();
+  const BridgeDesign bridge = BridgeDesign::benchmark();
   out.push_back(table("model.deck", bridge_deck_fields(), bridge));
   out.push_back(table("model.gaps", bridge_gap_fields(), bridge));
   out.push_back(table("model.damping", bridge_damping_fields(), bridge));
@@ -141,7 +141,7 @@ std::vector<DocTable> scene_doc_tables() {
   out.push_back(table("model.sliding_block", sliding_block_fields(), SlidingBlock::Parameters{}));
   const DefaultNotes required{
       {"mass", "required"}, {"inertia", "required"}, {"length", "required"}, {"width", "required"}};
-  out.push_back(table("model.rigid_deck", rigid_deck_fields(), RigidDeck::Parameters{}, required));
+  out.push_back(table("model.rigid_deck", rigid_deck_fields(), BridgeDesign::free_deck(), required));
   add_bridge_tables(out);
   return out;
 }

@@ -121,8 +121,8 @@ std::span<const c::Field<SlidingBlock::Parameters>> sliding_block_fields() {
   return f;
 }
 
-std::span<const c::Field<RigidDeck::Parameters>> rigid_deck_fields() {
-  using P = RigidDeck::Parameters;
+std::span<const c::Field<BridgeDesign>> rigid_deck_fields() {
+  using P = BridgeDesign;
   using D = DeckGeometry;
   static const c::Field<P> f[] = {
       c::number<&P::mass>("mass", "t", c::positive(), "deck mass (required)"),
@@ -144,8 +144,8 @@ std::span<const c::Field<RigidDeck::Parameters>> rigid_deck_fields() {
   return f;
 }
 
-std::span<const c::Field<Bridge::Parameters>> bridge_deck_fields() {
-  using P = Bridge::Parameters;
+std::span<const c::Field<BridgeDesign>> bridge_deck_fields() {
+  using P = BridgeDesign;
   using D = DeckGeometry;
   static const c::Field<P> f[] = {
       c::number<&P::mass>("mass", "t", c::positive(), "deck mass m_d (paper, sec. 3)"),
@@ -162,8 +162,8 @@ std::span<const c::Field<Bridge::Parameters>> bridge_deck_fields() {
   return f;
 }
 
-std::span<const c::Field<Bridge::Parameters>> bridge_gap_fields() {
-  using P = Bridge::Parameters;
+std::span<const c::Field<BridgeDesign>> bridge_gap_fields() {
+  using P = BridgeDesign;
   using D = DeckGeometry;
   static const c::Field<P> f[] = {
       c::number<&P::deck, &D::gap_left>("left", "m", c::non_negative(),
@@ -189,8 +189,8 @@ std::span<const c::Field<ShearKeyParameters>> shear_key_fields() {
   return f;
 }
 
-std::span<const c::Field<Bridge::Parameters>> bridge_damping_fields() {
-  using P = Bridge::Parameters;
+std::span<const c::Field<BridgeDesign>> bridge_damping_fields() {
+  using P = BridgeDesign;
   static const c::Field<P> f[] = {
       c::number<&P::damping_ratio_i>("ratio_i", "-", c::closed_open(0, 1),
                                      "Rayleigh ratio of mode_i (paper: 8 %)"),
@@ -203,8 +203,8 @@ std::span<const c::Field<Bridge::Parameters>> bridge_damping_fields() {
   return f;
 }
 
-std::span<const c::Field<Bridge::Parameters>> bridge_seat_fields() {
-  using P = Bridge::Parameters;
+std::span<const c::Field<BridgeDesign>> bridge_seat_fields() {
+  using P = BridgeDesign;
   static const c::Field<P> f[] = {
       c::number<&P::restitution>("restitution", "-", c::closed(0, 1),
                                  "all four deck-corner contacts (paper: 0)"),

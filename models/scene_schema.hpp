@@ -7,10 +7,9 @@
 #pragma once
 
 #include "config/schema.hpp"
-#include "models/bridge.hpp"
+#include "models/bridge_design.hpp"
 #include "models/deck_chain.hpp"
 #include "models/parts.hpp"
-#include "models/rigid_deck.hpp"
 #include "models/shear_keys.hpp"
 #include "models/simple_systems.hpp"
 
@@ -41,7 +40,7 @@ struct OutputSettings {
 };
 
 // One [[model.bents]] element: its position, the column design its springs are derived from
-// (models/bridge.hpp, BentDesign), explicit spring values that replace the derived ones (0:
+// (models/bridge_design.hpp, BentDesign), explicit spring values that replace the derived ones (0:
 // derived) and the wave-passage delay of its ground motion.
 struct BentSettings {
   double position = 0.0;                  // s_j along the deck axis from the centre [m]
@@ -96,13 +95,13 @@ struct ExcitationSettings {
 std::span<const config::Field<BouncingBall::Parameters>> bouncing_ball_fields();
 std::span<const config::Field<ImpactOscillator::Parameters>> impact_oscillator_fields();
 std::span<const config::Field<SlidingBlock::Parameters>> sliding_block_fields();
-std::span<const config::Field<RigidDeck::Parameters>> rigid_deck_fields();
+std::span<const config::Field<BridgeDesign>> rigid_deck_fields();  // a free deck
 
-// The bridge's tables that set Bridge::Parameters.
-std::span<const config::Field<Bridge::Parameters>> bridge_deck_fields();     // [model.deck]
-std::span<const config::Field<Bridge::Parameters>> bridge_gap_fields();      // [model.gaps]
-std::span<const config::Field<Bridge::Parameters>> bridge_damping_fields();  // [model.damping]
-std::span<const config::Field<Bridge::Parameters>> bridge_seat_fields();     // [model.seats]
+// The bridge's tables that set its BridgeDesign.
+std::span<const config::Field<BridgeDesign>> bridge_deck_fields();     // [model.deck]
+std::span<const config::Field<BridgeDesign>> bridge_gap_fields();      // [model.gaps]
+std::span<const config::Field<BridgeDesign>> bridge_damping_fields();  // [model.damping]
+std::span<const config::Field<BridgeDesign>> bridge_seat_fields();     // [model.seats]
 
 // [model.shear_keys]: the four exterior shear keys at the abutments (models/shear_keys.hpp).
 std::span<const config::Field<ShearKeyParameters>> shear_key_fields();

@@ -3,7 +3,7 @@
 // lambda_T t, from a Moreau-Jean run that records every step up to the slide's end.
 #include "paper-figures/figure.hpp"
 
-#include "models/bridge.hpp"
+#include "models/bridge_design.hpp"
 #include "models/contact_geometry.hpp"
 
 namespace nsb::paper_figures {
@@ -17,20 +17,20 @@ constexpr double kForceScale = 1.0 / 200.0;  // [m/kN]
 
 // Rows: kind 0 deck outline, 1 seat faces, 2 normal force, 3 tangential force; x, y [m] and
 // the arrow components dx, dy [m] (forces at kForceScale). Returns the contact point.
-Eigen::Vector2d plan_view(Table& tab, const models::Bridge& b, const History& r, std::size_t row,
-                          const SlidingState& st) {
+Eigen::Vector2d plan_view(Table& tab, const models::BridgeDesign& b, const History& r,
+                          std::size_t row, const SlidingState& st) {
   const Eigen::Vector3d q(r.at(row, r.column("x")), r.at(row, r.column("y")),
                           r.at(row, r.column("theta")));
   const Eigen::Vector3d u(r.at(row, r.column("vx")), r.at(row, r.column("vy")),
                           r.at(row, r.column("omega")));
   const double t = r.at(row, r.column("t"));
-  const auto corners = b.parameters().deck.corner_faces();
+  const auto corners = b.deck.corner_faces();
   const Eigen::Rotation2Dd rot(q(2));
   for (int i : {0, 2, 3, 1, 0}) {  // corners 1, 3, 4, 2, 1: the outline
     const Eigen::Vector2d p = q.head<2>() + rot * corners[static_cast<std::size_t>(i)].body_point;
     tab.add({0, p.x(), p.y(), 0, 0});
   }
-  const double half = 0.75 * b.parameters().deck.width;
+  const double half = 0.75 * b.deck.width;
   for (int a = 0; a < 2; ++a) {
     const auto m = b.seat_motion(a, t);
     const auto& cf = corners[a == 0 ? 0 : 2];
@@ -71,8 +71,8 @@ Figure fig5_sliding_contact() {
     if (longest.contact == 0) return Drawing{};
     const RunRecord& run = s.runs.at(kExc5Sliding);
     const models::Scene scene = load_run_scene(s, run.spec);
-    const auto& b = dynamic_cast<const models::Bridge&>(*scene.system);
-    const SlidingState st = sliding_state_of(run, longest, b.parameters().friction);
+    const models::BridgeDesign& b = scene.design.value();
+    const SlidingState st = sliding_state_of(run, longest, b.friction);
     const History& r = run.history;
     const auto ts = r.series("t");
     std::size_t row = 0;

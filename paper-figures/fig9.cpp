@@ -9,8 +9,6 @@
 #include <sstream>
 
 #include "models/analytic.hpp"
-#include "models/bridge.hpp"
-#include "models/rigid_deck.hpp"
 
 namespace nsb::paper_figures {
 
@@ -46,7 +44,7 @@ std::vector<EtaPoint> eta_points(const Setup& s) {
 
 double free_deck_length(const Study& s) {
   const models::Scene scene = load_run_scene(s, {"", kFreeDeck, {}});
-  return dynamic_cast<const models::RigidDeck&>(*scene.system).parameters().deck.length;
+  return scene.design.value().deck.length;
 }
 
 std::vector<RunSpec> eta_runs(const Study& s) {
@@ -105,7 +103,7 @@ Drawing draw_eta_map(const std::string& name, const Study& s, const Canvas& canv
   }
   // The benchmark deck.
   const models::Scene bridge = load_run_scene(s, exc5_moreau());
-  const double width = dynamic_cast<const models::Bridge&>(*bridge.system).parameters().deck.width;
+  const double width = bridge.design.value().deck.width;
   t.add({2, 0.5, 0.0, width / length, 1, 1, 0});
   return draw_table(canvas, name, t,
                     {gnuplot_number("agree", agree), gnuplot_number("total", total)}, {1100, 700});

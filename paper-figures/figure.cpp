@@ -1,6 +1,5 @@
 #include "paper-figures/figure.hpp"
 
-#include "models/bridge.hpp"
 
 #include <fstream>
 #include <iomanip>
@@ -135,8 +134,7 @@ std::vector<std::string> compliance_overrides(double factor, integrators::Dampin
 
 LawRestitution law_restitution(const Study& study, integrators::DampingLaw law) {
   const models::Scene scene = load_run_scene(study, exc5_moreau());
-  const double eps =
-      dynamic_cast<const models::Bridge&>(*scene.system).parameters().restitution;
+  const double eps = scene.design.value().restitution;
   const double chi = integrators::damping_factor(law, eps);
   return {std::string(integrators::to_string(law)), chi,
           integrators::hunt_crossley_restitution(chi), eps};

@@ -5,7 +5,6 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "models/bridge.hpp"
 #include "paper-figures/figure.hpp"
 
 #ifndef NSB_SCENES_DIR
@@ -29,11 +28,10 @@ void FigureOptions::validate() const {
   if (workers < 1 || workers > 64) throw std::invalid_argument("workers: must be in [1, 64]");
 }
 
-double input_pga(const integrators::System& system, bool transverse) {
-  const auto* b = dynamic_cast<const models::Bridge*>(&system);
-  if (b == nullptr || b->excitation().bents.empty()) return 0.0;
-  const auto& m =
-      transverse ? b->excitation().bents[0].transverse : b->excitation().bents[0].longitudinal;
+double input_pga(const models::Scene& scene, bool transverse) {
+  if (!scene.design || scene.design->excitation.bents.empty()) return 0.0;
+  const auto& bent = scene.design->excitation.bents[0];
+  const auto& m = transverse ? bent.transverse : bent.longitudinal;
   return m ? m->pga() / 9.81 : 0.0;
 }
 

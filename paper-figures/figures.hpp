@@ -8,7 +8,7 @@
 // docs/paper-figures.md.
 #pragma once
 
-#include "integrators/system.hpp"
+#include "models/scene.hpp"
 #include "paper-figures/claims.hpp"
 #include "paper-figures/uncertainty.hpp"
 
@@ -41,8 +41,9 @@ struct FigureResult {
 };
 
 // The PGA of a bridge's input as its first bent receives it [g]: transverse or longitudinal
-// (0 for a system without that motion). The figures' PGA axis and claim C2 use it.
-double input_pga(const integrators::System& system, bool transverse);
+// (0 for a scene without a bridge design or without that motion). The figures' PGA axis and
+// claim C2 use it.
+double input_pga(const models::Scene& scene, bool transverse);
 
 // Runs everything and writes the figures, claims.json and claims.md into options.out, then
 // the uncertainty study (paper-figures/uncertainty.hpp) beside them.

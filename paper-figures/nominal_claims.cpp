@@ -2,7 +2,6 @@
 // on the figures' runs, and the runs each claim used ("not evaluated" when one failed).
 #include "paper-figures/figure.hpp"
 
-#include "models/bridge.hpp"
 
 namespace nsb::paper_figures {
 
@@ -107,7 +106,7 @@ Claim c6_of(const Study& s) {
   }
   const RunRecord& sr = s.runs.at(kExc5Sliding);
   const models::Scene scene = load_run_scene(s, s.runs.at(kExc5Moreau).spec);
-  const double mu = dynamic_cast<const models::Bridge&>(*scene.system).parameters().friction;
+  const double mu = scene.design.value().friction;
   Claim c = claim_c6(sliding_state_of(sr, longest, mu), mu);
   use_runs(c, s, {kExc5Sliding});
   return c;

@@ -187,7 +187,7 @@ SceneTargets scene_targets(const fs::path& scenes, const std::vector<ClaimRun>& 
   const models::Scene raw =
       models::load_scene(scenes / ("bridge-exc" + std::to_string(kBaseExcitation) + ".toml"),
                          {"model.excitation.target_pga=0", "model.excitation.longitudinal_pga=0"});
-  t.longitudinal_record_pga = input_pga(*raw.system, false);
+  t.longitudinal_record_pga = input_pga(raw, false);
   if (!(t.longitudinal_record_pga > 0)) {
     throw std::invalid_argument("uncertainty: the longitudinal record has no acceleration");
   }

@@ -115,7 +115,7 @@ InputPga input_pgas(const fs::path& scenes, const std::vector<int>& excitations)
   InputPga pga;
   for (int n : excitations) {
     const auto scene = models::load_scene(scenes / ("bridge-exc" + std::to_string(n) + ".toml"));
-    pga[n] = {input_pga(*scene.system, true), input_pga(*scene.system, false)};
+    pga[n] = {input_pga(scene, true), input_pga(scene, false)};
   }
   return pga;
 }

@@ -1,13 +1,14 @@
-// The bridge evaluates each distinct ground motion once per distinct time and keeps the values
-// (models/bridge.hpp). This checks that the kept values never leak into another time: on the
+// The assembly evaluates each distinct ground motion once per distinct time and keeps the
+// values (parts::MotionTable, models/assembly.hpp). This checks that the kept values never leak into another time: on the
 // benchmark bridge of excitation 7 (records shared by several supports), a bridge queried at
 // times out of order, repeated, before the record and after its end gives
 //  - seat poses and the quasi-static velocity equal to those computed directly from the
 //    GroundMotion objects and the definition us = K0^-1 sum_j k0_j b_j u_g,j (Chopra,
 //    Dynamics of Structures, sec. 9.7), and
-//  - forces, contact data and powers identical to those of a fresh bridge (same parameters
-//    and motions) that is asked at that time only.
-#include "models/bridge.hpp"
+//  - forces, contact data and powers identical to those of a fresh bridge (same design and
+//    motions) that is asked at that time only.
+#include "models/assembly.hpp"
+#include "models/bridge_parts.hpp"
 #include "models/scene.hpp"
 
 #include <doctest/doctest.h>
@@ -22,7 +23,9 @@ namespace {
 
 using nsb::integrators::ContactData;
 using nsb::integrators::Vector;
-using nsb::models::Bridge;
+using nsb::models::Assembly;
+using nsb::models::BridgeDesign;
+using nsb::models::bridge_parts;
 
 // us from K0^-1 by another factorization than the bridge's: round-off of a 3x3 solve with
 // entries up to 1e6 kN/m, relative.
@@ -32,17 +35,19 @@ constexpr double kSolveTol = 1e-10;
 // the compressed record lasts 22 s).
 const std::vector<double> kTimes = {3.0, 3.0, 7.25, 3.0, -1.0, 0.0, 30.0, 7.25, 5.5, 3.0};
 
-Eigen::Vector3d direct_quasi_static_velocity(const Bridge& b, double t) {
+Eigen::Vector3d direct_quasi_static_velocity(const BridgeDesign& d, const Assembly& b,
+                                             double t) {
   Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-  const auto& bents = b.parameters().bents;
+  const auto& bents = d.bents;
   for (std::size_t j = 0; j < bents.size(); ++j) {
-    const auto& m = b.excitation().bents[j];
+    const auto& m = d.excitation.bents[j];
     const double vx = m.longitudinal ? m.longitudinal->velocity(t) : 0.0;
     const double vy = m.transverse ? m.transverse->velocity(t) : 0.0;
     rhs += bents[j].longitudinal.k0 * vx * Eigen::Vector3d::UnitX() +
            bents[j].transverse.k0 * vy * Eigen::Vector3d(0.0, 1.0, bents[j].position);
   }
-  return b.initial_stiffness().llt().solve(rhs);
+  const Eigen::Matrix3d k0 = b.initial_stiffness();
+  return k0.llt().solve(rhs);
 }
 
 void check_same_contacts(const std::vector<ContactData>& a, const std::vector<ContactData>& b) {
@@ -64,11 +69,13 @@ void check_same_contacts(const std::vector<ContactData>& a, const std::vector<Co
 TEST_CASE("bridge: support motions kept per time never leak into another time") {
   const auto scene =
       nsb::models::load_scene(std::string(NSB_SCENES_DIR) + "/bridge-exc7.toml");
-  auto* bridge = dynamic_cast<Bridge*>(scene.system.get());
-  REQUIRE(bridge != nullptr);
+  REQUIRE(scene.design.has_value());
+  const BridgeDesign& design = *scene.design;
   // The benchmark's supports share records: the case the per-time values are kept for.
-  REQUIRE(bridge->excitation().bents.size() == 3);
-  REQUIRE(bridge->excitation().bents[0].longitudinal == bridge->excitation().seats[0].longitudinal);
+  REQUIRE(design.excitation.bents.size() == 3);
+  REQUIRE(design.excitation.bents[0].longitudinal == design.excitation.seats[0].longitudinal);
+  Assembly built(bridge_parts(design));
+  Assembly* bridge = &built;
 
   // A deck displaced and moving, so that every term of the forces and contacts is non-zero.
   const Vector q = Eigen::Vector3d(0.004, -0.003, 2e-4);
@@ -80,20 +87,20 @@ TEST_CASE("bridge: support motions kept per time never leak into another time") 
     CAPTURE(t);
     // Seat poses against the GroundMotion objects themselves.
     for (int a = 0; a < 2; ++a) {
-      const auto& s = bridge->excitation().seats[static_cast<std::size_t>(a)];
-      const auto pose = bridge->seat_motion(a, t);
-      const auto face = bridge->parameters().deck.face_points()[static_cast<std::size_t>(a)];
+      const auto& s = design.excitation.seats[static_cast<std::size_t>(a)];
+      const auto pose = bridge->prescribed_motion(a, t);
+      const auto face = design.deck.face_points()[static_cast<std::size_t>(a)];
       CHECK(pose.position.x() == face.x() + s.longitudinal->displacement(t));
       CHECK(pose.position.y() == face.y());  // no transverse seat motion in this scene
       CHECK(pose.velocity.x() == s.longitudinal->velocity(t));
       CHECK(pose.acceleration.x() == s.longitudinal->acceleration(t));
     }
-    const Eigen::Vector3d us = bridge->quasi_static_velocity(t);
-    const Eigen::Vector3d us_ref = direct_quasi_static_velocity(*bridge, t);
+    const Eigen::Vector3d us = bridge->quasi_static_velocity(0, t);
+    const Eigen::Vector3d us_ref = direct_quasi_static_velocity(design, *bridge, t);
     CHECK((us - us_ref).norm() <= kSolveTol * (1.0 + us_ref.norm()));
 
     // The same queries on a bridge that has only ever seen this time.
-    Bridge fresh(bridge->parameters(), bridge->excitation());
+    Assembly fresh(bridge_parts(design));
     bridge->forces(t, q, u, f);
     fresh.forces(t, q, u, f_fresh);
     CHECK(f == f_fresh);

@@ -3,7 +3,7 @@
 // (models/analytic.hpp: deck_impact) with eps = the law's effective restitution.
 #include "integrators/compliance.hpp"
 #include "models/analytic.hpp"
-#include "models/rigid_deck.hpp"
+#include "models/bridge_parts.hpp"
 
 #include <doctest/doctest.h>
 
@@ -57,7 +57,7 @@ struct Outcome {
 // Runs the deck from touching (gap 0 at corners 3 and 4) until corner 3 opens, and returns
 // the velocity right after: the deck is free once every contact is open.
 Outcome compliance_impact(DampingLaw law, double e, double mu, double k) {
-  nsb::models::RigidDeck::Parameters p;
+  nsb::models::BridgeDesign p = nsb::models::BridgeDesign::free_deck();
   p.mass = kMass;
   p.inertia = kInertia;
   p.deck = {.length = kLength, .width = kWidth, .skew_deg = kSkewDeg, .gap_right = 0.0,
@@ -65,7 +65,7 @@ Outcome compliance_impact(DampingLaw law, double e, double mu, double k) {
   p.restitution = e;
   p.friction = mu;
   p.initial_velocity = pre_impact_velocity();
-  nsb::models::RigidDeck deck(p);
+  nsb::models::Assembly deck(nsb::models::bridge_parts(p));
   ComplianceOptions o;
   o.law = law;
   o.stiffness = k;

@@ -6,7 +6,7 @@
 // disagree with the impact solution.
 #include "lcp/frictional.hpp"
 #include "models/analytic.hpp"
-#include "models/rigid_deck.hpp"
+#include "models/bridge_parts.hpp"
 
 #include <doctest/doctest.h>
 
@@ -243,18 +243,18 @@ TEST_CASE("criterion: single-corner and two-corner impacts agree across LCP solv
   CHECK(compared >= 27);
 }
 
-TEST_CASE("criterion: the analytic deck geometry is the one of models::RigidDeck") {
+TEST_CASE("criterion: the analytic deck geometry is the one of the free deck assembly") {
   // The criterion and the impact references use analytic::deck_contact_columns; the
-  // integrators see models::RigidDeck. Both must give the same W_N, W_T at theta = 0.
+  // integrators see the free deck (models/bridge_parts.hpp). Both must give the same W_N, W_T at theta = 0.
   constexpr double kSameColumn = 1e-12;  // same formulas up to round-off
   for (double skew : {-60.0, -20.0, 0.0, 15.0, 45.0, 70.0}) {
-    nsb::models::RigidDeck::Parameters p;
+    nsb::models::BridgeDesign p = nsb::models::BridgeDesign::free_deck();
     p.mass = 140.5;
     p.inertia = 13090.0;
     p.deck = {.length = 30.0, .width = 4.0, .skew_deg = skew, .gap_right = 0.05, .gap_left = 0.05};
     p.restitution = 0.0;
     p.friction = 0.5;
-    const nsb::models::RigidDeck deck(p);
+    const nsb::models::Assembly deck(nsb::models::bridge_parts(p));
     auto c = deck.make_contact_buffer();
     deck.contact_data(0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), c);
     const an::DeckBody g{.mass = p.mass, .inertia = p.inertia, .deck = p.deck};

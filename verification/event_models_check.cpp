@@ -2,9 +2,8 @@
 // shared simple systems and the free rigid deck, and its stress cases.
 #include "integrators/event_driven.hpp"
 #include "models/analytic.hpp"
-#include "models/bridge.hpp"
+#include "models/bridge_parts.hpp"
 #include "models/ground_motion.hpp"
-#include "models/rigid_deck.hpp"
 #include "models/scene.hpp"
 #include "models/simple_systems.hpp"
 
@@ -165,9 +164,9 @@ TEST_CASE("block: stick below mu, exact slip above, harmonic stick-slip times") 
 
 namespace {
 
-nm::RigidDeck::Parameters deck_parameters() {
+nm::BridgeDesign deck_parameters() {
   // The benchmark deck's mass, inertia and plan (docs/bridge.md).
-  nm::RigidDeck::Parameters p;
+  nm::BridgeDesign p = nm::BridgeDesign::free_deck();
   p.mass = 140.5;
   p.inertia = 13090.0;
   p.deck = {.length = 33.35, .width = 2.44, .skew_deg = 0.0, .gap_right = 0.0127,
@@ -202,7 +201,7 @@ TEST_CASE("free deck: two-corner impacts against the analytic solution and eta")
     auto p = deck_parameters();
     p.deck.skew_deg = skew;
     p.initial_velocity = {0.5, vy, 0.0};
-    nm::RigidDeck deck(p);
+    nm::Assembly deck(nm::bridge_parts(p));
     ni::Recorder rec(deck, 0.0);
     // The normal gap is gap cos(a), closed at the normal speed vx cos(a) - vy sin(a)...
     // with vy != 0 on a skewed deck; the face moves along itself otherwise.
@@ -233,7 +232,7 @@ TEST_CASE("free deck: one-corner impact against the impact problem solved by cas
   // of contact cases.
   auto p = deck_parameters();
   p.initial_velocity = {0.4, 0.1, 0.004};
-  nm::RigidDeck deck(p);
+  nm::Assembly deck(nm::bridge_parts(p));
   ni::Recorder rec(deck, 0.0);
   const auto stats = ni::event_driven(deck, options(0.05, 1e-11), rec);
   REQUIRE(stats.completed);
@@ -283,7 +282,7 @@ TEST_CASE("stress cases end with a result, no NaN, no hang") {
     p.friction = c.friction;
     p.deck.gap_right = p.deck.gap_left = c.gap;
     p.initial_velocity = c.velocity;
-    nm::RigidDeck deck(p);
+    nm::Assembly deck(nm::bridge_parts(p));
     ni::Recorder rec(deck, 0.001);
     const auto stats = ni::event_driven(deck, options(0.5, 1e-8), rec);
     CHECK_MESSAGE((stats.completed || !stats.message.empty()), c.name);
@@ -309,7 +308,7 @@ TEST_CASE("stress: a deck pressed against a seat that moves away") {
   // held by the bents (closed contacts 3 and 4, rheonomic terms of the moving seat). From
   // t = 1.5 s a cycle A2 sin(2 pi t), A2 = 3 m/s^2, pulls the seat away faster than the
   // bents (about 1 m/s^2 on the deck) let the deck follow, so the contacts must open.
-  auto p = nm::Bridge::Parameters::benchmark();
+  auto p = nm::BridgeDesign::benchmark();
   p.initial_position = {p.deck.gap_right, 0.0, 0.0};
   nm::Record pulse;
   for (int i = 0; i <= 400; ++i) {
@@ -322,9 +321,8 @@ TEST_CASE("stress: a deck pressed against a seat that moves away") {
   pulse.source = "one-cycle sine pulse";
   nm::GroundMotionOptions go;
   go.baseline_correction = false;
-  nm::Bridge::Excitation ex;
-  ex.seats[1].longitudinal = std::make_shared<const nm::GroundMotion>(pulse, go);
-  nm::Bridge bridge(p, ex);
+  p.excitation.seats[1].longitudinal = std::make_shared<const nm::GroundMotion>(pulse, go);
+  nm::Assembly bridge(nm::bridge_parts(p));
   ni::Recorder rec(bridge, 0.001);
   const auto stats = ni::event_driven(bridge, options(3.0, 1e-8), rec);
   CHECK(stats.completed);

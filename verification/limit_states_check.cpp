@@ -11,7 +11,7 @@
 //      impact event of one of its corners), from the history and the events.
 #include "integrators/recorder.hpp"
 #include "integrators/run.hpp"
-#include "models/bridge.hpp"
+#include "models/bridge_parts.hpp"
 #include "models/scene.hpp"
 
 #include <doctest/doctest.h>
@@ -127,7 +127,7 @@ TEST_CASE("drift and closure: first times and peaks from the history and the eve
                      "solver.end_time=3", "model.limit_states.drift_ratio=0.004"});
   REQUIRE(r.result.status == ni::RunStatus::kCompleted);
   const ni::Recorder& h = r.history;
-  const nm::Bridge::Parameters bp = nm::Bridge::Parameters::benchmark();
+  const nm::BridgeDesign bp = nm::BridgeDesign::benchmark();
   const double heights[3] = {1.83, 2.44, 1.52};  // scenes/bridge-exc5.toml
   const std::size_t cx = column(h, "x"), cy = column(h, "y"), ct = column(h, "theta");
   for (std::size_t j = 0; j < 3; ++j) {

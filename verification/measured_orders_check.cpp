@@ -12,7 +12,7 @@
 //     set to the law's effective restitution (docs/compliance.md).
 #include "integrators/run.hpp"
 #include "models/analytic.hpp"
-#include "models/rigid_deck.hpp"
+#include "models/bridge_parts.hpp"
 #include "models/simple_systems.hpp"
 #include "verification/convergence.hpp"
 
@@ -129,7 +129,7 @@ TEST_CASE("Moreau–Jean with friction: sliding block, orders 1 (theta = 1) and 
 // tau = -h/4 and the error is (5/4 - theta) h |u- - u+|: order 1, C = (5/4 - theta) |du|,
 // exact up to round-off (|.| weighs theta by L/2).
 TEST_CASE("Moreau–Jean with two simultaneous contacts: free deck on a seat, order 1") {
-  nm::RigidDeck::Parameters p;
+  nm::BridgeDesign p = nm::BridgeDesign::free_deck();
   p.mass = 140.5;
   p.inertia = 13090.0;
   p.deck.length = 33.35;
@@ -155,7 +155,7 @@ TEST_CASE("Moreau–Jean with two simultaneous contacts: free deck on a seat, or
     std::vector<double> hs, errors;
     for (int n : {10, 20, 40, 80, 160}) {
       const double h = t_hit / (n - 0.25);
-      nm::RigidDeck deck(p);
+      nm::Assembly deck(nm::bridge_parts(p));
       ni::MoreauJeanOptions o;
       o.end_time = end;
       o.step = h;

@@ -1,4 +1,4 @@
-// Moreau–Jean on a free rigid deck (models::RigidDeck) striking its right abutment: the
+// Moreau–Jean on a free rigid deck (models/bridge_parts.hpp) striking its right abutment: the
 // post-impact velocities of the impact step against the analytic impact solution
 // (models/analytic.hpp, case enumeration of eqs. 3-7) and against the eq. (6) LCP solved
 // directly with the LCP module. With no smooth forces the iteration matrix is M and the step's
@@ -6,7 +6,7 @@
 #include "integrators/moreau_jean.hpp"
 #include "lcp/frictional.hpp"
 #include "models/analytic.hpp"
-#include "models/rigid_deck.hpp"
+#include "models/bridge_parts.hpp"
 
 #include <doctest/doctest.h>
 
@@ -24,9 +24,9 @@ using integrators::Vector;
 // enumeration's linear solves differ only by round-off on O(1) data.
 constexpr double kExact = 1e-9;
 
-models::RigidDeck::Parameters deck(double skew_deg, double mu, const Eigen::Vector3d& q0,
+models::BridgeDesign deck(double skew_deg, double mu, const Eigen::Vector3d& q0,
                                    const Eigen::Vector3d& u0) {
-  models::RigidDeck::Parameters p;
+  models::BridgeDesign p = models::BridgeDesign::free_deck();
   p.mass = 140.5;
   p.inertia = 13090.0;
   p.deck = {.length = 33.35, .width = 2.44, .skew_deg = skew_deg, .gap_right = 0.01,
@@ -47,8 +47,8 @@ struct ImpactStep {
 };
 
 // Runs until the first step with a contact impulse and returns the velocities around it.
-ImpactStep first_impact(const models::RigidDeck::Parameters& p, double h) {
-  models::RigidDeck s(p);
+ImpactStep first_impact(const models::BridgeDesign& p, double h) {
+  models::Assembly s(models::bridge_parts(p));
   Recorder rec(s, 0.0);
   integrators::MoreauJeanOptions o;
   o.step = h;
@@ -84,7 +84,7 @@ ImpactStep first_impact(const models::RigidDeck::Parameters& p, double h) {
 // The impact problem (G = W^T M^-1 W over the struck corners, gdot- = W^T u-) built from the
 // contact data at the impact step's start.
 models::analytic::ImpactProblem impact_problem(const ImpactStep& s,
-                                               const models::RigidDeck::Parameters& p) {
+                                               const models::BridgeDesign& p) {
   const int m = static_cast<int>(s.corners.size());
   Eigen::MatrixXd W(3, 2 * m);
   for (int j = 0; j < m; ++j) {
@@ -101,7 +101,7 @@ models::analytic::ImpactProblem impact_problem(const ImpactStep& s,
   return ip;
 }
 
-Eigen::Vector3d velocity_after(const ImpactStep& s, const models::RigidDeck::Parameters& p,
+Eigen::Vector3d velocity_after(const ImpactStep& s, const models::BridgeDesign& p,
                                const Eigen::VectorXd& ln, const Eigen::VectorXd& lt) {
   const int m = static_cast<int>(s.corners.size());
   Eigen::Vector3d u = s.before;
@@ -113,7 +113,7 @@ Eigen::Vector3d velocity_after(const ImpactStep& s, const models::RigidDeck::Par
   return u;
 }
 
-void check_against_references(const models::RigidDeck::Parameters& p, const ImpactStep& s) {
+void check_against_references(const models::BridgeDesign& p, const ImpactStep& s) {
   const auto ip = impact_problem(s, p);
   // Analytic: case enumeration.
   const auto cases = models::analytic::solve_impact_by_cases(ip);

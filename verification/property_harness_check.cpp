@@ -19,7 +19,7 @@
 #include "integrators/run.hpp"
 #include "lcp/frictional.hpp"
 #include "models/analytic.hpp"
-#include "models/rigid_deck.hpp"
+#include "models/bridge_parts.hpp"
 #include "models/scene.hpp"
 #include "testsupport/systems.hpp"
 
@@ -553,7 +553,7 @@ TEST_CASE("every integrator on every scene: finiteness, Signorini, Coulomb, ener
 namespace {
 
 struct RandomDeck {
-  nm::RigidDeck::Parameters p;
+  nm::BridgeDesign p = nm::BridgeDesign::free_deck();
   double t_impact = 0.0;  // closed-form time of the first (two-corner) impact [s]
 };
 
@@ -678,7 +678,7 @@ TEST_CASE("randomised free-deck impacts equal the enumeration oracle of eq. (6)"
     e.end_time = rd.t_impact + 1e-3;
     configs.emplace_back(e);
     for (const auto& config : configs) {
-      nm::RigidDeck deck(p);
+      nm::Assembly deck(nm::bridge_parts(p));
       ni::Recorder rec(deck, 0.0);
       const auto result = ni::integrate(deck, config, rec);
       std::string label(ni::method_name(config));
@@ -710,7 +710,7 @@ TEST_CASE("randomised free-deck impacts equal the enumeration oracle of eq. (6)"
 // "no growth" for frictional impacts; this case shows why, and that Moreau–Jean and the
 // event-driven integrator reproduce the gain of the exact solution.
 TEST_CASE("frictional impact with an energy gain (Kane's example): integrators follow eq. (6)") {
-  nm::RigidDeck::Parameters p;
+  nm::BridgeDesign p = nm::BridgeDesign::free_deck();
   p.mass = 100.0;
   p.inertia = 3000.0;
   p.deck.length = 20.0;
@@ -746,7 +746,7 @@ TEST_CASE("frictional impact with an energy gain (Kane's example): integrators f
   ed.end_time = 1e-3;
   configs.emplace_back(ed);
   for (const auto& config : configs) {
-    nm::RigidDeck deck(p);
+    nm::Assembly deck(nm::bridge_parts(p));
     ni::Recorder rec(deck, 0.0);
     REQUIRE(ni::succeeded(ni::integrate(deck, config, rec).status));
     const Eigen::Vector3d u_after = first_change(rec, u0);

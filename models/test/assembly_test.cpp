@@ -117,10 +117,10 @@ TEST_CASE("contact_normals gives contact_data's normal fields, moving seats and 
   nsb::models::GroundMotionOptions o;
   o.baseline_correction = false;
   const auto m = std::make_shared<const nsb::models::GroundMotion>(r, o);
-  nsb::models::Bridge::Excitation exc;
-  exc.seats[0] = {.longitudinal = m, .transverse = m, .rotation = nullptr};
-  exc.seats[1] = {.longitudinal = m, .transverse = nullptr, .rotation = m};
-  Assembly a(nsb::models::bridge_parts(nsb::models::Bridge::Parameters::benchmark(), exc));
+  nsb::models::BridgeDesign design = nsb::models::BridgeDesign::benchmark();
+  design.excitation.seats[0] = {.longitudinal = m, .transverse = m, .rotation = nullptr};
+  design.excitation.seats[1] = {.longitudinal = m, .transverse = nullptr, .rotation = m};
+  Assembly a(nsb::models::bridge_parts(design));
   const Eigen::Vector3d q(0.003, -0.01, 2e-4), u(0.2, 0.1, -0.01);
   auto full = a.make_contact_buffer(), normal = a.make_contact_buffer();
   a.contact_data(0.8, q, u, full);

@@ -1,8 +1,9 @@
-// The benchmark bridge (models/bridge.hpp): the derived bent parameters against the estimates
-// of docs/bridge.md, Rayleigh ratios, zero forces at rest, the torque of the transverse bent
+// The benchmark bridge (models/bridge_design.hpp, built as an assembly by
+// models/bridge_parts.hpp): the derived bent parameters against the estimates of
+// docs/bridge.md, Rayleigh ratios, zero forces at rest, the torque of the transverse bent
 // forces, the quasi-static support motion, and the contact Jacobians with moving seats
 // against finite differences.
-#include "models/bridge.hpp"
+#include "models/bridge_parts.hpp"
 
 #include <doctest/doctest.h>
 
@@ -21,8 +22,9 @@ namespace {
 
 using nsb::integrators::Matrix;
 using nsb::integrators::Vector;
-using nsb::models::Bridge;
+using nsb::models::Assembly;
 using nsb::models::BentDesign;
+using nsb::models::BridgeDesign;
 using nsb::models::GroundMotion;
 using nsb::models::GroundMotionOptions;
 using nsb::models::Record;
@@ -49,16 +51,22 @@ Record sine_record(double amp, double f1, double f2) {
   return r;
 }
 
-Bridge::Motion motion(const Record& r) {
+nsb::models::parts::Motion motion(const Record& r) {
   GroundMotionOptions o;
   o.baseline_correction = false;
   return std::make_shared<const GroundMotion>(r, o);
 }
 
 // Generalized eigenproblem K phi = omega^2 M phi, ascending.
-Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> modes(const Bridge& b) {
-  return Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d>(b.initial_stiffness(),
-                                                                   Eigen::Matrix3d(b.mass()));
+Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> modes(const Assembly& b) {
+  return Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d>(
+      Eigen::Matrix3d(b.initial_stiffness()), Eigen::Matrix3d(b.mass()));
+}
+
+// The bridge of design p with support motions e.
+Assembly bridge(BridgeDesign p = BridgeDesign::benchmark(), BridgeDesign::Excitation e = {}) {
+  p.excitation = std::move(e);
+  return Assembly(nsb::models::bridge_parts(p));
 }
 
 }  // namespace
@@ -82,7 +90,7 @@ TEST_CASE("bent estimates match docs/bridge.md (stiffness, yield displacement, y
 }
 
 TEST_CASE("the longitudinal elastic period is near 0.27 s (docs/bridge.md)") {
-  Bridge b(Bridge::Parameters::benchmark());
+  Assembly b = bridge();
   const auto es = modes(b);
   // The longitudinal mode is uncoupled: omega^2 = sum k / m_d. docs/bridge.md: 0.27 s.
   bool found = false;
@@ -99,9 +107,9 @@ TEST_CASE("the longitudinal elastic period is near 0.27 s (docs/bridge.md)") {
 }
 
 TEST_CASE("Rayleigh damping gives 8 % on modes 1 and 3") {
-  Bridge b(Bridge::Parameters::benchmark());
+  Assembly b = bridge();
   const auto es = modes(b);
-  const Eigen::Matrix3d C = b.damping_matrix();
+  const Eigen::Matrix3d C(b.damping_matrix());
   Eigen::Vector3d zeta;
   for (int n = 0; n < 3; ++n) {
     const Eigen::Vector3d phi = es.eigenvectors().col(n);
@@ -116,7 +124,7 @@ TEST_CASE("Rayleigh damping gives 8 % on modes 1 and 3") {
 }
 
 TEST_CASE("with zero ground motion and zero initial state the forces, powers and energies vanish") {
-  Bridge b(Bridge::Parameters::benchmark());
+  Assembly b = bridge();
   Vector f = Vector::Constant(3, 1.0);
   const Vector z = Vector::Zero(3);
   for (double t : {0.0, 1.0, 5.0}) {
@@ -141,7 +149,7 @@ TEST_CASE("with zero ground motion and zero initial state the forces, powers and
 // throw std::invalid_argument (the app's "bad input", exit 2); now the forces are non-finite,
 // which the integrators report as divergence, and revert() restores the committed springs.
 TEST_CASE("a non-finite trial state gives non-finite forces, not an exception") {
-  Bridge b(Bridge::Parameters::benchmark());
+  Assembly b = bridge();
   const Vector z = Vector::Zero(3);
   Vector f = Vector::Zero(3);
   for (double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
@@ -160,13 +168,13 @@ TEST_CASE("a transverse bent force produces the torque force x lever arm") {
   // Deck translated by y = 1 mm: F1 = 1 kN, F2 = 3 kN, f_y = -4 kN, and the torque
   // -(s1 F1 + s2 F2) = -(4 - 6) = +2 kN m. Rotated by theta = 1e-4 rad instead:
   // d1 = 4e-4 m, F1 = 0.4 kN; d2 = -2e-4 m, F2 = -0.6 kN; f_y = +0.2, torque = -(1.6 + 1.2).
-  Bridge::Parameters p = Bridge::Parameters::benchmark();
+  BridgeDesign p = BridgeDesign::benchmark();
   p.bents.clear();
   p.bents.push_back({4.0, nsb::models::takeda::Parameters::bilinear(1e4, 10.0),
                      nsb::models::takeda::Parameters::bilinear(1e4, 10.0)});
   p.bents.push_back({-2.0, nsb::models::takeda::Parameters::bilinear(3e4, 10.0),
                      nsb::models::takeda::Parameters::bilinear(3e4, 10.0)});
-  Bridge b(p);
+  Assembly b = bridge(p);
   Vector f(3);
   const Vector z = Vector::Zero(3);
   // The two bent forces follow from f: F_1 + F_2 = -f_y and s_1 F_1 + s_2 F_2 = -torque.
@@ -202,16 +210,16 @@ TEST_CASE("a deck moving rigidly with a uniform ground motion feels no force") {
   // Uniform excitation: us_dot = (u_gx_dot, u_gy_dot, 0), relative displacements and
   // velocities vanish, so spring and damping forces are zero.
   const Record rx = sine_record(1.5, 0.7, 1.9), ry = sine_record(2.0, 1.1, 0.4);
-  Bridge::Excitation e;
+  BridgeDesign::Excitation e;
   for (int j = 0; j < 3; ++j) e.bents.push_back({motion(rx), motion(ry), nullptr});
-  Bridge b(Bridge::Parameters::benchmark(), e);
+  Assembly b = bridge(BridgeDesign::benchmark(), e);
   const auto& gx = *e.bents[0].longitudinal;
   const auto& gy = *e.bents[0].transverse;
   Vector f(3);
   for (double t : {0.5, 2.0, 3.7}) {
     const Eigen::Vector3d q(gx.displacement(t), gy.displacement(t), 0.0);
     const Eigen::Vector3d u(gx.velocity(t), gy.velocity(t), 0.0);
-    CHECK((b.quasi_static_velocity(t) - u).norm() <= 1e-12 * (1 + u.norm()));
+    CHECK((b.quasi_static_velocity(0, t) - u).norm() <= 1e-12 * (1 + u.norm()));
     b.forces(t, q, u, f);
     CHECK(f.norm() <= 1e-9);
     const auto pw = b.power(t, q, u);
@@ -225,11 +233,11 @@ TEST_CASE("power balance of the bents: u.f = -(d/dt stored) - damping + ground, 
   // - us_dot^T C (u - us_dot). Check u^T f = -dE/dt - damping + ground with dE/dt by central
   // differences along a slow trajectory (relative displacements stay below yield).
   const Record rx = sine_record(0.003, 0.7, 1.9), ry = sine_record(0.002, 1.1, 0.4);
-  Bridge::Excitation e;
+  BridgeDesign::Excitation e;
   e.bents.push_back({motion(rx), motion(ry), nullptr});
   e.bents.push_back({motion(ry), motion(rx), nullptr});
   e.bents.push_back({motion(rx), nullptr, nullptr});
-  Bridge b(Bridge::Parameters::benchmark(), e);
+  Assembly b = bridge(BridgeDesign::benchmark(), e);
   const Eigen::Vector3d q0(1e-3, -2e-3, 1e-4), u0(0.01, 0.02, 0.001);
   const double t = 2.0, h = 1e-5;
   Vector f(3);
@@ -247,13 +255,13 @@ TEST_CASE("power balance of the bents: u.f = -(d/dt stored) - damping + ground, 
 
 TEST_CASE("contact Jacobians and rheonomic terms with moving, rotating seats vs finite differences") {
   const Record rx = sine_record(2.0, 0.7, 1.3), rr = sine_record(0.01, 0.9, 0.5);
-  Bridge::Excitation e;
+  BridgeDesign::Excitation e;
   e.seats[0] = {motion(rx), motion(rr), motion(rr)};
   e.seats[1] = {motion(rr), motion(rx), motion(rx)};
-  Bridge::Parameters p = Bridge::Parameters::benchmark();
+  BridgeDesign p = BridgeDesign::benchmark();
   p.deck.skew_deg = 20.0;
   p.deck.gap_left = p.deck.gap_right = 0.5;  // generous gaps: no initial penetration
-  Bridge b(p, e);
+  Assembly b = bridge(p, e);
   const Eigen::Vector3d q0(0.01, -0.02, 0.003), u0(0.2, -0.1, 0.01), a(1.0, -0.5, 0.02);
   auto q_at = [&](double s) { return Vector(q0 + u0 * s + 0.5 * a * s * s); };
   auto u_at = [&](double s) { return Vector(u0 + a * s); };
@@ -295,17 +303,17 @@ TEST_CASE("contact Jacobians and rheonomic terms with moving, rotating seats vs 
 // near and far from contact, and the other fields must be left alone.
 TEST_CASE("contact_normals equals the normal part of contact_data exactly") {
   const Record rx = sine_record(2.0, 0.7, 1.3), rr = sine_record(0.01, 0.9, 0.5);
-  Bridge::Excitation e;
+  BridgeDesign::Excitation e;
   e.seats[0] = {motion(rx), motion(rr), motion(rr)};
   e.seats[1] = {motion(rr), motion(rx), motion(rx)};
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0), time(0.0, 12.0);
   for (double skew : {0.0, 20.0}) {
     for (double gap : {0.0127, 0.5}) {
-      Bridge::Parameters p = Bridge::Parameters::benchmark();
+      BridgeDesign p = BridgeDesign::benchmark();
       p.deck.skew_deg = skew;
       p.deck.gap_left = p.deck.gap_right = gap;
-      Bridge b(p, e);
+      Assembly b = bridge(p, e);
       auto full = b.make_contact_buffer(), normal = b.make_contact_buffer();
       for (int k = 0; k < 500; ++k) {
         const double t = time(rng);
@@ -332,36 +340,36 @@ TEST_CASE("contact_normals equals the normal part of contact_data exactly") {
 }
 
 TEST_CASE("bad bridge parameters name the field; an initial penetration is rejected") {
-  auto err = [](const Bridge::Parameters& p) -> std::string {
+  auto err = [](const BridgeDesign& p) -> std::string {
     try {
-      Bridge b(p);
+      Assembly b = bridge(p);
     } catch (const std::invalid_argument& e) {
       return e.what();
     }
     return {};
   };
-  auto p = Bridge::Parameters::benchmark();
+  auto p = BridgeDesign::benchmark();
   p.mass = -1;
   CHECK(err(p).find("mass") != std::string::npos);
-  p = Bridge::Parameters::benchmark();
+  p = BridgeDesign::benchmark();
   p.friction = -0.5;
   CHECK(err(p).find("friction") != std::string::npos);
-  p = Bridge::Parameters::benchmark();
+  p = BridgeDesign::benchmark();
   p.restitution = 2;
   CHECK(err(p).find("restitution") != std::string::npos);
-  p = Bridge::Parameters::benchmark();
+  p = BridgeDesign::benchmark();
   p.bents.resize(1);
   CHECK(err(p).find("bents") != std::string::npos);
-  p = Bridge::Parameters::benchmark();
+  p = BridgeDesign::benchmark();
   p.initial_position = Eigen::Vector3d(0.02, 0, 0);
   CHECK(err(p).find("initial penetration") != std::string::npos);
-  p = Bridge::Parameters::benchmark();
+  p = BridgeDesign::benchmark();
   p.damping_mode_j = 1;
   CHECK(err(p).find("damping_mode_j") != std::string::npos);
 }
 
 TEST_CASE("trial, commit and revert are delegated to the springs") {
-  Bridge b(Bridge::Parameters::benchmark());
+  Assembly b = bridge();
   const Vector z = Vector::Zero(3);
   Vector f(3);
   // Beyond yield of every bent (largest Delta_y 16.9 mm): the tangent changes.
@@ -381,7 +389,7 @@ TEST_CASE("trial, commit and revert are delegated to the springs") {
 TEST_CASE("the benchmark deck is 110 ft long with its bents at -L/4, 0, +L/4") {
   // Saiidi, Vosooghi & Nelson (2013): a 110 ft deck, 110 * 0.3048 = 33.528 m, rounded to
   // 33.53 m; four equal spans are assumed (docs/bridge.md).
-  const auto p = Bridge::Parameters::benchmark();
+  const auto p = BridgeDesign::benchmark();
   CHECK(p.deck.length == doctest::Approx(110 * 0.3048).epsilon(1e-4));
   REQUIRE(p.bents.size() == 3);
   CHECK(p.bents[0].position == doctest::Approx(-33.53 / 4).epsilon(1e-12));

@@ -4,7 +4,6 @@
 #include "models/test/scene_files.hpp"
 
 #include "models/assembly.hpp"
-#include "models/bridge.hpp"
 
 #include <doctest/doctest.h>
 
@@ -79,9 +78,14 @@ step = 1.0e-4
 
 }  // namespace
 
-TEST_CASE("a one-deck bridge with connectors is an assembly; without, models::Bridge") {
+TEST_CASE("a one-deck bridge is an assembly: its bents and seats, and the connectors given") {
   auto plain = load_scene(write("plain.toml", kDeck + kSolver));
-  CHECK(dynamic_cast<nsb::models::Bridge*>(plain.system.get()) != nullptr);
+  auto* p = dynamic_cast<nsb::models::Assembly*>(plain.system.get());
+  REQUIRE(p != nullptr);
+  CHECK(p->parts().links.empty());
+  CHECK(p->parts().bodies.size() == 1);
+  CHECK(p->parts().prescribed.size() == 2);
+  CHECK(p->parts().contacts.size() == 4);
   auto bearing = load_scene(write("bearing.toml", kDeck + R"(
 [[model.bearings]]
 position = 16.0

@@ -5,7 +5,7 @@
 
 #include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
-#include "models/rigid_deck.hpp"
+#include "models/bridge_parts.hpp"
 
 #include <doctest/doctest.h>
 
@@ -187,8 +187,8 @@ TEST_CASE("head-on impact of two equal straight decks: velocities exchanged, sca
   }
 }
 
-TEST_CASE("a chain of one deck is models::RigidDeck shifted along x") {
-  // The same deck, gaps and coefficients: RigidDeck centres the deck at x = 0, the chain at
+TEST_CASE("a chain of one deck is the free deck (bridge_parts) shifted along x") {
+  // The same deck, gaps and coefficients: the free deck is centred at x = 0, the chain at
   // gap_left + L/2. The skewed, spinning deck pounds the left abutment and rebounds; the
   // histories differ only by round-off of the shifted coordinates (O(1e-15) of 17 m), which
   // the contact solves carry through the run (measured: 1.2e-11 under Moreau–Jean, whose index
@@ -201,7 +201,7 @@ TEST_CASE("a chain of one deck is models::RigidDeck shifted along x") {
               .initial_velocity = {-0.4, 0.05, 0.02}}};
   p.joints = {{.gap = 0.02, .restitution = 0.6, .friction = 0.5},
               {.gap = 0.03, .restitution = 0.6, .friction = 0.5}};
-  nsb::models::RigidDeck::Parameters r;
+  nsb::models::BridgeDesign r = nsb::models::BridgeDesign::free_deck();
   r.mass = 140.5;
   r.inertia = 13090.0;
   r.deck = {.length = 33.53, .width = 2.44, .skew_deg = 25.0, .gap_right = 0.03,
@@ -212,7 +212,7 @@ TEST_CASE("a chain of one deck is models::RigidDeck shifted along x") {
   for (bool moreau : {true, false}) {
     INFO(std::string(moreau ? "Moreau–Jean" : "event-driven"));
     Assembly chain1(DeckChain::parts(p));
-    nsb::models::RigidDeck deck(r);
+    Assembly deck(nsb::models::bridge_parts(r));
     ni::Recorder a(chain1, 0.01), b(deck, 0.01);
     REQUIRE(run(chain1, moreau, 1.0, a).completed);
     REQUIRE(run(deck, moreau, 1.0, b).completed);

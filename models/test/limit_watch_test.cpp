@@ -21,14 +21,14 @@
 namespace {
 
 using nsb::models::Assembly;
-using nsb::models::Bridge;
+using nsb::models::BridgeDesign;
 namespace ni = nsb::integrators;
 
 constexpr double kGap = 0.0127;  // the benchmark's joints at rest [m]
 constexpr double kTol = 1e-12;   // sums of a few lengths of O(0.1 m)
 
 Assembly bridge(const nsb::models::BridgeLimits& limits) {
-  Assembly::Parts p = nsb::models::bridge_parts(Bridge::Parameters::benchmark(), {});
+  Assembly::Parts p = nsb::models::bridge_parts(BridgeDesign::benchmark());
   p.limits = nsb::models::bridge_limit_spec(limits, 1);
   return Assembly(std::move(p));
 }
@@ -103,7 +103,7 @@ TEST_CASE("closure: the first step with a gap <= 0 or a contact impulse") {
 
 TEST_CASE("closure: contact normals at the watched state are the ones evaluated afresh") {
   Assembly watched = bridge({});
-  Assembly plain(nsb::models::bridge_parts(Bridge::Parameters::benchmark(), {}));
+  Assembly plain(nsb::models::bridge_parts(BridgeDesign::benchmark()));
   const ni::Vector q{{0.004, -0.002, 1e-3}}, u{{0.1, -0.2, 0.03}};
   const ni::Vector other{{0.008, -0.004, 2e-3}};
   watched.accept_step({.t = 0.25, .h = 1e-3, .q = &q, .u = &u});
@@ -121,7 +121,7 @@ TEST_CASE("closure: contact normals at the watched state are the ones evaluated 
 }
 
 TEST_CASE("drift: |(dx, dy + s theta)| / H against drift_ratio, margin = limit - peak") {
-  const Bridge::Parameters bp = Bridge::Parameters::benchmark();
+  const BridgeDesign bp = BridgeDesign::benchmark();
   nsb::models::BridgeLimits l;
   l.bent_heights = {1.83, 2.44, 1.52};
   l.drift_ratio = 0.01;
@@ -198,12 +198,14 @@ step = 1.0e-3
 
 }  // namespace
 
-TEST_CASE("scene: seat_length and [model.limit_states] make the bridge an Assembly") {
+TEST_CASE("scene: seat_length and [model.limit_states] make the bridge watch its joints") {
   const auto s = nsb::models::load_scene(
       scene_file(kBridge + "[model.abutments]\nseat_length = 0.3\n"));
-  CHECK(dynamic_cast<const Assembly*>(s.system.get()) != nullptr);
+  const auto* watched = dynamic_cast<const Assembly*>(s.system.get());
+  REQUIRE(watched != nullptr);
+  CHECK(watched->parts().limits.joints.size() == 2);  // left and right abutments
   const auto plain = nsb::models::load_scene(scene_file(kBridge));
-  CHECK(dynamic_cast<const Assembly*>(plain.system.get()) == nullptr);
+  CHECK(plain.system->limit_states().empty());  // a plain bridge watches nothing
   // drift_ratio needs every bent's height: the error names the bent and the key.
   try {
     nsb::models::load_scene(scene_file(kBridge + "[model.limit_states]\ndrift_ratio = 0.02\n"));

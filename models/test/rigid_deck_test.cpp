@@ -1,6 +1,7 @@
-// The free planar deck between two fixed abutments: geometry, numbering, directions and input
-// checks (models/rigid_deck.hpp; the convention is in docs/bridge.md).
-#include "models/rigid_deck.hpp"
+// The free planar deck between two fixed abutments, a bridge design without bents built as an
+// assembly of one body (models/bridge_parts.hpp): geometry, numbering, directions and input
+// checks (the convention is in docs/bridge.md).
+#include "models/bridge_parts.hpp"
 
 #include <doctest/doctest.h>
 
@@ -11,7 +12,8 @@
 
 namespace {
 
-using nsb::models::RigidDeck;
+using nsb::models::Assembly;
+using nsb::models::BridgeDesign;
 
 // Geometry is evaluated with a handful of trigonometric operations on O(10 m) numbers.
 constexpr double kGeomTol = 1e-12;
@@ -20,8 +22,8 @@ constexpr double kGeomTol = 1e-12;
 constexpr double kFdStep = 1e-6;
 constexpr double kFdTol = 1e-7;
 
-RigidDeck::Parameters deck(double skew_deg) {
-  RigidDeck::Parameters p;
+BridgeDesign deck(double skew_deg) {
+  BridgeDesign p = BridgeDesign::free_deck();
   p.mass = 140.5;
   p.inertia = 13090.0;
   p.deck = {.length = 33.35, .width = 2.44, .skew_deg = skew_deg, .gap_right = 0.02,
@@ -31,9 +33,11 @@ RigidDeck::Parameters deck(double skew_deg) {
   return p;
 }
 
-std::string error_of(const RigidDeck::Parameters& p) {
+Assembly free_deck(const BridgeDesign& p) { return Assembly(nsb::models::bridge_parts(p)); }
+
+std::string error_of(const BridgeDesign& p) {
   try {
-    RigidDeck d(p);
+    free_deck(p);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
@@ -44,7 +48,7 @@ std::string error_of(const RigidDeck::Parameters& p) {
 
 TEST_CASE("reference gaps are gap * cos(alpha) and the coefficients are passed through") {
   for (double skew : {0.0, 15.0, 30.0, -20.0}) {
-    RigidDeck d(deck(skew));
+    Assembly d = free_deck(deck(skew));
     auto c = d.make_contact_buffer();
     d.contact_data(0.0, d.initial_position(), d.initial_velocity(), c);
     const double ca = std::cos(skew * std::numbers::pi / 180.0);
@@ -71,7 +75,7 @@ TEST_CASE("straight deck: W_N and W_T of contacts 1..4 derived by hand") {
   //   4: r = ( L/2, -W/2): W_N = (-1, 0, -W/2), W_T = (0, -1, -L/2)
   // Check of 3: a counter-clockwise rotation moves corner 3 by dtheta (-W/2, L/2), away from
   // the right face: the gap opens by (W/2) dtheta.
-  RigidDeck d(deck(0.0));
+  Assembly d = free_deck(deck(0.0));
   auto c = d.make_contact_buffer();
   d.contact_data(0.0, d.initial_position(), d.initial_velocity(), c);
   const double hl = 33.35 / 2, hw = 2.44 / 2;
@@ -86,7 +90,7 @@ TEST_CASE("straight deck: W_N and W_T of contacts 1..4 derived by hand") {
 }
 
 TEST_CASE("W_N is the gradient of g_N for a skewed, displaced, rotated deck") {
-  RigidDeck d(deck(30.0));
+  Assembly d = free_deck(deck(30.0));
   auto c = d.make_contact_buffer(), cp = c, cm = c;
   const nsb::integrators::Vector q = Eigen::Vector3d(-0.005, 0.3, 0.002);
   const nsb::integrators::Vector u = Eigen::Vector3d::Zero();
@@ -107,7 +111,7 @@ TEST_CASE("W_N is the gradient of g_N for a skewed, displaced, rotated deck") {
 TEST_CASE("a translation along the axis closes the right gaps and opens the left ones") {
   // Skew 30 deg: moving the deck by dx along +x changes the right normal gaps by
   // -dx cos(alpha) and the left ones by +dx cos(alpha).
-  RigidDeck d(deck(30.0));
+  Assembly d = free_deck(deck(30.0));
   auto c = d.make_contact_buffer();
   const double dx = 0.01, ca = std::cos(std::numbers::pi / 6);
   d.contact_data(0.0, Eigen::Vector3d(dx, 0, 0), Eigen::Vector3d::Zero(), c);
@@ -117,7 +121,7 @@ TEST_CASE("a translation along the axis closes the right gaps and opens the left
 }
 
 TEST_CASE("a contact far from its abutment and not approaching fast is flagged far") {
-  RigidDeck d(deck(0.0));
+  Assembly d = free_deck(deck(0.0));
   auto c = d.make_contact_buffer();
   // x = -0.5: right gaps 0.52 m (far), left ones penetrated (not far).
   d.contact_data(0.0, Eigen::Vector3d(-0.5, 0, 0), Eigen::Vector3d::Zero(), c);
@@ -129,14 +133,21 @@ TEST_CASE("a contact far from its abutment and not approaching fast is flagged f
   CHECK(!c[2].far);
 }
 
-TEST_CASE("no forces, no stiffness, no energy: the deck is free between impacts") {
-  RigidDeck d(deck(10.0));
+TEST_CASE("no forces, no stiffness, no damping, no energy: the deck is free between impacts") {
+  Assembly d = free_deck(deck(10.0));
   nsb::integrators::Vector f = Eigen::Vector3d::Constant(1.0);
   d.forces(0.0, d.initial_position(), Eigen::Vector3d(1, 2, 3), f);
   CHECK(f.norm() == 0.0);
   CHECK(d.mass()(0, 0) == 140.5);
   CHECK(d.mass()(2, 2) == 13090.0);
   CHECK(d.energy(0.0, d.initial_position()).stored == 0.0);
+  nsb::integrators::Matrix K, C;
+  d.tangent(0.0, d.initial_position(), Eigen::Vector3d(1, 2, 3), K, C);
+  CHECK(K.norm() == 0.0);
+  CHECK(C.norm() == 0.0);
+  const auto pw = d.power(0.0, d.initial_position(), Eigen::Vector3d(1, 2, 3));
+  CHECK(pw.damping == 0.0);
+  CHECK(pw.ground == 0.0);
 }
 
 TEST_CASE("bad parameters name the field") {

@@ -4,8 +4,7 @@
 #include "models/test/scene_files.hpp"
 
 #include "integrators/run.hpp"
-#include "models/bridge.hpp"
-#include "models/rigid_deck.hpp"
+#include "models/bridge_design.hpp"
 #include "models/simple_systems.hpp"
 
 #include <doctest/doctest.h>
@@ -109,8 +108,8 @@ TEST_CASE("the bridge runs scale each component to its own target PGA") {
   // Runs 6 and 7: about 1.0 g transverse and 1.2 g longitudinal (Saiidi, Vosooghi & Nelson
   // 2013); RSN 988 has 2000 samples at 0.02 s (data/README.md), not compressed in time.
   const auto scene = load_scene(fs::path(NSB_SCENES_DIR) / "bridge-exc7.toml");
-  const auto& b = dynamic_cast<const nsb::models::Bridge&>(*scene.system);
-  const auto& e = b.excitation();
+  const nsb::models::BridgeDesign& b = scene.design.value();
+  const auto& e = b.excitation;
   REQUIRE(e.bents.size() == 3);
   REQUIRE(e.bents[0].transverse != nullptr);
   REQUIRE(e.bents[0].longitudinal != nullptr);
@@ -119,13 +118,13 @@ TEST_CASE("the bridge runs scale each component to its own target PGA") {
   CHECK(e.bents[0].longitudinal->pga() == doctest::Approx(1.2 * 9.81).epsilon(0.02));
   CHECK(e.bents[0].transverse->duration() == doctest::Approx(1999 * 0.02).epsilon(1e-9));
   // The deck is 110 ft = 33.528 m long (published), the bents at -L/4, 0, +L/4.
-  CHECK(b.parameters().deck.length == doctest::Approx(110 * 0.3048).epsilon(1e-4));
+  CHECK(b.deck.length == doctest::Approx(110 * 0.3048).epsilon(1e-4));
   // The seats follow the longitudinal motion only (published: longitudinal actuators).
   CHECK(e.seats[0].longitudinal != nullptr);
   CHECK(e.seats[0].transverse == nullptr);
-  CHECK(b.parameters().friction == 0.5);
-  CHECK(b.parameters().restitution == 0.0);
-  CHECK(b.parameters().mass == 140.5);
+  CHECK(b.friction == 0.5);
+  CHECK(b.restitution == 0.0);
+  CHECK(b.mass == 140.5);
 }
 
 TEST_CASE("without longitudinal_pga both components take the factor of target_pga") {
@@ -133,7 +132,7 @@ TEST_CASE("without longitudinal_pga both components take the factor of target_pg
   // file). Scaling 360 to 1.0 g with one factor scales 090 to 0.2556669 / 0.2216674 g.
   const auto scene = load_scene(fs::path(NSB_SCENES_DIR) / "bridge-exc7.toml",
                                 {"model.excitation.longitudinal_pga=0"});
-  const auto& e = dynamic_cast<const nsb::models::Bridge&>(*scene.system).excitation();
+  const auto& e = scene.design.value().excitation;
   const double ratio = 0.2556669 / 0.2216674;
   // The two motions' baseline corrections differ: measured ratio error 0.3 %, allowed 1 %.
   CHECK(e.bents[0].longitudinal->pga() / e.bents[0].transverse->pga() ==
@@ -216,11 +215,11 @@ TEST_CASE("overrides apply before validation") {
   const auto bridge = load_scene(fs::path(NSB_SCENES_DIR) / "bridge-exc1.toml",
                                  {"model.bents.1.height=2.0", "model.deck.skew_deg=10",
                                   "solver.end_time=1.0"});
-  const auto& b = dynamic_cast<const nsb::models::Bridge&>(*bridge.system);
+  const nsb::models::BridgeDesign& b = bridge.design.value();
   nsb::models::BentDesign d;
   d.height = 2.0;
-  CHECK(b.parameters().bents[1].transverse.k0 == doctest::Approx(d.stiffness()));
-  CHECK(b.parameters().deck.skew_deg == 10.0);
+  CHECK(b.bents[1].transverse.k0 == doctest::Approx(d.stiffness()));
+  CHECK(b.deck.skew_deg == 10.0);
   CHECK(ni::end_time(bridge.run) == 1.0);
 
   // Unknown keys and bad values through overrides.
@@ -383,15 +382,15 @@ stiffness_transverse = 3000.0
 )";
   const fs::path p = write("explicit.toml", text);
   const auto scene = load_scene(p);
-  const auto& b = dynamic_cast<const nsb::models::Bridge&>(*scene.system);
-  CHECK(b.parameters().bents[0].longitudinal.k0 == doctest::Approx(1000.0));
-  CHECK(b.parameters().bents[0].longitudinal.d_yield == doctest::Approx(0.05));
-  CHECK(b.parameters().bents[0].transverse.f_yield == doctest::Approx(60.0));
+  const nsb::models::BridgeDesign& b = scene.design.value();
+  CHECK(b.bents[0].longitudinal.k0 == doctest::Approx(1000.0));
+  CHECK(b.bents[0].longitudinal.d_yield == doctest::Approx(0.05));
+  CHECK(b.bents[0].transverse.f_yield == doctest::Approx(60.0));
   nsb::models::BentDesign d;
   d.height = 2.0;
-  CHECK(b.parameters().bents[1].transverse.k0 == doctest::Approx(3000.0));
-  CHECK(b.parameters().bents[1].transverse.f_yield == doctest::Approx(d.yield_force()));
-  CHECK(b.parameters().bents[1].longitudinal.k0 == doctest::Approx(d.stiffness()));
+  CHECK(b.bents[1].transverse.k0 == doctest::Approx(3000.0));
+  CHECK(b.bents[1].transverse.f_yield == doctest::Approx(d.yield_force()));
+  CHECK(b.bents[1].longitudinal.k0 == doctest::Approx(d.stiffness()));
   // No excitation: the default end time stays.
   CHECK(ni::end_time(scene.run) == 1.0);
 }
@@ -427,8 +426,8 @@ time_scale = 0.5
   }
   const fs::path p = write("delays.toml", t);
   const auto scene = load_scene(p);
-  const auto& b = dynamic_cast<const nsb::models::Bridge&>(*scene.system);
-  const auto& e = b.excitation();
+  const nsb::models::BridgeDesign& b = scene.design.value();
+  const auto& e = b.excitation;
   // Delayed supports start later by their delay; undelayed ones share the same motion.
   CHECK(e.bents[0].transverse->start_time() == doctest::Approx(e.bents[1].transverse->start_time() + 0.2));
   CHECK(e.seats[0].longitudinal == e.bents[1].longitudinal);

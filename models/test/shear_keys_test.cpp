@@ -19,7 +19,7 @@ namespace ni = nsb::integrators;
 constexpr double kGap = 0.05;  // [m]
 
 Assembly::Parts with_keys(double capacity) {
-  Assembly::Parts p = nsb::models::bridge_parts(nsb::models::Bridge::Parameters::benchmark(), {});
+  Assembly::Parts p = nsb::models::bridge_parts(nsb::models::BridgeDesign::benchmark());
   nsb::models::add_shear_keys(p, {.gap = kGap, .restitution = 0.2, .friction = 0.3,
                                   .capacity = capacity});
   return p;
@@ -91,7 +91,7 @@ TEST_CASE("an unbreakable key never breaks and has no margin") {
 }
 
 TEST_CASE("shear keys on a segmented deck sit at its two ends") {
-  nsb::models::Bridge::Parameters p = nsb::models::Bridge::Parameters::benchmark();
+  nsb::models::BridgeDesign p = nsb::models::BridgeDesign::benchmark();
   nsb::models::SegmentedDeck deck;
   deck.segments.assign(2, {.mass = 70.0, .inertia = 3000.0, .length = 16.0, .width = 2.44});
   deck.hinges.resize(1);
@@ -102,7 +102,7 @@ TEST_CASE("shear keys on a segmented deck sit at its two ends") {
   p.bents[2].position = -4.0;
   p.bents[3].position = 4.0;
   deck.bent_segment = {0, 0, 1, 1};
-  Assembly::Parts parts = nsb::models::bridge_parts(p, deck, {});
+  Assembly::Parts parts = nsb::models::bridge_parts(p, deck);
   const std::size_t before = parts.contacts.size();
   nsb::models::add_shear_keys(parts, {.gap = kGap});
   REQUIRE(parts.contacts.size() == before + 4);
@@ -118,7 +118,7 @@ TEST_CASE("shear keys on a segmented deck sit at its two ends") {
 }
 
 TEST_CASE("shear keys: bad parameters name the key") {
-  Assembly::Parts p = nsb::models::bridge_parts(nsb::models::Bridge::Parameters::benchmark(), {});
+  Assembly::Parts p = nsb::models::bridge_parts(nsb::models::BridgeDesign::benchmark());
   try {
     nsb::models::add_shear_keys(p, {.gap = -0.01});
     FAIL("no exception");
