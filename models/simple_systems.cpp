@@ -6,6 +6,7 @@
 // gravity once.
 #include "models/simple_systems.hpp"
 
+#include "models/field_checks.hpp"
 #include "models/scene_schema.hpp"
 
 #include <cmath>
@@ -21,12 +22,6 @@ using integrators::EnergyState;
 using integrators::Matrix;
 using integrators::PowerTerms;
 using integrators::Vector;
-
-void require(bool ok, const std::string& field, const std::string& allowed, double value) {
-  if (!ok) {
-    throw std::invalid_argument(field + ": " + allowed + " (got " + std::to_string(value) + ")");
-  }
-}
 
 // Harmonic forcing F0 sin(2 pi f t); f = 0 gives sin(0) = 0, i.e. no force.
 double harmonic(double amplitude, double frequency_hz, double t) {
@@ -71,8 +66,8 @@ EnergyState BouncingBall::energy(double, const Vector& q) const {
 void ImpactOscillator::Parameters::validate() const {
   config::validate_fields<Parameters>(*this, impact_oscillator_fields());
   require(initial_position <= gap, "initial_position",
-          "must be <= gap (an initial position beyond the stop is a penetration)",
-          initial_position);
+          "must be <= gap (an initial position beyond the stop is a penetration) (got " +
+              std::to_string(initial_position) + ")");
 }
 
 ImpactOscillator::ImpactOscillator(const Parameters& p) : SystemBase({"x"}, {"vx"}), p_(p) {
