@@ -49,16 +49,32 @@ void set_end_time(integrators::RunConfig& run, double t) {
 
 }  // namespace
 
-Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+SceneTable read_scene_table(const std::filesystem::path& file) {
+  SceneTable scene;
+  scene.origin.name = file.string();
+  scene.origin.folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
   Context ctx;
-  ctx.file = file.string();
-  ctx.dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
-  toml::table root = parse_scene_file(file, ctx);
-  for (const auto& o : overrides) apply_override(root, o, ctx);
+  ctx.file = scene.origin.name;
+  scene.table = parse_scene_file(file, ctx);
+  return scene;
+}
+
+std::string to_toml(const SceneTable& scene) {
+  std::ostringstream s;
+  s << toml::toml_formatter(scene.table) << '\n';
+  return s.str();
+}
+
+Scene build_scene(const SceneTable& source) {
+  Context ctx;
+  ctx.file = source.origin.name;
+  ctx.dir = source.origin.folder;
+  ctx.overridden = source.overridden;
+  const toml::table& root = source.table;
 
   Scene scene;
-  scene.path = file;
-  scene.name = file.stem().string();
+  scene.path = source.origin.name;
+  scene.name = scene.path.stem().string();
   Section top(ctx, root, "");
   top.only({"description", "model", "solver", "output"});
   SceneHeader header;
@@ -90,7 +106,14 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
     scene.system = build_simple_system(scene.kind, m);
   }
   check_solver(solver, scene.run);
+  scene.table = source;
   return scene;
+}
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  SceneTable source = read_scene_table(file);
+  apply_overrides(source, overrides);
+  return build_scene(source);
 }
 
 }  // namespace nsb::models

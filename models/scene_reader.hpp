@@ -98,9 +98,4 @@ class Section {
   std::vector<std::string_view> known_;
 };
 
-// Applies one override "section.key=value" to the parsed scene (models/overrides.cpp): the
-// value is a TOML value or else taken as a string; tables on the way are created, arrays
-// indexed by 0-based position. Records the key path in ctx.overridden.
-void apply_override(toml::table& root, const std::string& text, Context& ctx);
-
 }  // namespace nsb::models
