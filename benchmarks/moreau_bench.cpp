@@ -8,7 +8,7 @@
 //                [step = both (1e-4 and 1e-3)]
 #include "integrators/moreau_jean.hpp"
 #include "io/build_info.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -62,7 +62,7 @@ Measurement measure(const std::string& scene_file, double h, int repeats) {
   Measurement m;
   std::vector<double> walls, cpus;  // wall and process CPU time of each repeat [s]
   for (int r = 0; r < repeats; ++r) {
-    models::Scene scene = models::load_scene(scene_file, {"solver.method=moreau"});
+    scene::Scene scene = scene::load_scene(scene_file, {"solver.method=moreau"});
     integrators::Recorder rec(*scene.system, scene.output.sample_dt);
     const auto& read = std::get<integrators::MoreauJeanOptions>(scene.run);
     integrators::MoreauJeanOptions o;

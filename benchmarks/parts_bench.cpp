@@ -10,7 +10,7 @@
 #include "integrators/moreau_jean.hpp"
 #include "io/build_info.hpp"
 #include "models/bridge_parts.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -53,8 +53,8 @@ Timing time_two_frame(int repeats, double end_time) {
   using namespace nsb;
   std::vector<double> cpu, wall;
   for (int r = 0; r < repeats; ++r) {
-    models::Scene scene =
-        models::load_scene(std::string(NSB_SCENES_DIR) + "/bridge-two-frame.toml");
+    scene::Scene scene =
+        scene::load_scene(std::string(NSB_SCENES_DIR) + "/bridge-two-frame.toml");
     integrators::MoreauJeanOptions o = std::get<integrators::MoreauJeanOptions>(scene.run);
     o.end_time = end_time;
     o.step = 1e-4;
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
   double end_time = 0.0;
   long long steps = 0;
   for (int r = 0; r < repeats; ++r) {
-    models::Scene scene = models::load_scene(scene_file);
+    scene::Scene scene = scene::load_scene(scene_file);
     const auto* bridge = dynamic_cast<const models::Bridge*>(scene.system.get());
     if (bridge == nullptr) {
       std::fprintf(stderr, "parts_bench: %s is not a bridge scene\n", scene_file.c_str());

@@ -6,12 +6,12 @@
 // Writes DIR/work_precision.csv (one row per run) and prints the same table.
 // Plot: gnuplot -e "csv='DIR/work_precision.csv'; png='docs/benchmarks/work-precision.png'"
 //       benchmarks/plot_work_precision.gp
-#include "integrators/event_driven.hpp"
 #include "integrators/compliance.hpp"
+#include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "io/build_info.hpp"
-#include "models/scene.hpp"
 #include "models/simple_systems.hpp"
+#include "scene/scene.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -177,7 +177,7 @@ std::vector<SceneSpec> study_scenes(double bridge_end) {
       std::filesystem::path(NSB_SCENES_DIR) / "bridge-exc5.toml";
   return {
       {"bridge-exc5",
-       [bridge_file] { return std::move(nm::load_scene(bridge_file).system); }, bridge_end,
+       [bridge_file] { return std::move(nsb::scene::load_scene(bridge_file).system); }, bridge_end,
        0.005, "theta", 0.0},
       {"bouncing-ball",
        [] {

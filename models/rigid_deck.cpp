@@ -1,7 +1,5 @@
 #include "models/rigid_deck.hpp"
 
-#include "models/scene_schema.hpp"
-
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -75,6 +73,30 @@ void RigidDeck::contact_data(double, const integrators::Vector& q, const integra
                                       static_cast<int>(i)))]);
     copy_contact(k, p_.restitution, p_.friction, out[i]);
   }
+}
+
+std::span<const config::Field<RigidDeck::Parameters>> rigid_deck_fields() {
+  namespace c = config;
+  using P = RigidDeck::Parameters;
+  using D = DeckGeometry;
+  static const c::Field<P> f[] = {
+      c::number<&P::mass>("mass", "t", c::positive(), "deck mass (required)"),
+      c::number<&P::inertia>("inertia", "t m^2", c::positive(),
+                             "rotational inertia about the centre (required)"),
+      c::number<&P::deck, &D::length>("length", "m", c::positive(), "L, along the axis (required)"),
+      c::number<&P::deck, &D::width>("width", "m", c::positive(), "W (required)"),
+      c::number<&P::deck, &D::skew_deg>("skew_deg", "deg", c::open(-80, 80), "skew angle α"),
+      c::number<&P::deck, &D::gap_right>("gap_right", "m", c::non_negative(),
+                                         "clear distance along the axis at x = y = θ = 0"),
+      c::number<&P::deck, &D::gap_left>("gap_left", "m", c::non_negative(),
+                                        "clear distance along the axis at x = y = θ = 0"),
+      c::number<&P::restitution>("restitution", "-", c::closed(0, 1), "all four contacts"),
+      c::number<&P::friction>("friction", "-", c::non_negative(), "all four contacts"),
+      c::vector3<&P::initial_position>("initial_position", "m, m, rad",
+                                       "(x, y, θ); no corner may penetrate"),
+      c::vector3<&P::initial_velocity>("initial_velocity", "m/s, m/s, rad/s", "(vx, vy, ω)"),
+  };
+  return f;
 }
 
 }  // namespace nsb::models

@@ -9,10 +9,12 @@
 // Units: kN, t, m, s, rad.
 #pragma once
 
+#include "config/schema.hpp"
 #include "integrators/system.hpp"
 #include "models/contact_geometry.hpp"
 #include "models/deck_geometry.hpp"
 
+#include <span>
 #include <array>
 #include <string>
 #include <vector>
@@ -66,5 +68,8 @@ void copy_contact(const ContactKinematics& k, double restitution, double frictio
 // Writes the normal part (System::contact_normals) into a ContactData: gap_normal, w_normal,
 // what_normal and far, as copy_contact() does.
 void copy_contact_normal(const ContactNormal& k, integrators::ContactData& out);
+
+// The [model] keys of kind = "rigid_deck" besides kind (docs/scenes.md).
+std::span<const config::Field<RigidDeck::Parameters>> rigid_deck_fields();
 
 }  // namespace nsb::models

@@ -1,7 +1,7 @@
 // The paper's figures and claims (Shi & Dimitrakopoulos 2017), regenerated from runs of the
 // benchmark bridge (scenes/bridge-exc*.toml) and of the free deck
 // (scenes/rigid-deck-straight.toml). Every run goes through the sweep module's runner (an
-// ordinary models::load_scene + integrators::integrate call) and is read back from its outputs.
+// ordinary scene::load_scene + integrators::integrate call) and is read back from its outputs.
 // Each figure (paper-figures/figure.hpp: one registered entry per figure) is written as PNG and
 // SVG (gnuplot) with the CSV it was drawn from; the claims go to claims.json and claims.md
 // (paper-figures/claims.hpp). What is run, the thresholds and the run times:

@@ -8,7 +8,7 @@
 //  - forces, contact data and powers identical to those of a fresh bridge (same parameters
 //    and motions) that is asked at that time only.
 #include "models/bridge.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
 
@@ -63,7 +63,7 @@ void check_same_contacts(const std::vector<ContactData>& a, const std::vector<Co
 
 TEST_CASE("bridge: support motions kept per time never leak into another time") {
   const auto scene =
-      nsb::models::load_scene(std::string(NSB_SCENES_DIR) + "/bridge-exc7.toml");
+      nsb::scene::load_scene(std::string(NSB_SCENES_DIR) + "/bridge-exc7.toml");
   auto* bridge = dynamic_cast<Bridge*>(scene.system.get());
   REQUIRE(bridge != nullptr);
   // The benchmark's supports share records: the case the per-time values are kept for.

@@ -5,7 +5,7 @@
 #include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "models/bridge_parts.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
 
@@ -26,12 +26,12 @@ constexpr double kEnd = 10.0;
 constexpr double kRelative = 1e-12;
 
 struct Pair {
-  nm::Scene scene;      // owns the models::Bridge
+  nsb::scene::Scene scene;      // owns the models::Bridge
   nm::Assembly parts;   // built from its parameters and excitation
 };
 
 Pair load(const std::string& name) {
-  nm::Scene scene = nm::load_scene(std::string(NSB_SCENES_DIR) + "/" + name,
+  nsb::scene::Scene scene = nsb::scene::load_scene(std::string(NSB_SCENES_DIR) + "/" + name,
                                    {"solver.end_time=" + std::to_string(kEnd)});
   const auto* bridge = dynamic_cast<const nm::Bridge*>(scene.system.get());
   REQUIRE(bridge != nullptr);

@@ -1,8 +1,8 @@
-// A scene as a value (models/scene.hpp): a scene built from a table in code runs exactly as the
+// A scene as a value (scene/scene.hpp): a scene built from a table in code runs exactly as the
 // same scene read from a file; typed overrides give the same scene as their text form; a table
 // without source positions names the key of a bad value; to_toml reads back to the same scene.
-#include "models/scene.hpp"
-#include "models/test/scene_files.hpp"
+#include "scene/scene.hpp"
+#include "scene/test/scene_files.hpp"
 
 #include "integrators/recorder.hpp"
 #include "integrators/run.hpp"
@@ -17,19 +17,19 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-namespace nm = nsb::models;
+namespace ns = nsb::scene;
 namespace ni = nsb::integrators;
 
 namespace {
 
-using nm::test_files::write;
+using ns::test_files::write;
 
 const fs::path kScenes = NSB_SCENES_DIR;
 const fs::path kData = NSB_DATA_DIR;
 const std::string kRecord = "ground-motions/RSN988_NORTHR_CCN360.AT2";
 
 // The history of a run of the scene, every sample (sample_dt = 0 records every step).
-ni::Recorder run(nm::Scene& scene) {
+ni::Recorder run(ns::Scene& scene) {
   ni::Recorder rec(*scene.system, 0.0);
   const ni::RunResult r = ni::integrate(*scene.system, scene.run, rec);
   CHECK(r.status == ni::RunStatus::kCompleted);
@@ -37,10 +37,10 @@ ni::Recorder run(nm::Scene& scene) {
 }
 
 // The scene of a file with typed overrides.
-nm::Scene load_typed(const fs::path& file, const std::vector<nm::Override>& overrides) {
-  nm::SceneTable t = nm::read_scene_table(file);
-  nm::apply_overrides(t, overrides);
-  return nm::build_scene(t);
+ns::Scene load_typed(const fs::path& file, const std::vector<ns::Override>& overrides) {
+  ns::SceneTable t = ns::read_scene_table(file);
+  ns::apply_overrides(t, overrides);
+  return ns::build_scene(t);
 }
 
 // The number of history entries that differ in their bits (0 when the runs are identical).
@@ -97,9 +97,9 @@ toml::table bridge_table(const std::string& record) {
 }
 
 // The message of building the table (empty when it builds).
-std::string error_of(const nm::SceneTable& t) {
+std::string error_of(const ns::SceneTable& t) {
   try {
-    (void)nm::build_scene(t);
+    (void)ns::build_scene(t);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
@@ -111,10 +111,10 @@ std::string error_of(const nm::SceneTable& t) {
 TEST_CASE("a bridge built from a table runs bit for bit as the same bridge read from a file") {
   // The file names the record by its absolute path; the table by a path relative to its
   // origin's folder, which is where records are looked up from.
-  nm::Scene from_file =
-      nm::load_scene(write("table_bridge.toml", bridge_text((kData / kRecord).string())));
-  nm::SceneTable t{bridge_table(kRecord), {"<table>", kData}, {}};
-  nm::Scene from_table = nm::build_scene(t);
+  ns::Scene from_file =
+      ns::load_scene(write("table_bridge.toml", bridge_text((kData / kRecord).string())));
+  ns::SceneTable t{bridge_table(kRecord), {"<table>", kData}, {}};
+  ns::Scene from_table = ns::build_scene(t);
   CHECK(from_table.name == "<table>");
   CHECK(from_table.kind == "bridge");
   CHECK(from_table.record_step == from_file.record_step);
@@ -126,26 +126,26 @@ TEST_CASE("a bridge built from a table runs bit for bit as the same bridge read 
 }
 
 TEST_CASE("parse_override: a TOML value, else the text as a string") {
-  const nm::Override step = nm::parse_override("solver.step=2e-4");
+  const ns::Override step = ns::parse_override("solver.step=2e-4");
   CHECK(step.key == "solver.step");
   CHECK(std::get<double>(step.value) == 2e-4);
-  CHECK(std::get<std::int64_t>(nm::parse_override("model.damping.mode_j = 3").value) == 3);
-  CHECK(std::get<bool>(nm::parse_override("model.seats.transverse=true").value));
-  CHECK(std::get<std::string>(nm::parse_override("solver.method=event_driven").value) ==
+  CHECK(std::get<std::int64_t>(ns::parse_override("model.damping.mode_j = 3").value) == 3);
+  CHECK(std::get<bool>(ns::parse_override("model.seats.transverse=true").value));
+  CHECK(std::get<std::string>(ns::parse_override("solver.method=event_driven").value) ==
         "event_driven");
-  CHECK(std::get<std::string>(nm::parse_override("model.excitation.scale_to=\"sa\"").value) ==
+  CHECK(std::get<std::string>(ns::parse_override("model.excitation.scale_to=\"sa\"").value) ==
         "sa");
   CHECK(std::get<std::vector<double>>(
-            nm::parse_override("model.decks.0.initial_position=[0.01, 0, -2]").value) ==
+            ns::parse_override("model.decks.0.initial_position=[0.01, 0, -2]").value) ==
         std::vector<double>{0.01, 0.0, -2.0});
-  CHECK_THROWS_AS(nm::parse_override("solver.step"), std::invalid_argument);
-  CHECK_THROWS_AS(nm::parse_override("step=1"), std::invalid_argument);
-  CHECK_THROWS_AS(nm::parse_override("model.x={a = 1}"), std::invalid_argument);
+  CHECK_THROWS_AS(ns::parse_override("solver.step"), std::invalid_argument);
+  CHECK_THROWS_AS(ns::parse_override("step=1"), std::invalid_argument);
+  CHECK_THROWS_AS(ns::parse_override("model.x={a = 1}"), std::invalid_argument);
   // The text form reads back to the same override.
   for (const char* text : {"solver.step=2e-4", "model.damping.mode_j=3", "solver.method=lemke",
                            "model.seats.transverse=false", "model.decks.0.initial_position=[1, 2.5, 3]"}) {
-    const nm::Override o = nm::parse_override(text);
-    const nm::Override back = nm::parse_override(nm::to_string(o));
+    const ns::Override o = ns::parse_override(text);
+    const ns::Override back = ns::parse_override(ns::to_string(o));
     CHECK(back.key == o.key);
     CHECK(back.value == o.value);
   }
@@ -157,25 +157,25 @@ TEST_CASE("typed overrides give the scene of their text form, bit for bit") {
                                          "model.gaps.left=0.05", "model.bents.0.height=2.0",
                                          "model.damping.mode_j=2", "solver.method=moreau",
                                          "model.seats.transverse=true"};
-  const std::vector<nm::Override> typed = {
+  const std::vector<ns::Override> typed = {
       {"solver.end_time", 0.2},          {"solver.step", 2e-4},
       {"model.gaps.left", 0.05},         {"model.bents.0.height", 2.0},
       {"model.damping.mode_j", std::int64_t{2}}, {"solver.method", std::string("moreau")},
       {"model.seats.transverse", true}};
-  nm::Scene a = nm::load_scene(file, text);
-  nm::Scene b = load_typed(file, typed);
-  CHECK(nm::to_toml(a.table) == nm::to_toml(b.table));
+  ns::Scene a = ns::load_scene(file, text);
+  ns::Scene b = load_typed(file, typed);
+  CHECK(ns::to_toml(a.table) == ns::to_toml(b.table));
   CHECK(a.table.overridden == b.table.overridden);
   CHECK(differing(run(a), run(b)) == 0);
   // The overridden gap reached the scene: the text shows it.
-  CHECK(nm::to_toml(a.table).find("left = 0.05") != std::string::npos);
+  CHECK(ns::to_toml(a.table).find("left = 0.05") != std::string::npos);
 
   // A bad typed value is reported as the text form's is.
   const auto error = [&](const auto& overrides) {
     try {
-      nm::SceneTable t = nm::read_scene_table(file);
-      nm::apply_overrides(t, overrides);
-      (void)nm::build_scene(t);
+      ns::SceneTable t = ns::read_scene_table(file);
+      ns::apply_overrides(t, overrides);
+      (void)ns::build_scene(t);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
@@ -183,8 +183,8 @@ TEST_CASE("typed overrides give the scene of their text form, bit for bit") {
   };
   const std::string from_text = error(std::vector<std::string>{"solver.step=-1"});
   CHECK(from_text.find("solver.step (override): ") != std::string::npos);
-  CHECK(error(std::vector<nm::Override>{{"solver.step", -1.0}}) == from_text);
-  CHECK(error(std::vector<nm::Override>{{"model.bents.7.height", 1.0}}) ==
+  CHECK(error(std::vector<ns::Override>{{"solver.step", -1.0}}) == from_text);
+  CHECK(error(std::vector<ns::Override>{{"model.bents.7.height", 1.0}}) ==
         error(std::vector<std::string>{"model.bents.7.height=1.0"}));
 }
 
@@ -194,7 +194,7 @@ kind = "bouncing_ball"
 mass = -1.0
 height = 1.0
 )";
-  const std::string from_file = nm::test_files::error_of("bad_mass.toml", text);
+  const std::string from_file = ns::test_files::error_of("bad_mass.toml", text);
   const std::string from_table =
       error_of({toml::parse(text), {"<table>", "."}, {}});  // a parsed text keeps its positions
   toml::table t{{"model", toml::table{{"kind", "bouncing_ball"}, {"mass", -1.0},
@@ -214,16 +214,16 @@ TEST_CASE("to_toml reads back to the same scene") {
   for (const auto& entry : fs::directory_iterator(kScenes)) {
     if (entry.path().extension() != ".toml") continue;
     CAPTURE(entry.path());
-    const nm::SceneTable t = nm::read_scene_table(entry.path());
-    const std::string text = nm::to_toml(t);
-    const nm::SceneTable back{toml::parse(text), t.origin, {}};
+    const ns::SceneTable t = ns::read_scene_table(entry.path());
+    const std::string text = ns::to_toml(t);
+    const ns::SceneTable back{toml::parse(text), t.origin, {}};
     CHECK(back.table == t.table);
-    CHECK(nm::to_toml(back) == text);
+    CHECK(ns::to_toml(back) == text);
   }
   // A short run of an overridden bridge from its text equals the run of the scene itself.
   const fs::path file = kScenes / "bridge-exc5.toml";
-  nm::Scene a = nm::load_scene(file, std::vector<std::string>{"solver.end_time=0.2",
+  ns::Scene a = ns::load_scene(file, std::vector<std::string>{"solver.end_time=0.2",
                                                               "model.gaps.right=0.02"});
-  nm::Scene b = nm::build_scene({toml::parse(nm::to_toml(a.table)), a.table.origin, {}});
+  ns::Scene b = ns::build_scene({toml::parse(ns::to_toml(a.table)), a.table.origin, {}});
   CHECK(differing(run(a), run(b)) == 0);
 }

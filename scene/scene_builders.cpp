@@ -1,10 +1,14 @@
-// The simple systems of scene files: their [model] keys read by field (models/scene_schema.hpp),
+// The simple systems of scene files: their [model] keys read by field (scene/scene_schema.hpp),
 // the conditions between keys checked here, the rest by the models' own validate().
-#include "models/scene_builders.hpp"
+#include "scene/scene_builders.hpp"
 
-#include "models/scene_schema.hpp"
+#include "models/rigid_deck.hpp"
+#include "models/simple_systems.hpp"
+#include "scene/scene_schema.hpp"
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace {
 
@@ -59,4 +63,4 @@ std::unique_ptr<integrators::System> build_simple_system(const std::string& kind
   return build<RigidDeck>(m, rigid_deck_fields(), &check_rigid_deck);
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

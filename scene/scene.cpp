@@ -1,21 +1,23 @@
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
-#include "models/scene_builders.hpp"
-#include "models/scene_reader.hpp"
+#include "scene/scene_builders.hpp"
+#include "scene/scene_reader.hpp"
 
 #include <toml++/toml.h>
 
 #include <sstream>
 #include <stdexcept>
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace {
 
 namespace fs = std::filesystem;
 
 // The parsed TOML of a scene file; a syntax error names its line and column.
-toml::table parse_scene_file(const fs::path& file, const Context& ctx) {
+toml::table parse_scene_file(const fs::path& file, const Source& ctx) {
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) {
     throw std::invalid_argument(ctx.file + ": cannot open scene file (not found)");
@@ -53,7 +55,7 @@ SceneTable read_scene_table(const std::filesystem::path& file) {
   SceneTable scene;
   scene.origin.name = file.string();
   scene.origin.folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
-  Context ctx;
+  Source ctx;
   ctx.file = scene.origin.name;
   scene.table = parse_scene_file(file, ctx);
   return scene;
@@ -66,7 +68,7 @@ std::string to_toml(const SceneTable& scene) {
 }
 
 Scene build_scene(const SceneTable& source) {
-  Context ctx;
+  Source ctx;
   ctx.file = source.origin.name;
   ctx.dir = source.origin.folder;
   ctx.overridden = source.overridden;
@@ -116,4 +118,4 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   return build_scene(source);
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

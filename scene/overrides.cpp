@@ -1,7 +1,7 @@
 // Overrides of scene values ("section.key=value", docs/scenes.md, "Overrides"), applied to the
 // parsed TOML before any value is read, so that an overridden value is checked like any other.
-#include "models/scene.hpp"
-#include "models/scene_reader.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_reader.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,7 @@
 #include <sstream>
 #include <type_traits>
 
-namespace nsb::models {
+namespace nsb::scene {
 
 namespace {
 
@@ -173,4 +173,4 @@ void apply_overrides(SceneTable& scene, const std::vector<std::string>& override
   }
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,8 +1,13 @@
-#include "models/scene_docs.hpp"
+#include "scene/scene_docs.hpp"
 
 #include "integrators/run.hpp"
-#include "models/connector_scene.hpp"
-#include "models/scene_schema.hpp"
+#include "models/bridge_fields.hpp"
+#include "models/deck_chain.hpp"
+#include "models/rigid_deck.hpp"
+#include "models/shear_keys.hpp"
+#include "models/simple_systems.hpp"
+#include "scene/connector_scene.hpp"
+#include "scene/scene_schema.hpp"
 
 #include <map>
 #include <set>
@@ -10,7 +15,9 @@
 #include <type_traits>
 #include <variant>
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace {
 
@@ -110,7 +117,7 @@ void add_bridge_tables(std::vector<DocTable>& out) {
                  kHeader + rows(joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}) +
                      rows(SeatLengthSettings::fields(), SeatLengthSettings{},
                           {{"seat_length", "none"}})});
-  // Connectors (models/connector_scene.hpp); seat_length is a limit state's.
+  // Connectors (scene/connector_scene.hpp); seat_length is a limit state's.
   out.push_back(table("model.restrainer", RestrainerSettings::fields(), RestrainerSettings{},
                       {{"stiffness", "required"}}));
   out.push_back({"model.abutments",
@@ -177,4 +184,4 @@ std::string regenerate_scene_docs(const std::string& doc) {
   return out;
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,6 +1,6 @@
 // Scene files: a TOML description of one run (the model, the solver settings, the output
 // settings), read with toml++. Every key is declared once with its unit, default and allowed
-// range (models/scene_schema.hpp, and the methods' options for [solver]); docs/scenes.md's
+// range (scene/scene_schema.hpp, and the methods' options for [solver]); docs/scenes.md's
 // key tables are generated from those declarations. Every key is validated and unknown keys
 // are errors.
 //
@@ -11,7 +11,7 @@
 #include "integrators/run.hpp"
 #include "integrators/system.hpp"
 #include "models/excitation_scaling.hpp"
-#include "models/scene_schema.hpp"
+#include "scene/scene_schema.hpp"
 
 #include <toml++/toml.h>
 
@@ -24,7 +24,7 @@
 #include <variant>
 #include <vector>
 
-namespace nsb::models {
+namespace nsb::scene {
 
 // The value an override sets: a boolean, an integer, a number, a string, or an array of
 // numbers (a vector3 key such as model.decks.0.initial_position).
@@ -88,7 +88,7 @@ struct Scene {
   OutputSettings output;
   double record_step = 0.0;            // shortest sampling interval of the scene's ground-motion
                                        //   records after time scaling [s]; 0 without a record
-  InputMotion input;                   // PGA, PSA and factor of each excitation component
+  models::InputMotion input;                   // PGA, PSA and factor of each excitation component
                                        //   (summary.json "input"); empty without a record
   SceneTable table;                    // what it was built from (to_toml(scene.table))
 };
@@ -106,4 +106,4 @@ Scene build_scene(const SceneTable& scene);
 // apply_overrides and build_scene.
 Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 
-}  // namespace nsb::models
+}  // namespace nsb::scene
