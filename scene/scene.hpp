@@ -1,8 +1,10 @@
 // Scene files: a TOML description of one run (the model, the solver settings, the output
 // settings), read with toml++. Every key is declared once with its unit, default and allowed
-// range (scene/scene_schema.hpp, and the methods' options for [solver]); docs/scenes.md's
-// key tables are generated from those declarations. Every key is validated and unknown keys
-// are errors.
+// range (a model's keys beside its parameters in models/, the scene's own settings in
+// scene/scene_schema.hpp, and the methods' options for [solver]); docs/scenes.md's key tables
+// are generated from those declarations. Every key is validated and unknown keys are errors.
+// A scene is also a value: a SceneTable built in code (or from a Python dict) is checked and
+// built exactly as a file is.
 //
 // Errors throw std::invalid_argument with "<file>:<line>:<col>: <key>: <what is allowed>"
 // (for a value set by an override: "<file>: <key> (override): <what is allowed>").
