@@ -7,6 +7,7 @@
 #include "io/json.hpp"
 #include "models/ground_motion.hpp"
 #include "models/response_spectrum.hpp"
+#include "scene/records.hpp"
 
 #include <unistd.h>
 
@@ -89,16 +90,16 @@ std::vector<double> parse_periods(const std::string& text) {
   return out;
 }
 
-// The readers the scenes use (models/scene.cpp): by extension, .AT2 in g, .csv and anything
+// The readers the scenes use (scene/records.hpp): by extension, .AT2 in g, .csv and anything
 // else (two columns "t a") in file units times --unit.
 models::Record read_record(const std::string& name, double unit) {
   const fs::path path(name);
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".at2") return models::read_at2(path, models::kSpectrumGravity);
-  if (ext == ".csv") return models::read_csv(path, unit);
-  return models::read_two_column(path, unit);
+  if (ext == ".at2") return scene::read_at2(path, models::kSpectrumGravity);
+  if (ext == ".csv") return scene::read_csv(path, unit);
+  return scene::read_two_column(path, unit);
 }
 
 // An output file's folder must exist, so that nothing fails after the work is done.

@@ -19,7 +19,8 @@
 #include "models/excitation_scaling.hpp"
 #include "models/ground_motion.hpp"
 #include "models/response_spectrum.hpp"
-#include "models/scene.hpp"
+#include "scene/records.hpp"
+#include "scene/scene.hpp"
 #include "sweep/suites.hpp"
 
 namespace nsb::app {
@@ -51,9 +52,9 @@ double scaling_period(const SuiteSpectraArgs& a) {
     throw InputError("suite-spectra: give either --scene (its first natural period) or --period");
   }
   if (a.period > 0) return a.period;
-  models::Scene scene;
+  scene::Scene scene;
   try {
-    scene = models::load_scene(a.scene);
+    scene = scene::load_scene(a.scene);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -100,7 +101,7 @@ void run_suite_spectra(const SuiteSpectraArgs& a) {
   options.damping = a.damping;
   std::vector<models::Spectrum> spectra;
   for (const auto& r : suite) {
-    const models::Record record = models::read_at2(r.files.front(), models::kSpectrumGravity);
+    const models::Record record = scene::read_at2(r.files.front(), models::kSpectrumGravity);
     models::Spectrum s = models::response_spectrum(record, options);
     const double factor = sa / models::spectral_acceleration_g(record, period, a.damping);
     for (double& v : s.psa_g) v *= factor;

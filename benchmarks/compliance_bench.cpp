@@ -13,7 +13,7 @@
 #include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "io/build_info.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -201,9 +201,9 @@ class Bench {
   void run_reference() {
     std::vector<double> walls, cpus;
     RunResult st;
-    Recorder keep(*nsb::models::load_scene(s_.scene, reference_overrides_).system, 0.0);
+    Recorder keep(*nsb::scene::load_scene(s_.scene, reference_overrides_).system, 0.0);
     for (int r = 0; r < s_.repeat; ++r) {
-      auto sc = nsb::models::load_scene(s_.scene, moreau_overrides_);
+      auto sc = nsb::scene::load_scene(s_.scene, moreau_overrides_);
       const auto o = moreau_options(sc, s_.reference_step);
       Recorder rec(*sc.system, sc.output.sample_dt);
       const double c0 = cpu_seconds();
@@ -224,7 +224,7 @@ class Bench {
 
   // A coarser Moreau–Jean run, for the work-precision comparison.
   void run_moreau(double h) {
-    auto sc = nsb::models::load_scene(s_.scene, moreau_overrides_);
+    auto sc = nsb::scene::load_scene(s_.scene, moreau_overrides_);
     const auto o = moreau_options(sc, h);
     Recorder rec(*sc.system, sc.output.sample_dt);
     const double c0 = cpu_seconds();
@@ -239,7 +239,7 @@ class Bench {
   }
 
   void run_event_driven() {
-    auto sc = nsb::models::load_scene(s_.scene, event_overrides_);
+    auto sc = nsb::scene::load_scene(s_.scene, event_overrides_);
     const auto& read = std::get<nsb::integrators::EventDrivenOptions>(sc.run);
     nsb::integrators::EventDrivenOptions o;
     o.end_time = read.end_time;
@@ -266,7 +266,7 @@ class Bench {
     Pounding p;
     double k = 0.0;
     for (int r = 0; r < s_.repeat; ++r) {
-      auto sc = nsb::models::load_scene(s_.scene, compliance_overrides_);
+      auto sc = nsb::scene::load_scene(s_.scene, compliance_overrides_);
       const auto& read = std::get<nsb::integrators::ComplianceOptions>(sc.run);
       nsb::integrators::ComplianceOptions o;
       o.end_time = read.end_time;
@@ -304,7 +304,7 @@ class Bench {
     return o;
   }
   // The scene's Moreau–Jean options at step h.
-  static nsb::integrators::MoreauJeanOptions moreau_options(const nsb::models::Scene& sc,
+  static nsb::integrators::MoreauJeanOptions moreau_options(const nsb::scene::Scene& sc,
                                                            double h) {
     const auto& read = std::get<nsb::integrators::MoreauJeanOptions>(sc.run);
     nsb::integrators::MoreauJeanOptions o;

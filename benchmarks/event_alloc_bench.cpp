@@ -8,7 +8,7 @@
 // Usage: event_alloc_bench [SCENE.toml [T]]     default: scenes/bridge-exc7.toml, T = 20 s
 #include "integrators/run.hpp"
 #include "io/build_info.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <atomic>
 #include <cstdio>
@@ -73,7 +73,7 @@ struct Count {
 // One event-driven run of [0, end_time]; samples every 1 s (the history is not what is
 // measured), allocations counted inside integrate() only.
 Count run(const std::filesystem::path& scene_file, double end_time) {
-  auto scene = nm::load_scene(scene_file, {"solver.method=event_driven",
+  auto scene = nsb::scene::load_scene(scene_file, {"solver.method=event_driven",
                                            "solver.end_time=" + std::to_string(end_time)});
   ni::Recorder recorder(*scene.system, 1.0);
   Count c;

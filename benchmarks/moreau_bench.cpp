@@ -9,7 +9,7 @@
 #include "benchmarks/output.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "io/build_info.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -63,7 +63,7 @@ Measurement measure(const std::string& scene_file, double h, int repeats) {
   Measurement m;
   std::vector<double> walls, cpus;  // wall and process CPU time of each repeat [s]
   for (int r = 0; r < repeats; ++r) {
-    models::Scene scene = models::load_scene(scene_file, {"solver.method=moreau"});
+    scene::Scene scene = scene::load_scene(scene_file, {"solver.method=moreau"});
     integrators::Recorder rec(*scene.system, scene.output.sample_dt);
     const auto& read = std::get<integrators::MoreauJeanOptions>(scene.run);
     integrators::MoreauJeanOptions o;

@@ -9,7 +9,7 @@
 #include "benchmarks/output.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "io/build_info.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -50,7 +50,7 @@ double median(std::vector<double> v) {
 // One run of a scene file of scenes/ over [0, end_time] (0: the scene's) at h = 1e-4.
 Timing time_scene(const std::string& name, double end_time) {
   using namespace nsb;
-  models::Scene scene = models::load_scene(std::string(NSB_SCENES_DIR) + "/" + name);
+  scene::Scene scene = scene::load_scene(std::string(NSB_SCENES_DIR) + "/" + name);
   integrators::MoreauJeanOptions o = std::get<integrators::MoreauJeanOptions>(scene.run);
   if (end_time > 0.0) o.end_time = end_time;
   o.step = 1e-4;

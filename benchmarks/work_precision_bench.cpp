@@ -9,10 +9,11 @@
 #include "benchmarks/output.hpp"
 #include "integrators/event_driven.hpp"
 #include "integrators/compliance.hpp"
+#include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "io/build_info.hpp"
-#include "models/scene.hpp"
 #include "models/simple_systems.hpp"
+#include "scene/scene.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -178,7 +179,7 @@ std::vector<SceneSpec> study_scenes(double bridge_end) {
       std::filesystem::path(NSB_SCENES_DIR) / "bridge-exc5.toml";
   return {
       {"bridge-exc5",
-       [bridge_file] { return std::move(nm::load_scene(bridge_file).system); }, bridge_end,
+       [bridge_file] { return std::move(nsb::scene::load_scene(bridge_file).system); }, bridge_end,
        0.005, "theta", 0.0},
       {"bouncing-ball",
        [] {

@@ -2,9 +2,9 @@
 // once, as a Field (scene key, member, unit, range, meaning; the default is the member's
 // initializer). From that one declaration
 //   - validate() checks every field's range and names the key when it fails,
-//   - the scene reader (models/scene_reader.hpp) reads and checks every key with its file, line
+//   - the scene reader (scene/scene_reader.hpp) reads and checks every key with its file, line
 //     and column,
-//   - the tables of docs/scenes.md are generated (models/scene_docs.hpp),
+//   - the tables of docs/scenes.md are generated (scene/scene_docs.hpp),
 // so a key, its unit and its range are written in exactly one place.
 //
 //   struct MoreauJeanOptions {

@@ -5,6 +5,7 @@
 // throw std::invalid_argument; a record that is read must build a GroundMotion whose values
 // are finite at its samples.
 #include "models/ground_motion.hpp"
+#include "scene/records.hpp"
 
 #include <cmath>
 #include <cstddef>
@@ -20,9 +21,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   nsb::models::Record r;
   try {
     switch (reader) {
-      case 0: r = nsb::models::read_at2(in, "fuzz.AT2"); break;
-      case 1: r = nsb::models::read_csv(in, "fuzz.csv"); break;
-      default: r = nsb::models::read_two_column(in, "fuzz.txt"); break;
+      case 0: r = nsb::scene::read_at2(in, "fuzz.AT2"); break;
+      case 1: r = nsb::scene::read_csv(in, "fuzz.csv"); break;
+      default: r = nsb::scene::read_two_column(in, "fuzz.txt"); break;
     }
   } catch (const std::invalid_argument&) {
     return 0;  // bad input, reported as such

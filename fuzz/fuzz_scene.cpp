@@ -1,10 +1,10 @@
-// libFuzzer target: the scene reader with overrides (models::load_scene).
+// libFuzzer target: the scene reader with overrides (scene::load_scene).
 //
 // Input: the first line is one override "section.key=value"; the rest is the scene file. A
 // bad scene or override must throw std::invalid_argument; anything else (another exception,
 // a crash, a sanitizer report, a hang) is a bug. Records named by a scene are found through
 // ./data/, so the fuzzer runs from the repository root (fuzz/run.sh).
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <unistd.h>
 
@@ -31,9 +31,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   try {
     if (override_text.empty()) {
-      (void)nsb::models::load_scene(file);
+      (void)nsb::scene::load_scene(file);
     } else {
-      (void)nsb::models::load_scene(file, {override_text});
+      (void)nsb::scene::load_scene(file, {override_text});
     }
   } catch (const std::invalid_argument&) {
     // bad input, reported as such

@@ -1,6 +1,7 @@
 // Closed-form references of the simple systems; see analytic.hpp for the formulas and
 // docs/analytic.md for the derivations. The deck impact is deck_impact.cpp.
 #include "models/analytic.hpp"
+#include "models/field_checks.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,10 +24,6 @@ constexpr double kPhaseRoundOff = 1e-9;
 // Safety cap on impacts generated when stepping the oscillator to a time t.
 constexpr int kMaxOscillatorImpacts = 1000000;
 
-void require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument(what);
-}
-
 double deg2rad(double d) { return d * kPi / 180.0; }
 double sgn(double x) { return (x > 0.0) - (x < 0.0); }
 
@@ -39,7 +36,7 @@ namespace {
 // The ball references need g > 0 (with g = 0 a ball never returns after its first rebound).
 void require_ball(const BouncingBall::Parameters& p) {
   p.validate();
-  require(p.gravity > 0.0, "gravity: the closed form needs g > 0");
+  require(p.gravity > 0.0, "gravity", "the closed form needs g > 0");
 }
 }  // namespace
 
@@ -57,7 +54,7 @@ double ball_first_impact_time(const BouncingBall::Parameters& p) {
 }
 
 std::vector<BallImpact> ball_impacts(const BouncingBall::Parameters& p, int count) {
-  require(count >= 0, "count: must be >= 0");
+  require(count >= 0, "count", "must be >= 0");
   std::vector<BallImpact> out;
   if (count == 0) return out;
   double t = ball_first_impact_time(p);
@@ -82,7 +79,7 @@ double ball_accumulation_time(const BouncingBall::Parameters& p) {
 }
 
 double ball_energy_after(const BouncingBall::Parameters& p, int k) {
-  require(k >= 0, "k: must be >= 0");
+  require(k >= 0, "k", "must be >= 0");
   if (k == 0) {
     require_ball(p);
     return 0.5 * p.mass * p.velocity * p.velocity + p.mass * p.gravity * p.height;
@@ -92,7 +89,7 @@ double ball_energy_after(const BouncingBall::Parameters& p, int k) {
 }
 
 State1 ball_state(const BouncingBall::Parameters& p, double t) {
-  require(t >= 0.0 && std::isfinite(t), "t: must be finite and >= 0");
+  require(t >= 0.0 && std::isfinite(t), "t", "must be finite and >= 0");
   const double g = p.gravity;
   const double t1 = ball_first_impact_time(p);
   if (t < t1) {
@@ -117,23 +114,23 @@ State1 ball_state(const BouncingBall::Parameters& p, double t) {
 // Oscillator against a rigid stop
 
 double oscillator_impact_speed(double omega, double amplitude, double gap) {
-  require(omega > 0.0, "omega: must be > 0");
-  require(amplitude >= std::abs(gap), "amplitude: must be >= |gap| for the stop to be reached");
+  require(omega > 0.0, "omega", "must be > 0");
+  require(amplitude >= std::abs(gap), "amplitude", "must be >= |gap| for the stop to be reached");
   // Energy: (v/w)^2 + x^2 = A^2 at x = d.
   return omega * std::sqrt(amplitude * amplitude - gap * gap);
 }
 
 double oscillator_next_amplitude(double omega, double impact_speed, double gap,
                                  double restitution) {
-  require(omega > 0.0, "omega: must be > 0");
+  require(omega > 0.0, "omega", "must be > 0");
   const double r = restitution * impact_speed / omega;
   return std::sqrt(gap * gap + r * r);
 }
 
 double oscillator_time_between_impacts(double omega, double impact_speed, double gap,
                                        double restitution) {
-  require(omega > 0.0, "omega: must be > 0");
-  require(restitution >= 0.0 && restitution <= 1.0, "restitution: must be in [0, 1]");
+  require(omega > 0.0, "omega", "must be > 0");
+  require(restitution >= 0.0 && restitution <= 1.0, "restitution", "must be in [0, 1]");
   // After the impact x = A' cos(phase) with phase phi = atan2(e V / w, d) (x = d,
   // v = -e V < 0); the orbit returns to x = d, moving towards the stop, at 2 pi - phi.
   const double phi = std::atan2(restitution * impact_speed / omega, gap);
@@ -143,9 +140,9 @@ double oscillator_time_between_impacts(double omega, double impact_speed, double
 namespace {
 void require_free_oscillator(const ImpactOscillator::Parameters& p) {
   p.validate();
-  require(p.stiffness > 0.0, "stiffness: the closed form needs k > 0");
-  require(p.damping_ratio == 0.0, "damping_ratio: the closed form needs an undamped oscillator");
-  require(p.force_amplitude == 0.0, "force_amplitude: the closed form needs no forcing");
+  require(p.stiffness > 0.0, "stiffness", "the closed form needs k > 0");
+  require(p.damping_ratio == 0.0, "damping_ratio", "the closed form needs an undamped oscillator");
+  require(p.force_amplitude == 0.0, "force_amplitude", "the closed form needs no forcing");
 }
 
 // First time t >= 0 at which the free orbit from (x0, v0) reaches x = d moving towards +x;
@@ -183,7 +180,7 @@ State1 free_oscillator(double omega, double x0, double v0, double s) {
 std::vector<OscillatorImpact> oscillator_impacts(const ImpactOscillator::Parameters& p,
                                                  int count) {
   require_free_oscillator(p);
-  require(count >= 0, "count: must be >= 0");
+  require(count >= 0, "count", "must be >= 0");
   const double w = std::sqrt(p.stiffness / p.mass);
   const double d = p.gap;
   std::vector<OscillatorImpact> out;
@@ -211,7 +208,7 @@ std::vector<OscillatorImpact> oscillator_impacts(const ImpactOscillator::Paramet
 
 State1 oscillator_state(const ImpactOscillator::Parameters& p, double t) {
   require_free_oscillator(p);
-  require(t >= 0.0 && std::isfinite(t), "t: must be finite and >= 0");
+  require(t >= 0.0 && std::isfinite(t), "t", "must be finite and >= 0");
   const double w = std::sqrt(p.stiffness / p.mass);
   const double d = p.gap;
   const double e = p.restitution;
@@ -239,13 +236,13 @@ State1 oscillator_state(const ImpactOscillator::Parameters& p, double t) {
 // Block with Coulomb friction
 
 double block_stopping_time(double v0, double mu, double g) {
-  require(mu > 0.0 && g > 0.0, "mu, g: must be > 0 for the block to stop");
+  require(mu > 0.0 && g > 0.0, "mu, g", "must be > 0 for the block to stop");
   // Constant deceleration mu g.
   return std::abs(v0) / (mu * g);
 }
 
 double block_stopping_distance(double v0, double mu, double g) {
-  require(mu > 0.0 && g > 0.0, "mu, g: must be > 0 for the block to stop");
+  require(mu > 0.0 && g > 0.0, "mu, g", "must be > 0 for the block to stop");
   return v0 * v0 / (2.0 * mu * g);
 }
 
@@ -255,8 +252,8 @@ bool block_sticks(double tangential_load, double mu, double normal_force) {
 
 State1 block_state(const SlidingBlock::Parameters& p, double t) {
   p.validate();
-  require(p.force_amplitude == 0.0, "force_amplitude: the closed form needs a constant force");
-  require(t >= 0.0 && std::isfinite(t), "t: must be finite and >= 0");
+  require(p.force_amplitude == 0.0, "force_amplitude", "the closed form needs a constant force");
+  require(t >= 0.0 && std::isfinite(t), "t", "must be finite and >= 0");
   const double beta = deg2rad(p.incline_deg);
   const double normal = p.mass * p.gravity * std::cos(beta);
   const double load = p.force - p.mass * p.gravity * std::sin(beta);  // F_a
@@ -285,8 +282,8 @@ State1 block_state(const SlidingBlock::Parameters& p, double t) {
 
 HarmonicSlip block_harmonic_first_slip(const SlidingBlock::Parameters& p) {
   p.validate();
-  require(p.initial_velocity == 0.0, "initial_velocity: the closed form starts from rest");
-  require(p.force_frequency > 0.0, "force_frequency: must be > 0 for a harmonic force");
+  require(p.initial_velocity == 0.0, "initial_velocity", "the closed form starts from rest");
+  require(p.force_frequency > 0.0, "force_frequency", "must be > 0 for a harmonic force");
   const double beta = deg2rad(p.incline_deg);
   const double m = p.mass;
   const double normal = m * p.gravity * std::cos(beta);
@@ -357,10 +354,10 @@ HarmonicSlip block_harmonic_first_slip(const SlidingBlock::Parameters& p) {
 }
 
 void FrictionOscillator::validate() const {
-  require(std::isfinite(omega) && omega > 0.0, "omega: must be > 0");
-  require(std::isfinite(friction) && friction >= 0.0, "friction: must be >= 0");
-  require(std::isfinite(gravity) && gravity >= 0.0, "gravity: must be >= 0");
-  require(std::isfinite(initial_position), "initial_position: must be finite");
+  require(std::isfinite(omega) && omega > 0.0, "omega", "must be > 0");
+  require(std::isfinite(friction) && friction >= 0.0, "friction", "must be >= 0");
+  require(std::isfinite(gravity) && gravity >= 0.0, "gravity", "must be >= 0");
+  require(std::isfinite(initial_position), "initial_position", "must be finite");
 }
 
 std::vector<double> friction_oscillator_turning_points(const FrictionOscillator& p) {
@@ -368,7 +365,7 @@ std::vector<double> friction_oscillator_turning_points(const FrictionOscillator&
   const double delta = p.friction * p.gravity / (p.omega * p.omega);
   std::vector<double> x{p.initial_position};
   require(delta > 0.0 || p.initial_position == 0.0,
-          "friction: must be > 0 for the oscillation to stop");
+          "friction", "must be > 0 for the oscillation to stop");
   while (std::abs(x.back()) > delta) {
     const double xn = x.back();
     x.push_back(sgn(xn) * (2.0 * delta - std::abs(xn)));
@@ -377,7 +374,7 @@ std::vector<double> friction_oscillator_turning_points(const FrictionOscillator&
 }
 
 State1 friction_oscillator_state(const FrictionOscillator& p, double t) {
-  require(t >= 0.0 && std::isfinite(t), "t: must be finite and >= 0");
+  require(t >= 0.0 && std::isfinite(t), "t", "must be finite and >= 0");
   const auto x = friction_oscillator_turning_points(p);
   const double w = p.omega;
   const double delta = p.friction * p.gravity / (w * w);

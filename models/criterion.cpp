@@ -1,6 +1,7 @@
 // The rotation criterion of eq. (1); see criterion.hpp for the formulas and docs/criterion.md
 // for the derivation.
 #include "models/criterion.hpp"
+#include "models/field_checks.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,10 +13,6 @@ namespace nsb::models::analytic {
 
 namespace {
 
-void require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument(what);
-}
-
 double deg2rad(double d) { return d * std::numbers::pi / 180.0; }
 double sgn(double x) { return (x > 0.0) - (x < 0.0); }
 
@@ -23,10 +20,10 @@ double sgn(double x) { return (x > 0.0) - (x < 0.0); }
 
 void CriterionInput::validate() const {
   require(std::isfinite(skew_deg) && std::abs(skew_deg) < 90.0,
-          "skew: must be in (-90, 90) degrees");
-  require(std::isfinite(width) && width > 0.0, "width: must be > 0 [m]");
-  require(std::isfinite(length) && length > 0.0, "length: must be > 0 [m]");
-  require(std::isfinite(friction) && friction >= 0.0, "friction: must be >= 0");
+          "skew", "must be in (-90, 90) degrees");
+  require(std::isfinite(width) && width > 0.0, "width", "must be > 0 [m]");
+  require(std::isfinite(length) && length > 0.0, "length", "must be > 0 [m]");
+  require(std::isfinite(friction) && friction >= 0.0, "friction", "must be >= 0");
 }
 
 double eta(const CriterionInput& in, double impulse_ratio) {
@@ -57,13 +54,13 @@ Criterion rotation_criterion(const CriterionInput& in) {
 CriterionPrediction predict_right_end_impact(const CriterionInput& in, double vx, double vy,
                                              double restitution) {
   in.validate();
-  require(std::isfinite(vx) && vx > 0.0, "vx: must be > 0 (towards the right abutment)");
-  require(std::isfinite(vy), "vy: must be finite");
-  require(restitution >= 0.0 && restitution <= 1.0, "restitution: must be in [0, 1]");
+  require(std::isfinite(vx) && vx > 0.0, "vx", "must be > 0 (towards the right abutment)");
+  require(std::isfinite(vy), "vy", "must be finite");
+  require(restitution >= 0.0 && restitution <= 1.0, "restitution", "must be in [0, 1]");
   const double a = deg2rad(in.skew_deg);
   const double gn = -vx * std::cos(a) + vy * std::sin(a);
   const double gt = -vx * std::sin(a) - vy * std::cos(a);
-  require(gn < 0.0, "vx, vy: the end must approach the abutment (gdot_N- < 0)");
+  require(gn < 0.0, "vx, vy", "the end must approach the abutment (gdot_N- < 0)");
   CriterionPrediction out;
   const double e = restitution;
   out.sliding = std::abs(gt) > in.friction * (1.0 + e) * std::abs(gn);

@@ -94,4 +94,18 @@ Assembly::Parts DeckChain::parts(const Parameters& p) {
   return out;
 }
 
+std::span<const config::Field<DeckChain::Joint>> joint_fields() {
+  namespace c = config;
+  using P = DeckChain::Joint;
+  static const c::Field<P> f[] = {
+      c::number<&P::gap>("gap", "m", c::non_negative(),
+                         "clear distance along the axis between the two faces at rest"),
+      c::number<&P::restitution>("restitution", "-", c::closed(0, 1),
+                                 "Newton's ε_N of the joint's two corner contacts"),
+      c::number<&P::friction>("friction", "-", c::non_negative(),
+                              "Coulomb's μ of the joint's two corner contacts"),
+  };
+  return f;
+}
+
 }  // namespace nsb::models

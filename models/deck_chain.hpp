@@ -27,8 +27,10 @@
 // Units: kN, t, m, s, rad, deg.
 #pragma once
 
+#include "config/schema.hpp"
 #include "models/assembly.hpp"
 
+#include <span>
 #include <Eigen/Dense>
 
 #include <vector>
@@ -63,5 +65,9 @@ struct DeckChain {
   // Centre x of deck i at rest [m].
   static double rest_position(const Parameters& p, int deck);
 };
+
+// One joint between two deck bodies or a deck and an abutment: the keys of an element of
+// [[model.hinges]] (bridge) or [[model.joints]] (deck chain).
+std::span<const config::Field<DeckChain::Joint>> joint_fields();
 
 }  // namespace nsb::models

@@ -2,6 +2,7 @@
 // exact solution of the impact problem by enumeration of its cases; see analytic.hpp for the
 // formulas and docs/analytic.md for the derivations.
 #include "models/analytic.hpp"
+#include "models/field_checks.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -21,21 +22,17 @@ constexpr double kCaseTolerance = 1e-10;
 // slide, coincide).
 constexpr double kSameSolution = 1e-8;
 
-void require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument(what);
-}
-
 }  // namespace
 
 void DeckBody::validate() const {
-  require(std::isfinite(mass) && mass > 0.0, "mass: must be > 0 [t]");
-  require(std::isfinite(inertia) && inertia > 0.0, "inertia: must be > 0 [t m^2]");
+  require(std::isfinite(mass) && mass > 0.0, "mass", "must be > 0 [t]");
+  require(std::isfinite(inertia) && inertia > 0.0, "inertia", "must be > 0 [t m^2]");
   deck.validate();
 }
 
 Eigen::Vector2d deck_corner(const DeckGeometry& g, int corner) {
   g.validate();
-  require(corner >= 1 && corner <= 4, "corner: must be 1, 2, 3 or 4");
+  require(corner >= 1 && corner <= 4, "corner", "must be 1, 2, 3 or 4");
   return g.corner(corner - 1);
 }
 
@@ -50,14 +47,14 @@ ContactColumns deck_contact_columns(const DeckGeometry& g, int corner) {
 
 void ImpactProblem::validate() const {
   const auto m = restitution.size();
-  require(m >= 1 && m <= 4, "restitution: 1 to 4 contacts are supported");
-  require(friction.size() == m, "friction: size must equal the number of contacts");
-  require(gdot_minus.size() == 2 * m, "gdot_minus: size must be 2m");
-  require(delassus.rows() == 2 * m && delassus.cols() == 2 * m, "delassus: must be 2m x 2m");
-  require(delassus.allFinite() && gdot_minus.allFinite(), "delassus, gdot_minus: must be finite");
+  require(m >= 1 && m <= 4, "restitution", "1 to 4 contacts are supported");
+  require(friction.size() == m, "friction", "size must equal the number of contacts");
+  require(gdot_minus.size() == 2 * m, "gdot_minus", "size must be 2m");
+  require(delassus.rows() == 2 * m && delassus.cols() == 2 * m, "delassus", "must be 2m x 2m");
+  require(delassus.allFinite() && gdot_minus.allFinite(), "delassus, gdot_minus", "must be finite");
   for (Eigen::Index i = 0; i < m; ++i) {
-    require(restitution(i) >= 0.0 && restitution(i) <= 1.0, "restitution: must be in [0, 1]");
-    require(std::isfinite(friction(i)) && friction(i) >= 0.0, "friction: must be >= 0");
+    require(restitution(i) >= 0.0 && restitution(i) <= 1.0, "restitution", "must be in [0, 1]");
+    require(std::isfinite(friction(i)) && friction(i) >= 0.0, "friction", "must be >= 0");
   }
 }
 
@@ -152,7 +149,7 @@ ImpactCases solve_impact_by_cases(const ImpactProblem& p) {
   const Eigen::Index n2 = 2 * m;
   const double vscale = 1.0 + p.gdot_minus.cwiseAbs().maxCoeff();
   const double gscale = p.delassus.cwiseAbs().maxCoeff();
-  require(gscale > 0.0, "delassus: must not be zero");
+  require(gscale > 0.0, "delassus", "must not be zero");
   const double vtol = kCaseTolerance * vscale;
   const double itol = vtol / gscale;  // impulse tolerance
   ImpactCases out;
@@ -199,8 +196,8 @@ DeckImpact deck_impact(const DeckBody& g, const std::vector<int>& corners,
                        const Eigen::Vector3d& velocity_before, double restitution,
                        double friction) {
   g.validate();
-  require(!corners.empty() && corners.size() <= 4, "corners: give 1 to 4 corners");
-  require(velocity_before.allFinite(), "velocity_before: must be finite");
+  require(!corners.empty() && corners.size() <= 4, "corners", "give 1 to 4 corners");
+  require(velocity_before.allFinite(), "velocity_before", "must be finite");
   const auto m = static_cast<Eigen::Index>(corners.size());
   Eigen::MatrixXd W(3, 2 * m);  // [W_N W_T]
   for (Eigen::Index i = 0; i < m; ++i) {

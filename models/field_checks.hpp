@@ -1,5 +1,5 @@
 // Bad parameters of a model or part: std::invalid_argument "field: what", which the scene
-// reader prefixes with the file, line and key (models/scene_schema.hpp).
+// reader prefixes with the file, line and key (scene/scene_reader.hpp).
 #pragma once
 
 #include <cstddef>

@@ -326,4 +326,25 @@ const std::string& GroundMotion::source() const {
   return data_ ? data_->source : kNone;
 }
 
+void validate_record(const Record& r) {
+  const std::string who = "record '" + r.source + "'";
+  if (r.t.size() != r.a.size()) {
+    throw std::invalid_argument(who + ": t and a differ in size (" + std::to_string(r.t.size()) +
+                                " vs " + std::to_string(r.a.size()) + ")");
+  }
+  if (r.t.size() < kMinRecordSamples) {
+    throw std::invalid_argument(who + ": needs at least " + std::to_string(kMinRecordSamples) +
+                                " samples, has " + std::to_string(r.t.size()));
+  }
+  for (std::size_t i = 0; i < r.t.size(); ++i) {
+    if (!std::isfinite(r.t[i]) || !std::isfinite(r.a[i])) {
+      throw std::invalid_argument(who + ": sample " + std::to_string(i) + " is not finite");
+    }
+    if (i > 0 && !(r.t[i] > r.t[i - 1])) {
+      throw std::invalid_argument(who + ": time of sample " + std::to_string(i) +
+                                  " does not increase strictly");
+    }
+  }
+}
+
 }  // namespace nsb::models

@@ -5,13 +5,13 @@
 // displacement are its exact integrals (piecewise quartic and quintic), optionally corrected
 // by a least-squares polynomial baseline so that the motion ends at rest. Several supports
 // are several GroundMotion objects, each with its own record or delay (wave passage).
-// Formats, units, scaling, the baseline method and the time compression: docs/ground-motions.md.
+// The record files are read by scene/records.hpp. Formats, units, scaling, the baseline method
+// and the time compression: docs/ground-motions.md.
 //
 // Units: m, s, m/s^2.
 #pragma once
 
-#include <filesystem>
-#include <istream>
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,16 +24,8 @@ struct Record {
   std::string source;     // file it was read from (or a description)
 };
 
-// Readers. Errors throw std::invalid_argument "<file>:<line>: <what>" (missing file,
-// non-numeric token, NPTS mismatch, non-increasing time, NaN or infinite value).
-Record read_at2(const std::filesystem::path&, double g = 9.81);          // PEER NGA .AT2 (units of g)
-Record read_two_column(const std::filesystem::path&, double unit = 1.0); // "t a" per line; a*unit -> m/s^2
-Record read_csv(const std::filesystem::path&, double unit = 1.0);        // header line, columns t,a
-// The same from a stream; `name` stands for the file in messages. The path readers refuse
-// anything but a regular file (a FIFO or a device could block or never end).
-Record read_at2(std::istream& in, const std::string& name, double g = 9.81);
-Record read_two_column(std::istream& in, const std::string& name, double unit = 1.0);
-Record read_csv(std::istream& in, const std::string& name, double unit = 1.0);
+// A cubic spline needs three samples (GSL's cspline minimum size).
+inline constexpr std::size_t kMinRecordSamples = 3;
 
 // Checks a record built in code: equal sizes, at least 3 samples, finite values, strictly
 // increasing time. Throws std::invalid_argument naming the record's source and the sample.

@@ -1,5 +1,7 @@
 #include "models/limit_watch.hpp"
 
+#include "models/field_checks.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -8,10 +10,6 @@
 namespace nsb::models {
 
 namespace {
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument("limits." + field + ": " + what);
-}
 
 integrators::LimitStateValue value(std::string name, const char* unit, bool exceeded,
                                    double time, double margin) {
@@ -30,21 +28,23 @@ void LimitSpec::validate(int contacts, int bents, int bodies) const {
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const std::string field = "joints[" + std::to_string(j) + "].";
     for (int c : joints[j].contacts) {
-      require(c >= 0 && c < contacts, field + "contacts", "must name contacts of the assembly");
+      require(c >= 0 && c < contacts, "limits." + field + "contacts",
+              "must name contacts of the assembly");
     }
-    require(joints[j].seat_length > 0, field + "seat_length", "must be > 0 [m]");
+    require(joints[j].seat_length > 0, "limits." + field + "seat_length", "must be > 0 [m]");
   }
-  require(std::isfinite(drift_ratio) && drift_ratio >= 0, "drift_ratio", "must be >= 0 [-]");
+  require(std::isfinite(drift_ratio) && drift_ratio >= 0, "limits.drift_ratio",
+          "must be >= 0 [-]");
   if (drift_ratio > 0) {
-    require(bent_heights.size() == static_cast<std::size_t>(bents), "bent_heights",
+    require(bent_heights.size() == static_cast<std::size_t>(bents), "limits.bent_heights",
             "one height per bent [m]");
     for (double h : bent_heights) {
-      require(std::isfinite(h) && h > 0, "bent_heights", "every height must be > 0 [m]");
+      require(std::isfinite(h) && h > 0, "limits.bent_heights", "every height must be > 0 [m]");
     }
   }
-  require(std::isfinite(residual_rotation) && residual_rotation >= 0, "residual_rotation",
+  require(std::isfinite(residual_rotation) && residual_rotation >= 0, "limits.residual_rotation",
           "must be >= 0 [rad]");
-  require(bodies >= 1, "bodies", "at least one body");
+  require(bodies >= 1, "limits.bodies", "at least one body");
 }
 
 LimitWatch::LimitWatch(LimitSpec spec, int bodies)

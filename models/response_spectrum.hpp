@@ -15,7 +15,7 @@
 
 namespace nsb::models {
 
-// g [m/s^2] for PSA in g: the value read_at2 and the scenes use (models/scene.cpp).
+// g [m/s^2] for PSA in g: the value read_at2 and the scenes use (scene/records.hpp).
 inline constexpr double kSpectrumGravity = 9.81;
 
 // Peaks are taken at the record's samples and, where a period is shorter than

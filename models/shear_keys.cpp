@@ -96,4 +96,20 @@ std::vector<integrators::LimitStateValue> Assembly::key_limit_states() const {
   return out;
 }
 
+std::span<const config::Field<ShearKeyParameters>> shear_key_fields() {
+  namespace c = config;
+  using K = ShearKeyParameters;
+  static const c::Field<K> f[] = {
+      c::number<&K::gap>("gap", "m", c::non_negative(),
+                         "clear transverse gap between the deck's side and each key at rest"),
+      c::number<&K::restitution>("restitution", "-", c::closed(0, 1),
+                                 "Newton's coefficient e of the key contacts"),
+      c::number<&K::friction>("friction", "-", c::non_negative(),
+                              "Coulomb's coefficient mu of the key contacts"),
+      c::number<&K::capacity>("capacity", "kN", c::non_negative(),
+                              "mean contact force of a step that breaks a key; 0: unbreakable"),
+  };
+  return f;
+}
+
 }  // namespace nsb::models

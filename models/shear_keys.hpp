@@ -13,8 +13,10 @@
 // Units: kN, m.
 #pragma once
 
+#include "config/schema.hpp"
 #include "models/assembly.hpp"
 
+#include <span>
 #include <string>
 
 namespace nsb::models {
@@ -38,5 +40,8 @@ struct ShearKeyParameters {
 // with the normal (0, -s) pointing from the key towards the deck.
 void add_shear_keys(Assembly::Parts& parts, const ShearKeyParameters& keys,
                     std::size_t deck_bodies = 0);
+
+// The keys of [model.shear_keys] (docs/scenes.md).
+std::span<const config::Field<ShearKeyParameters>> shear_key_fields();
 
 }  // namespace nsb::models

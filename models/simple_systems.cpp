@@ -6,7 +6,7 @@
 // gravity once.
 #include "models/simple_systems.hpp"
 
-#include "models/scene_schema.hpp"
+#include "models/field_checks.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -21,12 +21,6 @@ using integrators::EnergyState;
 using integrators::Matrix;
 using integrators::PowerTerms;
 using integrators::Vector;
-
-void require(bool ok, const std::string& field, const std::string& allowed, double value) {
-  if (!ok) {
-    throw std::invalid_argument(field + ": " + allowed + " (got " + std::to_string(value) + ")");
-  }
-}
 
 // Harmonic forcing F0 sin(2 pi f t); f = 0 gives sin(0) = 0, i.e. no force.
 double harmonic(double amplitude, double frequency_hz, double t) {
@@ -71,8 +65,8 @@ EnergyState BouncingBall::energy(double, const Vector& q) const {
 void ImpactOscillator::Parameters::validate() const {
   config::validate_fields<Parameters>(*this, impact_oscillator_fields());
   require(initial_position <= gap, "initial_position",
-          "must be <= gap (an initial position beyond the stop is a penetration)",
-          initial_position);
+          "must be <= gap (an initial position beyond the stop is a penetration) (got " +
+              std::to_string(initial_position) + ")");
 }
 
 ImpactOscillator::ImpactOscillator(const Parameters& p) : SystemBase({"x"}, {"vx"}), p_(p) {
@@ -162,6 +156,56 @@ EnergyState SlidingBlock::energy(double, const Vector& q) const {
   EnergyState e;
   e.stored = -(gx_ * q(0) + gy_ * q(1));  // potential of the constant gravity force
   return e;
+}
+
+std::span<const config::Field<BouncingBall::Parameters>> bouncing_ball_fields() {
+  namespace c = config;
+  using P = BouncingBall::Parameters;
+  static const c::Field<P> f[] = {
+      c::number<&P::mass>("mass", "t", c::positive(), "mass m"),
+      c::number<&P::height>("height", "m", c::non_negative(),
+                            "initial height = the initial gap (< 0 would penetrate)"),
+      c::number<&P::velocity>("velocity", "m/s", c::any(), "initial velocity, upward positive"),
+      c::number<&P::restitution>("restitution", "-", c::closed(0, 1), "Newton's coefficient e"),
+      c::number<&P::gravity>("gravity", "m/s^2", c::non_negative(), "g"),
+  };
+  return f;
+}
+
+std::span<const config::Field<ImpactOscillator::Parameters>> impact_oscillator_fields() {
+  namespace c = config;
+  using P = ImpactOscillator::Parameters;
+  static const c::Field<P> f[] = {
+      c::number<&P::mass>("mass", "t", c::positive(), "mass m"),
+      c::number<&P::stiffness>("stiffness", "kN/m", c::non_negative(), "spring k"),
+      c::number<&P::damping_ratio>("damping_ratio", "-", c::non_negative(),
+                                   "ζ; c = 2ζ√(km)"),
+      c::number<&P::gap>("gap", "m", c::any(), "position of the stop"),
+      c::number<&P::restitution>("restitution", "-", c::closed(0, 1), "Newton's coefficient e"),
+      c::number<&P::initial_position>("initial_position", "m", c::any(),
+                                      "x₀; at most gap (else an initial penetration)"),
+      c::number<&P::initial_velocity>("initial_velocity", "m/s", c::any(), "v₀"),
+      c::number<&P::force_amplitude>("force_amplitude", "kN", c::any(), "F₀ of F₀ sin(2π f t)"),
+      c::number<&P::force_frequency>("force_frequency", "Hz", c::non_negative(), "f"),
+  };
+  return f;
+}
+
+std::span<const config::Field<SlidingBlock::Parameters>> sliding_block_fields() {
+  namespace c = config;
+  using P = SlidingBlock::Parameters;
+  static const c::Field<P> f[] = {
+      c::number<&P::mass>("mass", "t", c::positive(), "mass m"),
+      c::number<&P::friction>("friction", "-", c::non_negative(), "Coulomb μ"),
+      c::number<&P::gravity>("gravity", "m/s^2", c::non_negative(), "g"),
+      c::number<&P::initial_velocity>("initial_velocity", "m/s", c::any(), "v₀ along x"),
+      c::number<&P::force>("force", "kN", c::any(), "constant driving force along x"),
+      c::number<&P::force_amplitude>("force_amplitude", "kN", c::any(),
+                                     "F₀ of F₀ sin(2π f t) along x"),
+      c::number<&P::force_frequency>("force_frequency", "Hz", c::non_negative(), "f"),
+      c::number<&P::incline_deg>("incline_deg", "deg", c::open(-90, 90), "slope angle β"),
+  };
+  return f;
 }
 
 }  // namespace nsb::models

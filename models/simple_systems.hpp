@@ -7,8 +7,10 @@
 // rheonomic terms what_N, what_T, wbar_N, wbar_T are zero, and W_N, W_T are constant.
 #pragma once
 
+#include "config/schema.hpp"
 #include "integrators/system.hpp"
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -119,5 +121,11 @@ class SlidingBlock final : public integrators::SystemBase {  // 2 DOF: x, y; gro
   Parameters p_;
   double gx_ = 0.0, gy_ = 0.0;  // gravity force components [kN]
 };
+
+// The [model] keys of each system besides kind (docs/scenes.md): key, unit, range and meaning
+// of each parameter; validate() checks them and the scene reader reads them.
+std::span<const config::Field<BouncingBall::Parameters>> bouncing_ball_fields();
+std::span<const config::Field<ImpactOscillator::Parameters>> impact_oscillator_fields();
+std::span<const config::Field<SlidingBlock::Parameters>> sliding_block_fields();
 
 }  // namespace nsb::models

@@ -43,7 +43,7 @@ std::vector<EtaPoint> eta_points(const Setup& s) {
 }
 
 double free_deck_length(const Study& s) {
-  const models::Scene scene = load_run_scene(s, {"", kFreeDeck, {}});
+  const scene::Scene scene = load_run_scene(s, {"", kFreeDeck, {}});
   return scene.design.value().deck.length;
 }
 
@@ -102,7 +102,7 @@ Drawing draw_eta_map(const std::string& name, const Study& s, const Canvas& canv
     t.add({1, kEtaMapFriction, p.skew_deg, p.ratio, double(rotating), double(predicted), om[i]});
   }
   // The benchmark deck.
-  const models::Scene bridge = load_run_scene(s, exc5_moreau());
+  const scene::Scene bridge = load_run_scene(s, exc5_moreau());
   const double width = bridge.design.value().deck.width;
   t.add({2, 0.5, 0.0, width / length, 1, 1, 0});
   return draw_table(canvas, name, t,

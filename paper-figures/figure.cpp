@@ -133,7 +133,7 @@ std::vector<std::string> compliance_overrides(double factor, integrators::Dampin
 }
 
 LawRestitution law_restitution(const Study& study, integrators::DampingLaw law) {
-  const models::Scene scene = load_run_scene(study, exc5_moreau());
+  const scene::Scene scene = load_run_scene(study, exc5_moreau());
   const double eps = scene.design.value().restitution;
   const double chi = integrators::damping_factor(law, eps);
   return {std::string(integrators::to_string(law)), chi,
@@ -154,8 +154,8 @@ SlidingState sliding_state_of(const RunRecord& sliding, const Sliding& slide, do
                          h.series("lambdaT" + c));
 }
 
-models::Scene load_run_scene(const Study& study, const RunSpec& spec) {
-  return models::load_scene(study.scenes / (spec.scene + ".toml"), spec.overrides);
+scene::Scene load_run_scene(const Study& study, const RunSpec& spec) {
+  return scene::load_scene(study.scenes / (spec.scene + ".toml"), spec.overrides);
 }
 
 }  // namespace nsb::paper_figures

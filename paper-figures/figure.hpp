@@ -15,10 +15,10 @@
 #pragma once
 
 #include "integrators/compliance.hpp"
-#include "models/scene.hpp"
 #include "paper-figures/plot.hpp"
 #include "paper-figures/runs.hpp"
 #include "paper-figures/uncertainty.hpp"
+#include "scene/scene.hpp"
 
 #include <array>
 #include <filesystem>
@@ -131,7 +131,7 @@ Sliding longest_sliding_of(const RunRecord& run);
 // step (kExc5Sliding) with the friction coefficient of its scene (Fig. 5, C6).
 SlidingState sliding_state_of(const RunRecord& sliding, const Sliding& slide, double mu);
 // A run's scene, loaded with the run's overrides (not integrated): its system's parameters.
-models::Scene load_run_scene(const Study& study, const RunSpec& spec);
+scene::Scene load_run_scene(const Study& study, const RunSpec& spec);
 
 // The claims C1..C6 from the figures' runs and Fig. 6's sweep (paper-figures/claims.hpp),
 // each with the runs it used.

@@ -28,7 +28,7 @@ void FigureOptions::validate() const {
   if (workers < 1 || workers > 64) throw std::invalid_argument("workers: must be in [1, 64]");
 }
 
-double input_pga(const models::Scene& scene, bool transverse) {
+double input_pga(const scene::Scene& scene, bool transverse) {
   if (!scene.design || scene.design->excitation.bents.empty()) return 0.0;
   const auto& bent = scene.design->excitation.bents[0];
   const auto& m = transverse ? bent.transverse : bent.longitudinal;

@@ -1,16 +1,16 @@
 // The paper's figures and claims (Shi & Dimitrakopoulos 2017), regenerated from runs of the
 // benchmark bridge (scenes/bridge-exc*.toml) and of the free deck
 // (scenes/rigid-deck-straight.toml). Every run goes through the sweep module's runner (an
-// ordinary models::load_scene + integrators::integrate call) and is read back from its outputs.
+// ordinary scene::load_scene + integrators::integrate call) and is read back from its outputs.
 // Each figure (paper-figures/figure.hpp: one registered entry per figure) is written as PNG and
 // SVG (gnuplot) with the CSV it was drawn from; the claims go to claims.json and claims.md
 // (paper-figures/claims.hpp). What is run, the thresholds and the run times:
 // docs/paper-figures.md.
 #pragma once
 
-#include "models/scene.hpp"
 #include "paper-figures/claims.hpp"
 #include "paper-figures/uncertainty.hpp"
+#include "scene/scene.hpp"
 
 #include <filesystem>
 #include <string>
@@ -43,7 +43,7 @@ struct FigureResult {
 // The PGA of a bridge's input as its first bent receives it [g]: transverse or longitudinal
 // (0 for a scene without a bridge design or without that motion). The figures' PGA axis and
 // claim C2 use it.
-double input_pga(const models::Scene& scene, bool transverse);
+double input_pga(const scene::Scene& scene, bool transverse);
 
 // Runs everything and writes the figures, claims.json and claims.md into options.out, then
 // the uncertainty study (paper-figures/uncertainty.hpp) beside them.

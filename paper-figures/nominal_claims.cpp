@@ -105,7 +105,7 @@ Claim c6_of(const Study& s) {
     return c;
   }
   const RunRecord& sr = s.runs.at(kExc5Sliding);
-  const models::Scene scene = load_run_scene(s, s.runs.at(kExc5Moreau).spec);
+  const scene::Scene scene = load_run_scene(s, s.runs.at(kExc5Moreau).spec);
   const double mu = scene.design.value().friction;
   Claim c = claim_c6(sliding_state_of(sr, longest, mu), mu);
   use_runs(c, s, {kExc5Sliding});

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 #include "sweep/csv.hpp"
 #include "sweep/design.hpp"
 #include "sweep/runner.hpp"
@@ -183,7 +183,7 @@ std::vector<RunRecord> make_runs(const std::vector<RunSpec>& specs, const fs::pa
                                  const fs::path& dir, int workers) {
   std::map<std::string, std::vector<const RunSpec*>> by_scene;
   for (const auto& s : specs) {
-    models::load_scene(scenes / (s.scene + ".toml"), s.overrides);
+    scene::load_scene(scenes / (s.scene + ".toml"), s.overrides);
     by_scene[s.scene].push_back(&s);
   }
   std::map<std::string, RunRecord> made;

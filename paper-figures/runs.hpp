@@ -1,5 +1,5 @@
 // The runs behind the figures: each is a scene of scenes/ with overrides, made by the sweep
-// module's runner (sweep::run_threaded: an ordinary models::load_scene + integrators::integrate
+// module's runner (sweep::run_threaded: an ordinary scene::load_scene + integrators::integrate
 // call whose outputs go to runs/<id>/) and read back from those outputs. history.csv and
 // events.csv hold shortest round-trip numbers (std::to_chars), so the history read back holds
 // the very doubles the recorder held.

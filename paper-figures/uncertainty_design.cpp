@@ -9,9 +9,9 @@
 #include <stdexcept>
 
 #include "io/csv.hpp"
-#include "models/scene.hpp"
 #include "paper-figures/figure.hpp"
 #include "paper-figures/figures.hpp"
+#include "scene/scene.hpp"
 
 namespace nsb::paper_figures {
 
@@ -184,8 +184,8 @@ SceneTargets scene_targets(const fs::path& scenes, const std::vector<ClaimRun>& 
     }
   }
   // The longitudinal record's own PGA: the base scene with both targets off (factor 1).
-  const models::Scene raw =
-      models::load_scene(scenes / ("bridge-exc" + std::to_string(kBaseExcitation) + ".toml"),
+  const scene::Scene raw =
+      scene::load_scene(scenes / ("bridge-exc" + std::to_string(kBaseExcitation) + ".toml"),
                          {"model.excitation.target_pga=0", "model.excitation.longitudinal_pga=0"});
   t.longitudinal_record_pga = input_pga(raw, false);
   if (!(t.longitudinal_record_pga > 0)) {

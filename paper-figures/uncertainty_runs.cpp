@@ -6,8 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "models/scene.hpp"
 #include "paper-figures/figures.hpp"
+#include "scene/scene.hpp"
 #include "sweep/csv.hpp"
 #include "sweep/runner.hpp"
 
@@ -114,7 +114,7 @@ SlidingState sliding_state(const RunRow& r, double mu, std::string& failure) {
 InputPga input_pgas(const fs::path& scenes, const std::vector<int>& excitations) {
   InputPga pga;
   for (int n : excitations) {
-    const auto scene = models::load_scene(scenes / ("bridge-exc" + std::to_string(n) + ".toml"));
+    const auto scene = scene::load_scene(scenes / ("bridge-exc" + std::to_string(n) + ".toml"));
     pga[n] = {input_pga(scene, true), input_pga(scene, false)};
   }
   return pga;

@@ -53,7 +53,7 @@ struct Digest {
   // summary.json "limit_states": the system's limit states after the run
   // (System::limit_states(), docs/limit-states.md), which runs::run copies from the system.
   std::vector<integrators::LimitStateValue> limit_states;
-  // summary.json "input": the scene's excitation as scaled (models::Scene::input), which
+  // summary.json "input": the scene's excitation as scaled (scene::Scene::input), which
   // runs::run copies from the scene; empty for a digest of a history alone.
   models::InputMotion input;
 

@@ -14,7 +14,7 @@ namespace nsb::runs {
 PreparedRun prepare(const RunRequest& request) {
   std::vector<std::string> overrides = request.overrides;
   if (!request.method.empty()) overrides.push_back("solver.method=" + request.method);
-  PreparedRun p{models::load_scene(request.scene, overrides), {}};
+  PreparedRun p{scene::load_scene(request.scene, overrides), {}};
   const std::string file = request.scene.string();
   if (!p.scene.system) throw std::invalid_argument(file + ": the scene built no system");
   try {
@@ -35,7 +35,7 @@ PreparedRun prepare(const RunRequest& request) {
 }
 
 RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
-  models::Scene& scene = prepared.scene;
+  scene::Scene& scene = prepared.scene;
   integrators::Recorder history(*scene.system, scene.output.sample_dt);
   std::optional<LcpDump> dump;
   if (!prepared.dump_lcp.empty()) dump.emplace(prepared.dump_lcp);

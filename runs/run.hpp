@@ -12,8 +12,8 @@
 #pragma once
 
 #include "integrators/recorder.hpp"
-#include "models/scene.hpp"
 #include "runs/digest.hpp"
+#include "scene/scene.hpp"
 
 #include <filesystem>
 #include <string>
@@ -41,7 +41,7 @@ struct RunRecord {
 
 // A scene loaded and checked, ready to integrate.
 struct PreparedRun {
-  models::Scene scene;
+  scene::Scene scene;
   std::vector<std::string> warnings;  // step warnings (runs/trust.hpp), found before the run
   std::filesystem::path dump_lcp{};    // RunRequest::dump_lcp, created and checked writable
 };

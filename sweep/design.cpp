@@ -1,7 +1,8 @@
 #include "sweep/design.hpp"
 
 #include "io/csv.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_reader.hpp"
 #include "sweep/csv.hpp"
 #include "sweep/expand.hpp"
 #include "sweep/fragility_sweep.hpp"
@@ -39,21 +40,6 @@ std::string_view to_string(Mode m) {
 
 namespace {
 
-// Where errors point: "<file>:<line>:<col>: <key>: <what>".
-struct Context {
-  std::string file;
-  [[noreturn]] void fail(const toml::node* n, const std::string& key,
-                         const std::string& what) const {
-    std::ostringstream s;
-    s << file;
-    if (n != nullptr && n->source().begin.line > 0) {
-      s << ':' << n->source().begin.line << ':' << n->source().begin.column;
-    }
-    s << ": " << key << ": " << what;
-    throw std::invalid_argument(s.str());
-  }
-};
-
 // A TOML basic string holding s, so that a label with spaces or '=' reaches the scene intact.
 std::string toml_string(const std::string& s) {
   std::string out = "\"";
@@ -64,7 +50,7 @@ std::string toml_string(const std::string& s) {
   return out + '"';
 }
 
-void check_keys(const Context& c, const toml::table& t, const std::string& where,
+void check_keys(const scene::Source& c, const toml::table& t, const std::string& where,
                 const std::set<std::string>& allowed) {
   for (const auto& [k, v] : t) {
     const std::string key(k.str());
@@ -76,7 +62,7 @@ void check_keys(const Context& c, const toml::table& t, const std::string& where
   }
 }
 
-double number(const Context& c, const toml::node& n, const std::string& key) {
+double number(const scene::Source& c, const toml::node& n, const std::string& key) {
   if (const auto v = n.value<double>(); v && (n.is_floating_point() || n.is_integer())) {
     if (!std::isfinite(*v)) c.fail(&n, key, "must be finite");
     return *v;
@@ -86,7 +72,7 @@ double number(const Context& c, const toml::node& n, const std::string& key) {
 
 // The label and override text of a TOML value: numbers in their shortest round-trip form,
 // strings quoted for the scene reader, booleans as true/false.
-Level value_level(const Context& c, const toml::node& n, const std::string& key,
+Level value_level(const scene::Source& c, const toml::node& n, const std::string& key,
                   const std::string& fkey) {
   if (n.is_integer()) {
     const std::string s = std::to_string(*n.value<std::int64_t>());
@@ -107,7 +93,7 @@ Level value_level(const Context& c, const toml::node& n, const std::string& key,
   c.fail(&n, key, "must be a number, a string or a boolean");
 }
 
-const toml::array& array_of(const Context& c, const toml::node& n, const std::string& key) {
+const toml::array& array_of(const scene::Source& c, const toml::node& n, const std::string& key) {
   const auto* a = n.as_array();
   if (a == nullptr) c.fail(&n, key, "must be an array");
   if (a->empty()) c.fail(&n, key, "must not be empty");
@@ -115,7 +101,7 @@ const toml::array& array_of(const Context& c, const toml::node& n, const std::st
 }
 
 // [a, b, n]: n >= 1 points from a to b, both ends exact.
-std::vector<double> spaced(const Context& c, const toml::node& n, const std::string& key,
+std::vector<double> spaced(const scene::Source& c, const toml::node& n, const std::string& key,
                            bool geometric) {
   const auto& a = array_of(c, n, key);
   if (a.size() != 3 || !a[2].is_integer()) c.fail(&n, key, "must be [first, last, count]");
@@ -154,7 +140,7 @@ const std::vector<std::pair<std::string, std::string>>& record_components() {
 
 // A level of `records`: {name, transverse, longitudinal}, each component a record file that
 // becomes its scene key's override; the label is the name, else the first file's stem.
-Level record_level(const Context& c, const toml::node& r, const std::string& rw,
+Level record_level(const scene::Source& c, const toml::node& r, const std::string& rw,
                    const fs::path& dir) {
   const auto* rt = r.as_table();
   if (rt == nullptr) c.fail(&r, rw, "each record must be a table {name, transverse, longitudinal}");
@@ -179,7 +165,7 @@ Level record_level(const Context& c, const toml::node& r, const std::string& rw,
 // The levels of `suite` (a CSV whose `components` columns, default file_1 then file_2, hold the
 // transverse and the longitudinal file) or `folder` (its .AT2 files, transverse), one per record
 // (docs/sweep.md, "Record suites").
-std::vector<Level> suite_levels(const Context& c, const toml::table& t, const std::string& where,
+std::vector<Level> suite_levels(const scene::Source& c, const toml::table& t, const std::string& where,
                                 const fs::path& dir) {
   const auto* suite = t.get("suite");
   const auto* comp = t.get("components");
@@ -218,7 +204,7 @@ std::vector<Level> suite_levels(const Context& c, const toml::table& t, const st
 }
 
 // A level of `levels`: {name, set}, a named list of overrides.
-Level named_level(const Context& c, const toml::node& l, const std::string& lw) {
+Level named_level(const scene::Source& c, const toml::node& l, const std::string& lw) {
   const auto* lt = l.as_table();
   if (lt == nullptr) c.fail(&l, lw, "each level must be a table {name, set}");
   check_keys(c, *lt, lw, {"name", "set"});
@@ -234,7 +220,7 @@ Level named_level(const Context& c, const toml::node& l, const std::string& lw) 
   return level;
 }
 
-Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, std::size_t index,
+Factor read_factor(const scene::Source& c, const toml::table& t, const fs::path& dir, std::size_t index,
                    Mode mode) {
   const std::string where = "factor[" + std::to_string(index) + "]";
   check_keys(c, t, where,
@@ -302,7 +288,7 @@ Factor read_factor(const Context& c, const toml::table& t, const fs::path& dir, 
 
 // List mode: every row of the CSV is a run. A column named like a [[factor]] with records or
 // levels selects a level by its name; any other column is a scene key and its cells values.
-void expand_list(const Context& c, const toml::node& runs_node, const fs::path& dir, Design& d) {
+void expand_list(const scene::Source& c, const toml::node& runs_node, const fs::path& dir, Design& d) {
   if (!runs_node.is_string()) c.fail(&runs_node, "runs", "must be the name of a CSV file");
   const fs::path csv = dir / *runs_node.value<std::string>();
   std::ifstream in(csv);
@@ -427,7 +413,7 @@ toml::table parse_design(const fs::path& file) {
 }
 
 // `scene` (resolved against the design's folder) and `set`, then the command line's --set.
-void read_scene(const Context& c, const toml::table& root,
+void read_scene(const scene::Source& c, const toml::table& root,
                 const std::vector<std::string>& extra_set, Design& d) {
   const fs::path dir = d.file.parent_path();
   const auto* scene = root.get("scene");
@@ -453,7 +439,7 @@ void read_scene(const Context& c, const toml::table& root,
 }
 
 // `mode`, and the keys that only one mode takes: `samples` and `seed` (latin), `runs` (list).
-void read_mode(const Context& c, const toml::table& root, Design& d) {
+void read_mode(const scene::Source& c, const toml::table& root, Design& d) {
   if (const auto* mode = root.get("mode")) {
     const std::string m = mode->value<std::string>().value_or("");
     if (m == "grid")
@@ -491,7 +477,7 @@ void read_mode(const Context& c, const toml::table& root, Design& d) {
   if (d.mode != Mode::kList && runs != nullptr) c.fail(runs, "runs", "only for mode = \"list\"");
 }
 
-void read_factors(const Context& c, const toml::table& root, Design& d) {
+void read_factors(const scene::Source& c, const toml::table& root, Design& d) {
   const auto* factors = root.get("factor");
   if (factors == nullptr) return;
   const auto* a = factors->as_array();
@@ -507,7 +493,7 @@ void read_factors(const Context& c, const toml::table& root, Design& d) {
 }
 
 // The runs of the mode, each with its id: its index, zero-padded to at least four digits.
-void expand(const Context& c, const toml::table& root, Design& d) {
+void expand(const scene::Source& c, const toml::table& root, Design& d) {
   switch (d.mode) {
     case Mode::kGrid:
       if (d.factors.empty()) c.fail(&root, "factor", "grid: at least one [[factor]]");
@@ -535,7 +521,8 @@ void expand(const Context& c, const toml::table& root, Design& d) {
 }  // namespace
 
 Design load_design(const fs::path& file, const std::vector<std::string>& extra_set) {
-  const Context c{file.string()};
+  scene::Source c;
+  c.file = file.string();
   const toml::table root = parse_design(file);
   check_keys(c, root, "",
              {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor",
@@ -556,7 +543,7 @@ void validate_design(const Design& d) {
     std::vector<std::string> overrides = d.set;
     overrides.insert(overrides.end(), extra.begin(), extra.end());
     try {
-      (void)models::load_scene(d.scene, overrides);
+      (void)scene::load_scene(d.scene, overrides);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(d.file.string() + where + ": " + e.what());
     }
@@ -585,7 +572,7 @@ const std::vector<std::string>& base_coordinates(const Design& d) {
   const std::lock_guard<std::mutex> lock(mutex);
   if (const auto it = known.find(key); it != known.end()) return it->second;
   try {
-    const models::Scene scene = models::load_scene(d.scene, d.set);
+    const scene::Scene scene = scene::load_scene(d.scene, d.set);
     return known[key] = scene.system->coordinate_names();
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(d.file.string() + ": scene: " + e.what());

@@ -3,6 +3,7 @@
 #include "integrators/recorder.hpp"
 #include "io/csv.hpp"
 #include "io/json.hpp"
+#include "scene/scene_reader.hpp"
 #include "sweep/runner.hpp"
 
 #include <algorithm>
@@ -17,27 +18,13 @@ namespace nsb::sweep {
 
 namespace {
 
-// Where errors point: "<file>:<line>:<col>: <key>: <what>", as the rest of the design.
-struct Where {
-  std::string file;
-  [[noreturn]] void fail(const toml::node* n, const std::string& key,
-                         const std::string& what) const {
-    std::ostringstream s;
-    s << file;
-    if (n != nullptr && n->source().begin.line > 0)
-      s << ':' << n->source().begin.line << ':' << n->source().begin.column;
-    s << ": " << key << ": " << what;
-    throw std::invalid_argument(s.str());
-  }
-};
-
 std::string joined(const std::vector<std::string>& items) {
   std::string out;
   for (const auto& i : items) out += (out.empty() ? "" : ", ") + i;
   return out;
 }
 
-void check_keys(const Where& w, const toml::table& t, const std::string& where,
+void check_keys(const scene::Source& w, const toml::table& t, const std::string& where,
                 const std::vector<std::string>& allowed) {
   for (const auto& [k, v] : t) {
     const std::string key(k.str());
@@ -55,7 +42,7 @@ std::optional<double> parse_number(const std::string& s) {
 }
 
 // `im`: a factor of the design whose levels (or latin range) are numbers > 0.
-std::string read_im(const Where& w, const toml::table& t, const Design& d) {
+std::string read_im(const scene::Source& w, const toml::table& t, const Design& d) {
   const auto* im = t.get("im");
   if (im == nullptr || !im->is_string())
     w.fail(im != nullptr ? im : &t, "fragility.im", "required: the key of the IM factor");
@@ -89,7 +76,7 @@ bool is_limit_column(const std::string& c) {
 }
 
 // `unseated` of a limit state or of the section: "exceeded" or "response".
-UnseatedRuns read_unseated(const Where& w, const toml::node& n, const std::string& key) {
+UnseatedRuns read_unseated(const scene::Source& w, const toml::node& n, const std::string& key) {
   const auto v = n.value<std::string>();
   if (v && *v == "exceeded") return UnseatedRuns::kExceed;
   if (v && *v == "response") return UnseatedRuns::kResponse;
@@ -100,7 +87,7 @@ UnseatedRuns read_unseated(const Where& w, const toml::node& n, const std::strin
 
 // `limit_state = "<watched name>"`: the run's <name>_exceeded column, reached at 1. It stands
 // for response and threshold, so neither they nor absolute and below may be given with it.
-void read_watched(const Where& w, const toml::table& t, const std::string& at, LimitState& ls) {
+void read_watched(const scene::Source& w, const toml::table& t, const std::string& at, LimitState& ls) {
   const auto* watched = t.get("limit_state");
   if (!watched->is_string() || watched->value<std::string>()->empty())
     w.fail(watched, at + ".limit_state",
@@ -116,7 +103,7 @@ void read_watched(const Where& w, const toml::table& t, const std::string& at, L
 }
 
 // `response`, `threshold`, `absolute` and `below` of a limit state on a results.csv column.
-void read_response(const Where& w, const toml::table& t, const std::string& at,
+void read_response(const scene::Source& w, const toml::table& t, const std::string& at,
                    const std::vector<std::string>& columns, LimitState& ls) {
   const auto* response = t.get("response");
   if (response == nullptr || !response->is_string())
@@ -148,7 +135,7 @@ void read_response(const Where& w, const toml::table& t, const std::string& at,
   }
 }
 
-LimitState read_limit_state(const Where& w, const toml::node& n, std::size_t index,
+LimitState read_limit_state(const scene::Source& w, const toml::node& n, std::size_t index,
                             const std::vector<std::string>& columns, UnseatedRuns unseated) {
   const std::string at = "fragility.limit_state[" + std::to_string(index) + "]";
   const auto* t = n.as_table();
@@ -185,7 +172,8 @@ std::optional<FragilitySpec> read_fragility(const toml::table& root, const Desig
                                             const std::string& file) {
   const auto* node = root.get("fragility");
   if (node == nullptr) return std::nullopt;
-  const Where w{file};
+  scene::Source w;
+  w.file = file;
   const auto* t = node->as_table();
   if (t == nullptr) w.fail(node, "fragility", "must be a table [fragility]");
   check_keys(w, *t, "fragility", {"im", "limit_state", "unseated"});

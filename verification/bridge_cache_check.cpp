@@ -9,7 +9,7 @@
 //    motions) that is asked at that time only.
 #include "models/assembly.hpp"
 #include "models/bridge_parts.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
 
@@ -68,7 +68,7 @@ void check_same_contacts(const std::vector<ContactData>& a, const std::vector<Co
 
 TEST_CASE("bridge: support motions kept per time never leak into another time") {
   const auto scene =
-      nsb::models::load_scene(std::string(NSB_SCENES_DIR) + "/bridge-exc7.toml");
+      nsb::scene::load_scene(std::string(NSB_SCENES_DIR) + "/bridge-exc7.toml");
   REQUIRE(scene.design.has_value());
   const BridgeDesign& design = *scene.design;
   // The benchmark's supports share records: the case the per-time values are kept for.

@@ -14,6 +14,7 @@
 #include "integrators/run.hpp"
 #include "models/ground_motion.hpp"
 #include "models/takeda.hpp"
+#include "scene/records.hpp"
 
 #include <doctest/doctest.h>
 
@@ -32,7 +33,7 @@ namespace {
 namespace fs = std::filesystem;
 using nsb::models::GroundMotion;
 using nsb::models::GroundMotionOptions;
-using nsb::models::read_at2;
+using nsb::scene::read_at2;
 
 // Chopra quotes peaks to 3 significant figures; the task is agreement within 1 %.
 constexpr double kChopraTolerance = 0.01;

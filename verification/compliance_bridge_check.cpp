@@ -9,7 +9,7 @@
 // Release only: the eight bridge runs take a few seconds optimised but minutes under ASan.
 #include "integrators/compliance.hpp"
 #include "integrators/moreau_jean.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
 
@@ -79,7 +79,7 @@ void convergence(nsb::integrators::DampingLaw law) {
   // Reference: Moreau–Jean with eps = e_effective.
   auto ref_overrides = common;
   ref_overrides.push_back("model.seats.restitution=" + number(e_eff));
-  auto ref_scene = nsb::models::load_scene(scene_file(), ref_overrides);
+  auto ref_scene = nsb::scene::load_scene(scene_file(), ref_overrides);
   nsb::integrators::MoreauJeanOptions mo;
   mo.end_time = kEndTime;
   mo.step = kReferenceStep;
@@ -96,7 +96,7 @@ void convergence(nsb::integrators::DampingLaw law) {
     auto overrides = common;
     overrides.push_back("model.seats.restitution=" + number(e_set));
     overrides.push_back("solver.method=compliance");
-    auto sc = nsb::models::load_scene(scene_file(), overrides);
+    auto sc = nsb::scene::load_scene(scene_file(), overrides);
     const auto& read = std::get<nsb::integrators::ComplianceOptions>(sc.run);
     nsb::integrators::ComplianceOptions o;
     o.end_time = kEndTime;

@@ -4,8 +4,8 @@
 #include "models/analytic.hpp"
 #include "models/bridge_parts.hpp"
 #include "models/ground_motion.hpp"
-#include "models/scene.hpp"
 #include "models/simple_systems.hpp"
+#include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
 
@@ -346,7 +346,7 @@ TEST_CASE("stress: the bridge under a strong excitation, mu up to 2, eps = 1") {
   };
   for (const auto& ov : variants) {
     for (double tol : {1e-3, 1e-8}) {
-      auto s = nm::load_scene(scene, ov);
+      auto s = nsb::scene::load_scene(scene, ov);
       ni::Recorder rec(*s.system, 0.01);
       const auto stats = ni::event_driven(*s.system, options(12.0, tol), rec);
       const std::string name = ov.back() + " tolerance " + std::to_string(tol);

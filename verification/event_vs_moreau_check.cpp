@@ -6,8 +6,8 @@
 #include "integrators/event_driven.hpp"
 #include "integrators/moreau_jean.hpp"
 #include "models/analytic.hpp"
-#include "models/scene.hpp"
 #include "models/simple_systems.hpp"
+#include "scene/scene.hpp"
 #include "verification/convergence.hpp"
 
 #include <doctest/doctest.h>
@@ -77,7 +77,7 @@ TEST_CASE("bouncing ball: Moreau–Jean converges to the event-driven history") 
 }
 
 TEST_CASE("bridge, excitation 5: convergence of Moreau–Jean and agreement on peak rotation") {
-  auto scene = nm::load_scene(bridge_scene());
+  auto scene = nsb::scene::load_scene(bridge_scene());
   ni::Recorder ed(*scene.system, kSampleDt);
   const auto sed = run_event(*scene.system, kBridgeEnd, 1e-8, ed);
   REQUIRE(sed.completed);
@@ -87,7 +87,7 @@ TEST_CASE("bridge, excitation 5: convergence of Moreau–Jean and agreement on p
   std::vector<double> errors;
   double peak_mj_1e4 = 0.0;
   for (double h : {1e-2, 1e-3, 1e-4}) {
-    auto s = nm::load_scene(bridge_scene());
+    auto s = nsb::scene::load_scene(bridge_scene());
     ni::Recorder mj(*s.system, kSampleDt);
     REQUIRE(run_moreau(*s.system, kBridgeEnd, h, mj).completed);
     errors.push_back(nsb::verification::history_error(ed, mj, "theta"));
@@ -108,7 +108,7 @@ TEST_CASE("bridge, excitation 5: convergence of Moreau–Jean and agreement on p
     double tolerance;
   };
   for (const auto& v : {Variant{perturbed, 1e-8}, Variant{{}, 1e-6}, Variant{{}, 1e-10}}) {
-    auto s = nm::load_scene(bridge_scene(), v.overrides);
+    auto s = nsb::scene::load_scene(bridge_scene(), v.overrides);
     ni::Recorder r(*s.system, kSampleDt);
     REQUIRE(run_event(*s.system, kBridgeEnd, v.tolerance, r).completed);
     peaks.push_back(nsb::verification::peak_abs(r, "theta"));

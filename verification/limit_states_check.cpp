@@ -12,7 +12,7 @@
 #include "integrators/recorder.hpp"
 #include "integrators/run.hpp"
 #include "models/bridge_parts.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
 
@@ -40,7 +40,7 @@ struct Run {
 
 Run run(std::vector<std::string> overrides) {
   overrides.push_back("output.sample_dt=0");  // every accepted step is a sample
-  nm::Scene scene = nm::load_scene(kScene, overrides);
+  nsb::scene::Scene scene = nsb::scene::load_scene(kScene, overrides);
   ni::Recorder history(*scene.system, scene.output.sample_dt);
   ni::RunResult result = ni::integrate(*scene.system, scene.run, history, {});
   Run r{std::move(result), std::move(history), {}};

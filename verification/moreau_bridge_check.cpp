@@ -2,7 +2,7 @@
 // the scheme's accuracy, every contact problem is solved, and the deck never sinks into an
 // abutment by more than the scheme's O(h) velocity-level penetration.
 #include "integrators/moreau_jean.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
 
@@ -19,7 +19,7 @@ struct BridgeRun {
 };
 
 BridgeRun run_bridge(double h, double end_time) {
-  models::Scene scene = models::load_scene(std::string(NSB_SCENES_DIR) + "/bridge-exc7.toml",
+  scene::Scene scene = scene::load_scene(std::string(NSB_SCENES_DIR) + "/bridge-exc7.toml",
                                            {"solver.end_time=" + std::to_string(end_time)});
   integrators::Recorder rec(*scene.system, 0.0);
   integrators::MoreauJeanOptions o;

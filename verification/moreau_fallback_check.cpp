@@ -12,7 +12,7 @@
 // off 51 stay unsolved (fewer than 73: after the first best-iterate answer the trajectory
 // differs).
 #include "integrators/run.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
 
@@ -23,7 +23,7 @@ namespace nsb {
 
 namespace {
 integrators::RunResult run_wedged(bool fallback) {
-  models::Scene scene = models::load_scene(
+  scene::Scene scene = scene::load_scene(
       std::string(NSB_SCENES_DIR) + "/bridge-exc7.toml",
       {"model.gaps.left=0", "model.gaps.right=0", "solver.end_time=8"});
   REQUIRE(std::holds_alternative<integrators::MoreauJeanOptions>(scene.run));

@@ -4,7 +4,7 @@
 // h = 4e-4, 2e-4, 1e-4 and 5e-5; the least-squares slope of log(error) against log(h) is the
 // order. The measured errors are in docs/moreau-jean.md ("Convergence on the bridge").
 #include "integrators/run.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 #include "verification/convergence.hpp"
 
 #include <doctest/doctest.h>
@@ -16,7 +16,7 @@
 #include <vector>
 
 namespace ni = nsb::integrators;
-namespace nm = nsb::models;
+namespace ns = nsb::scene;
 
 namespace {
 
@@ -36,7 +36,7 @@ struct Study {
 Study study(const std::string& scene_file, double end_time) {
   const std::string path = std::string(NSB_SCENES_DIR) + "/" + scene_file;
   const std::vector<std::string> window = {"solver.end_time=" + std::to_string(end_time)};
-  auto ref_scene = nm::load_scene(path, window);
+  auto ref_scene = ns::load_scene(path, window);
   ni::Recorder ref(*ref_scene.system, kSampleDt);
   ni::EventDrivenOptions eo;
   eo.end_time = end_time;
@@ -45,7 +45,7 @@ Study study(const std::string& scene_file, double end_time) {
   Study s;
   s.steps = {4e-4, 2e-4, 1e-4, 5e-5};
   for (double h : s.steps) {
-    auto scene = nm::load_scene(path, window);
+    auto scene = ns::load_scene(path, window);
     ni::Recorder mj(*scene.system, kSampleDt);
     ni::MoreauJeanOptions mo;
     mo.end_time = end_time;

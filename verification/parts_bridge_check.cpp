@@ -11,9 +11,9 @@
 // time) and DIR/history.csv (the largest |theta| and |y| over the samples, and x, theta of
 // the last sample); the files print every number in its shortest round-trip form, so the
 // literals below are the doubles of that run. The check runs the scene as `nsbridge run`
-// does (models::load_scene, then integrators::integrate with the scene's configuration).
+// does (scene::load_scene, then integrators::integrate with the scene's configuration).
 #include "integrators/run.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
 
@@ -23,7 +23,6 @@
 #include <string>
 
 namespace ni = nsb::integrators;
-namespace nm = nsb::models;
 
 namespace {
 
@@ -60,9 +59,9 @@ double peak_of(const ni::Recorder& r, const std::string& column) {
 void check(const Recorded& expected) {
   CAPTURE(expected.scene);
   CAPTURE(expected.method);
-  nm::Scene scene = nm::load_scene(std::string(NSB_SCENES_DIR) + "/" + expected.scene,
-                                   {"solver.end_time=10",
-                                    std::string("solver.method=") + expected.method});
+  nsb::scene::Scene scene =
+      nsb::scene::load_scene(std::string(NSB_SCENES_DIR) + "/" + expected.scene,
+                             {"solver.end_time=10", std::string("solver.method=") + expected.method});
   ni::Recorder history(*scene.system, scene.output.sample_dt);
   const ni::RunResult result = ni::integrate(*scene.system, scene.run, history);
   REQUIRE(result.completed);

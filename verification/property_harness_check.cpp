@@ -20,7 +20,7 @@
 #include "lcp/frictional.hpp"
 #include "models/analytic.hpp"
 #include "models/bridge_parts.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 #include "testsupport/systems.hpp"
 
 #include <doctest/doctest.h>
@@ -79,7 +79,7 @@ SceneCase from_file(std::string file, double end_time, double h, bool conservati
     o.push_back("solver.end_time=" + std::to_string(end_time));
     o.push_back("solver.step=" + std::to_string(h));
     o.push_back("solver.method=" + method);
-    auto scene = nm::load_scene(std::filesystem::path(NSB_SCENES_DIR) / file, o);
+    auto scene = nsb::scene::load_scene(std::filesystem::path(NSB_SCENES_DIR) / file, o);
     solver.config = scene.run;
     solver.step = std::stod(std::to_string(h));  // the value solver.step was read as
     return std::move(scene.system);

@@ -16,12 +16,13 @@
 #include "integrators/system.hpp"
 #include "models/ground_motion.hpp"
 #include "models/response_spectrum.hpp"
-#include "models/scene.hpp"
+#include "scene/records.hpp"
+#include "scene/scene.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using nsb::models::load_scene;
+using nsb::scene::load_scene;
 using nsb::models::Record;
 
 const std::string kScene = std::string(NSB_SCENES_DIR) + "/bridge-exc5.toml";
@@ -38,7 +39,7 @@ constexpr double kPeriodTolerance = 1e-12;
 // PSA [g] of the record scaled by factor, times multiplied by time_scale, at one period.
 double scaled_psa(const fs::path& file, double factor, double time_scale, double period,
                   double zeta) {
-  Record r = nsb::models::read_at2(file);
+  Record r = nsb::scene::read_at2(file);
   for (double& a : r.a) a *= factor;
   for (double& t : r.t) t *= time_scale;
   nsb::models::SpectrumOptions o;

@@ -16,7 +16,8 @@
 //    state one step before the break with that key's contact removed differs.
 // All to 1e-9 of each column's peak.
 #include "integrators/moreau_jean.hpp"
-#include "models/scene.hpp"
+#include "models/assembly.hpp"
+#include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
 
@@ -106,8 +107,8 @@ class DeletedContacts final : public ni::System {
   std::vector<char> deleted_;
 };
 
-nm::Scene load(const std::string& name) {
-  return nm::load_scene(std::string(NSB_SCENES_DIR) + "/" + name,
+nsb::scene::Scene load(const std::string& name) {
+  return nsb::scene::load_scene(std::string(NSB_SCENES_DIR) + "/" + name,
                         {"solver.end_time=" + std::to_string(kWindow), "solver.method=moreau"});
 }
 
@@ -160,7 +161,7 @@ struct Saved {
 };
 
 Saved save_at(double at) {
-  nm::Scene scene = load("bridge-shear-keys-capacity.toml");
+  nsb::scene::Scene scene = load("bridge-shear-keys-capacity.toml");
   Saved saved;
   auto options = std::get<ni::MoreauJeanOptions>(scene.run);
   options.end_time = at;
@@ -205,7 +206,7 @@ Deletion first_break(const ni::System& s) {
 }
 
 TEST_CASE("a broken shear key: the run without the key from the break on") {
-  nm::Scene breaking = load("bridge-shear-keys-capacity.toml");
+  nsb::scene::Scene breaking = load("bridge-shear-keys-capacity.toml");
   const ni::Recorder broken = run(*breaking.system, breaking.run);
   const Deletion first = first_break(*breaking.system);
   const double t_b = first.at;
@@ -214,7 +215,7 @@ TEST_CASE("a broken shear key: the run without the key from the break on") {
   CHECK(t_b < kWindow);
   INFO("first break at t = ", t_b, " s, contact ", slot + 1);
 
-  nm::Scene whole = load("bridge-shear-keys.toml");
+  nsb::scene::Scene whole = load("bridge-shear-keys.toml");
   const ni::Recorder unbreakable = run(*whole.system, whole.run);
   MESSAGE("before the break, against unbreakable keys: ", difference(broken, unbreakable, t_b));
   CHECK(difference(broken, unbreakable, t_b) <= kRelative);
@@ -224,7 +225,7 @@ TEST_CASE("a broken shear key: the run without the key from the break on") {
   const std::vector<Deletion> breaks = breaks_of(*breaking.system);
   MESSAGE(breaks.size(), " keys break in the window");
   const double t_all = kWindow + 1.0;
-  nm::Scene base = load("bridge-shear-keys.toml");
+  nsb::scene::Scene base = load("bridge-shear-keys.toml");
   DeletedContacts deleted(*base.system, breaks);
   const ni::Recorder without = run(deleted, base.run);
   MESSAGE("the whole window, against the keys deleted at their breaks: ",
@@ -233,7 +234,7 @@ TEST_CASE("a broken shear key: the run without the key from the break on") {
 
   // A deliberate break one step early is caught.
   const double h = std::get<ni::MoreauJeanOptions>(base.run).step;
-  nm::Scene early_scene = load("bridge-shear-keys.toml");
+  nsb::scene::Scene early_scene = load("bridge-shear-keys.toml");
   std::vector<Deletion> wrong = breaks;
   for (Deletion& b : wrong) {
     if (b.slot == slot) b.at = t_b - 1.5 * h;
@@ -245,7 +246,7 @@ TEST_CASE("a broken shear key: the run without the key from the break on") {
 }
 
 TEST_CASE("a broken shear key: the run restarted from the state saved at the break") {
-  nm::Scene breaking = load("bridge-shear-keys-capacity.toml");
+  nsb::scene::Scene breaking = load("bridge-shear-keys-capacity.toml");
   const ni::Recorder broken = run(*breaking.system, breaking.run);
   const Deletion first = first_break(*breaking.system);
   REQUIRE(first.slot >= 4);

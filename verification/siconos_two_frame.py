@@ -57,7 +57,7 @@ COLUMNS = ["x1", "y1", "theta1", "x2", "y2", "theta2"] + [f"gN{i}" for i in rang
 
 
 def read_record(path):
-    """Two-column record 't a' per line, '#' comments skipped (models/records.cpp)."""
+    """Two-column record 't a' per line, '#' comments skipped (scene/records.cpp)."""
     rows = [line.split() for line in open(path) if line.strip() and not line.startswith("#")]
     return np.array([float(r[0]) for r in rows]), np.array([float(r[1]) for r in rows])
 

@@ -7,6 +7,7 @@
 //     record step) converges to the exact-interval response at second order.
 // Tolerances and measured figures: docs/spectra.md, "Checks".
 #include "models/response_spectrum.hpp"
+#include "scene/records.hpp"
 
 #include <doctest/doctest.h>
 
@@ -195,7 +196,7 @@ TEST_CASE("spectrum: harmonic records off resonance give the steady-state amplit
 TEST_CASE("spectrum: El Centro 1940 N-S against Chopra section 6.4 within 1 %") {
   // PSV = w D and PSA = w^2 D are Chopra's own definitions (§6.6); his A in g uses g = 386
   // in/s^2, ours 9.81 m/s^2 (0.06 % apart), so PSA is compared through w^2 D / g of his D.
-  const Record rec = nsb::models::read_at2(kElCentro);
+  const Record rec = nsb::scene::read_at2(kElCentro);
   for (const auto& c : kChopra) {
     nsb::models::SpectrumOptions o;
     o.damping = c.zeta;
@@ -223,7 +224,7 @@ TEST_CASE("spectrum: Newmark average acceleration converges to the exact recurre
   // record is the same piecewise-linear excitation, so e -> 0 like (dt / m)^2. The peak error
   // |Sd_N - Sd| is at most e(m) max |u_ex| (peaks of two histories differ by at most their
   // largest difference) and is checked below that bound.
-  const Record rec = nsb::models::read_at2(kElCentro);
+  const Record rec = nsb::scene::read_at2(kElCentro);
   for (const double period : {0.5, 1.0, 2.0}) {
     const double zeta = 0.05, w = 2.0 * kPi / period;
     const auto exact = exact_history(rec, w, zeta);

@@ -1,19 +1,18 @@
-// Ground motions: the readers, the spline motion and its integrals, scaling, time
-// compression, delay and baseline correction.
+// Ground motions: the spline motion and its integrals, scaling, time compression, delay and
+// baseline correction, on recorded motions read with scene/records.hpp (its own tests:
+// scene/test/records_test.cpp).
 #include "models/ground_motion.hpp"
+#include "scene/records.hpp"
 
 #include <doctest/doctest.h>
 #include <gsl/gsl_spline.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,8 +26,6 @@ namespace {
 
 const fs::path kMotions = fs::path(NSB_DATA_DIR) / "ground-motions";
 constexpr double kG = 9.81;
-// Values printed with 5-7 significant digits in the files, compared after parsing.
-constexpr double kParseTolerance = 1e-12;
 // Spline evaluation: our per-interval polynomials against GSL's evaluation of the same spline;
 // both are exact up to round-off of sums over a few thousand intervals.
 constexpr double kSplineTolerance = 1e-9;
@@ -41,25 +38,6 @@ constexpr double kFdTolerance = 1e-5;
 // polynomials, and the least-squares fit also removes the projection of the true motion on
 // them, which is small for an oscillation of many cycles (measured 2e-6).
 constexpr double kBaselineRecovery = 1e-3;
-
-// A scratch directory for files written by the tests, removed at the end.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           ("nsb_ground_motion_test_" + std::to_string(std::random_device{}()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path p = path / name;
-    std::ofstream(p) << text;
-    return p;
-  }
-};
 
 // Asserts that f throws std::invalid_argument whose message contains every fragment.
 template <class F>
@@ -95,134 +73,6 @@ std::pair<std::size_t, double> peak_of(const std::vector<double>& a) {
 
 }  // namespace
 
-TEST_CASE("ground motion: PEER AT2 files in both header forms") {
-  SUBCASE("NPTS=  1559, DT= .02000 SEC (Peknold El Centro)") {
-    const Record r = nsb::models::read_at2(kMotions / "elCentro_NS_1940_Peknold.AT2");
-    REQUIRE(r.a.size() == 1559);
-    CHECK(r.t[1] == doctest::Approx(0.02));
-    CHECK(r.t.back() == doctest::Approx(1558 * 0.02));
-    // First and last values of the file, in g.
-    CHECK(r.a.front() == doctest::Approx(0.00630 * kG).epsilon(kParseTolerance));
-    CHECK(r.a.back() == doctest::Approx(0.0).scale(1.0));
-    // Chopra's PGA of this version: 0.319 g.
-    CHECK(peak_of(r.a).second / kG == doctest::Approx(0.319).epsilon(0.002));
-  }
-  SUBCASE("NPTS=   8773, DT=   .0050 SEC, ... (Northridge, Sylmar)") {
-    // bridge-parameters: component 142 has 0.923 g at t = 7.0 s, 052 has 0.623 g at 4.7 s.
-    for (const auto& [file, pga, time] :
-         {std::tuple{"RSN1084_NORTHR_SCS142.AT2", 0.923, 7.0},
-          std::tuple{"RSN1084_NORTHR_SCS052.AT2", 0.623, 4.7}}) {
-      const Record r = nsb::models::read_at2(kMotions / file, kG);
-      REQUIRE(r.a.size() == 8773);
-      CHECK(r.t[1] == doctest::Approx(0.005));
-      const auto [k, peak] = peak_of(r.a);
-      CHECK(peak / kG == doctest::Approx(pga).epsilon(1e-3));
-      CHECK(r.t[k] == doctest::Approx(time).epsilon(0.01));
-    }
-    const Record first = nsb::models::read_at2(kMotions / "RSN1084_NORTHR_SCS052.AT2", 1.0);
-    CHECK(first.a.front() == doctest::Approx(-0.4981725e-2).epsilon(kParseTolerance));
-  }
-}
-
-TEST_CASE("ground motion: reader errors name the file and the line") {
-  TempDir dir;
-  const std::string head = "PEER\nevent\nUNITS OF G\n";
-  {
-    const auto p = dir.write("bad_token.AT2", head + "NPTS=  4, DT= .01 SEC\n 0.1 0.2\n 0.3 x4\n");
-    expect_error([&] { nsb::models::read_at2(p); }, {"bad_token.AT2:6:", "non-numeric", "x4"});
-  }
-  {
-    const auto p = dir.write("short.AT2", head + "NPTS=  5, DT= .01 SEC\n 0.1 0.2\n 0.3 0.4\n");
-    expect_error([&] { nsb::models::read_at2(p); }, {"short.AT2:6:", "NPTS = 5", "4 values"});
-  }
-  {
-    const auto p = dir.write("long.AT2", head + "NPTS=  3, DT= .01 SEC\n 0.1 0.2\n 0.3 0.4\n");
-    expect_error([&] { nsb::models::read_at2(p); }, {"long.AT2:6:", "more values than NPTS"});
-  }
-  {
-    const auto p = dir.write("header.AT2", head + "POINTS 3 STEP 0.01\n 0.1 0.2 0.3\n");
-    expect_error([&] { nsb::models::read_at2(p); }, {"header.AT2:4:", "NPTS="});
-  }
-  {
-    const auto p = dir.write("nan.AT2", head + "NPTS=  3, DT= .01 SEC\n 0.1 nan 0.3\n");
-    expect_error([&] { nsb::models::read_at2(p); }, {"nan.AT2:5:", "not finite"});
-  }
-  {
-    const auto p = dir.write("dt.AT2", head + "NPTS=  3, DT= 0 SEC\n 0.1 0.2 0.3\n");
-    expect_error([&] { nsb::models::read_at2(p); }, {"dt.AT2:4:", "DT"});
-  }
-  expect_error([&] { nsb::models::read_at2(dir.path / "missing.AT2"); },
-               {"missing.AT2", "does not exist"});
-  {
-    const auto p = dir.write("time.txt", "# t a\n0 0.1\n0.01 0.2\n\n0.01 0.3\n0.03 0.1\n");
-    expect_error([&] { nsb::models::read_two_column(p); },
-                 {"time.txt:5:", "not greater than the previous"});
-  }
-  {
-    const auto p = dir.write("fields.txt", "0 0.1\n0.01 0.2 7\n");
-    expect_error([&] { nsb::models::read_two_column(p); }, {"fields.txt:2:", "two numbers"});
-  }
-  {
-    const auto p = dir.write("csvbad.csv", "t,a\n0,0.1\n0.01,abc\n0.02,0\n");
-    expect_error([&] { nsb::models::read_csv(p); }, {"csvbad.csv:3:", "non-numeric", "abc"});
-  }
-  {
-    const auto p = dir.write("csvhead.csv", "time,x,y\n0,1,2\n");
-    expect_error([&] { nsb::models::read_csv(p); }, {"csvhead.csv:1:", "'t' and 'a'"});
-  }
-  {
-    const auto p = dir.write("csvfields.csv", "t,a\n0,1\n0.1\n");
-    expect_error([&] { nsb::models::read_csv(p); }, {"csvfields.csv:3:", "2 comma-separated"});
-  }
-  {
-    const auto p = dir.write("two.txt", "0 0.1\n0.01 0.2\n");
-    expect_error([&] { nsb::models::read_two_column(p); }, {"two.txt", "at least 3"});
-  }
-}
-
-TEST_CASE("ground motion: readers refuse what is not a regular file, and name out-of-range numbers") {
-  TempDir dir;
-  // A FIFO would block the reader for ever (no writer), a directory is no record.
-  const auto fifo = dir.path / "fifo.AT2";
-  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
-  expect_error([&] { nsb::models::read_at2(fifo); }, {"fifo.AT2", "not a regular file"});
-  expect_error([&] { nsb::models::read_csv(dir.path); }, {"not a regular file"});
-  // Subnormal values are values; 1e-400 and 1e400 are beyond a double and refused by name.
-  const std::string head = "PEER\nevent\nUNITS OF G\n";
-  {
-    std::istringstream in(head + "NPTS=  3, DT= .01 SEC\n 1e-310 -4.9e-324 0.3\n");
-    const Record r = nsb::models::read_at2(in, "sub.AT2", 1.0);
-    CHECK(r.a[0] == 1e-310);
-    CHECK(r.a[1] == -4.9e-324);
-  }
-  for (const char* v : {"1e-400", "1e400"}) {
-    std::istringstream in(head + "NPTS=  3, DT= .01 SEC\n 0.1 " + v + " 0.3\n");
-    expect_error([&] { nsb::models::read_at2(in, "range.AT2", 1.0); },
-                 {"range.AT2:5:", "outside the range of a double", v});
-  }
-  // A header line far longer than any PEER line is refused before the regular expression.
-  {
-    std::istringstream in(head + "NPTS= " + std::string(100000, ' ') + "3, DT= .01\n0 0 0\n");
-    expect_error([&] { nsb::models::read_at2(in, "long.AT2", 1.0); },
-                 {"long.AT2:4:", "100016 characters"});
-  }
-}
-
-TEST_CASE("ground motion: two-column and CSV readers") {
-  TempDir dir;
-  const auto p2 = dir.write("rec.txt", "# time [s]  acc [g]\n0.0 0.0\n0.5 +1.5e-1\n1.25 -0.25\n2 0\n");
-  const Record r2 = nsb::models::read_two_column(p2, kG);
-  REQUIRE(r2.t.size() == 4);
-  CHECK(r2.t[2] == 1.25);
-  CHECK(r2.a[1] == doctest::Approx(0.15 * kG));
-  CHECK(r2.source == p2.string());
-  const auto pc = dir.write("rec.csv", "a, t ,note\n0.0,0.0,x\n1.0,0.1,y\n-2.0,0.2,z\n");
-  const Record rc = nsb::models::read_csv(pc, 0.5);
-  REQUIRE(rc.t.size() == 3);
-  CHECK(rc.t[2] == doctest::Approx(0.2));
-  CHECK(rc.a[2] == doctest::Approx(-1.0));
-}
-
 TEST_CASE("ground motion: linear acceleration is reproduced with exact integrals") {
   // The natural cubic spline of samples of a linear function is that function, so
   // a = alpha + beta t, v = alpha t + beta t^2/2, d = alpha t^2/2 + beta t^3/6 exactly.
@@ -245,7 +95,7 @@ TEST_CASE("ground motion: linear acceleration is reproduced with exact integrals
 }
 
 TEST_CASE("ground motion: spline and integrals agree with GSL's own evaluation") {
-  const Record r = nsb::models::read_at2(kMotions / "elCentro_NS_1940_Peknold.AT2");
+  const Record r = nsb::scene::read_at2(kMotions / "elCentro_NS_1940_Peknold.AT2");
   GroundMotionOptions o;
   o.baseline_correction = false;
   const GroundMotion gm(r, o);
@@ -271,7 +121,7 @@ TEST_CASE("ground motion: spline and integrals agree with GSL's own evaluation")
 }
 
 TEST_CASE("ground motion: d, v, a are derivatives of each other (with baseline correction)") {
-  const Record r = nsb::models::read_at2(kMotions / "RSN1084_NORTHR_SCS142.AT2");
+  const Record r = nsb::scene::read_at2(kMotions / "RSN1084_NORTHR_SCS142.AT2");
   const GroundMotion gm(r);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.01, r.t.back() - 0.01);
@@ -296,7 +146,7 @@ TEST_CASE("ground motion: values() equals displacement(), velocity(), accelerati
   GroundMotionOptions delayed;
   delayed.delay = 0.37;
   delayed.target_pga = 3.0;
-  const Record uniform = nsb::models::read_at2(kMotions / "RSN1084_NORTHR_SCS142.AT2");
+  const Record uniform = nsb::scene::read_at2(kMotions / "RSN1084_NORTHR_SCS142.AT2");
   std::mt19937 rng(19);
   std::vector<double> tk, ak;  // knots at random spacings
   std::uniform_real_distribution<double> spacing(0.005, 0.03), accel(-3.0, 3.0);
@@ -363,7 +213,7 @@ TEST_CASE("ground motion: baseline correction ends at rest and removes an offset
 }
 
 TEST_CASE("ground motion: target PGA, scale, time compression and delay") {
-  const Record r = nsb::models::read_at2(kMotions / "RSN1084_NORTHR_SCS052.AT2");
+  const Record r = nsb::scene::read_at2(kMotions / "RSN1084_NORTHR_SCS052.AT2");
   const GroundMotion base(r);
   GroundMotionOptions o;
   o.target_pga = 0.35 * kG;
@@ -415,7 +265,7 @@ TEST_CASE("ground motion: copies share the spline safely; default is zero motion
   CHECK(copy.pga() == 0.0);
   double expected = 0.0;
   {
-    const GroundMotion gm(nsb::models::read_at2(kMotions / "elCentro_NS_1940_Peknold.AT2"));
+    const GroundMotion gm(nsb::scene::read_at2(kMotions / "elCentro_NS_1940_Peknold.AT2"));
     expected = gm.velocity(2.5);
     copy = gm;
   }  // the original is gone; the copy still holds the data

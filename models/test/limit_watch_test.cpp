@@ -1,22 +1,18 @@
 // The limit states an assembled bridge watches (models/limit_watch.hpp, docs/limit-states.md),
 // fed accepted steps by hand: a straight benchmark deck moved by x opens its left joint by x
 // and closes its right one by x, so every overlap, gap, drift ratio and residual rotation
-// below is a hand value. Scene keys and their errors at the end.
+// below is a hand value.
 #include "models/assembly.hpp"
 
 #include "models/bridge_parts.hpp"
-#include "models/scene.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
 
 namespace {
 
@@ -168,56 +164,4 @@ TEST_CASE("limit specs: a seat shorter than the initial opening, drift without h
   nsb::models::BridgeLimits d;
   d.drift_ratio = 0.01;
   CHECK_THROWS_WITH_AS(bridge(d), doctest::Contains("limits.bent_heights"), std::invalid_argument);
-}
-
-namespace {
-
-std::filesystem::path scene_file(const std::string& text) {
-  const auto p = std::filesystem::temp_directory_path() /
-                 ("nsb-limit-watch-test-" + std::to_string(::getpid()) + ".toml");
-  std::ofstream(p) << text;
-  return p;
-}
-
-const std::string kBridge = R"([model]
-kind = "bridge"
-[[model.bents]]
-position = -8.0
-height = 1.83
-[[model.bents]]
-position = 8.0
-stiffness_longitudinal = 1.0e4
-yield_force_longitudinal = 100.0
-stiffness_transverse = 1.0e4
-yield_force_transverse = 100.0
-[solver]
-method = "moreau"
-end_time = 0.1
-step = 1.0e-3
-)";
-
-}  // namespace
-
-TEST_CASE("scene: seat_length and [model.limit_states] make the bridge watch its joints") {
-  const auto s = nsb::models::load_scene(
-      scene_file(kBridge + "[model.abutments]\nseat_length = 0.3\n"));
-  const auto* watched = dynamic_cast<const Assembly*>(s.system.get());
-  REQUIRE(watched != nullptr);
-  CHECK(watched->parts().limits.joints.size() == 2);  // left and right abutments
-  const auto plain = nsb::models::load_scene(scene_file(kBridge));
-  CHECK(plain.system->limit_states().empty());  // a plain bridge watches nothing
-  // drift_ratio needs every bent's height: the error names the bent and the key.
-  try {
-    nsb::models::load_scene(scene_file(kBridge + "[model.limit_states]\ndrift_ratio = 0.02\n"));
-    FAIL("expected an error");
-  } catch (const std::invalid_argument& e) {
-    const std::string m = e.what();
-    CHECK(m.find("model.bents[1]") != std::string::npos);
-    CHECK(m.find("missing key height") != std::string::npos);
-    CHECK(m.find("drift_ratio") != std::string::npos);
-  }
-  CHECK_THROWS_WITH_AS(
-      nsb::models::load_scene(scene_file(kBridge + "[model.abutments]\nseat_length = -1\n")),
-      doctest::Contains("seat_length"), std::invalid_argument);
-  std::filesystem::remove(scene_file(""));
 }

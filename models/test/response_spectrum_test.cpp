@@ -1,6 +1,7 @@
 // Response spectra: the interval coefficients against Chopra's Table 5.2.1, hand-solved
 // responses, the period grid, scaling properties and the rejection of bad input.
 #include "models/response_spectrum.hpp"
+#include "scene/records.hpp"
 
 #include <doctest/doctest.h>
 
@@ -154,7 +155,7 @@ TEST_CASE("response_spectrum: PSA in g uses the g with which read_at2 reads .AT2
   // kSpectrumGravity is that same g.
   std::istringstream at2("PEER\nevent\nACCELERATION TIME SERIES IN UNITS OF G\n"
                          "NPTS=    4, DT=   .0100 SEC\n0.1 -0.5 0.25 0.0\n");
-  const Record r = nsb::models::read_at2(at2, "half-g.AT2");
+  const Record r = nsb::scene::read_at2(at2, "half-g.AT2");
   SpectrumOptions o;
   o.periods = {0.0};
   CHECK(nsb::models::response_spectrum(r, o).psa_g[0] == doctest::Approx(0.5).epsilon(1e-15));

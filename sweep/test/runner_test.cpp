@@ -5,7 +5,7 @@
 #include "sweep/test/results_text.hpp"
 
 #include "integrators/run.hpp"
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 #include "sweep/csv.hpp"
 
 #include <doctest/doctest.h>
@@ -93,7 +93,7 @@ TEST_CASE("a row equals an independent single run of the same scene") {
   (void)run_sweep(design, o);
   const Table t = read_csv(o.out / "results.csv");
   // The same run by hand, as `nsbridge run` does it.
-  auto scene = nsb::models::load_scene(kScenes + "/bridge-exc5.toml",
+  auto scene = nsb::scene::load_scene(kScenes + "/bridge-exc5.toml",
                                        {"solver.end_time=3", "model.excitation.target_pga=1.0"});
   nsb::integrators::Recorder recorder(*scene.system, scene.output.sample_dt);
   const auto result = nsb::integrators::integrate(*scene.system, scene.run, recorder);

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "models/ground_motion.hpp"
+#include "scene/records.hpp"
 #include "sweep/csv.hpp"
 #include "sweep/design.hpp"
 #include "sweep/runner.hpp"
@@ -167,7 +168,7 @@ TEST_CASE("a sweep over 3 suite records: rows name the records, each run ends wi
     CHECK(t.rows[r][t.column("record")] == names[r]);
     CHECK(t.rows[r][t.column("status")] == "completed");
     // Both components of a pair share their length: the run ends at the last sample.
-    const double last = nsb::models::read_at2(kSuite / files[r]).t.back();
+    const double last = nsb::scene::read_at2(kSuite / files[r]).t.back();
     CHECK(std::stod(t.rows[r][t.column("end_time")]) == doctest::Approx(last).epsilon(1e-12));
   }
 }

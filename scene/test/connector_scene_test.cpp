@@ -1,7 +1,7 @@
-// Connector keys of a bridge scene (models/connector_scene.hpp): which system a scene
+// Connector keys of a bridge scene (scene/connector_scene.hpp): which system a scene
 // builds, and bad input naming file:line:col and the key.
-#include "models/scene.hpp"
-#include "models/test/scene_files.hpp"
+#include "scene/scene.hpp"
+#include "scene/test/scene_files.hpp"
 
 #include "models/assembly.hpp"
 
@@ -14,12 +14,12 @@
 #include <unistd.h>
 
 namespace fs = std::filesystem;
-using nsb::models::load_scene;
+using nsb::scene::load_scene;
 
 namespace {
 
-using nsb::models::test_files::error_of;
-using nsb::models::test_files::write;
+using nsb::scene::test_files::error_of;
+using nsb::scene::test_files::write;
 
 const std::string kDeck = R"([model]
 kind = "bridge"

@@ -1,12 +1,14 @@
 // The limit-state keys of a bridge scene (docs/limit-states.md): [model.abutments]
 // seat_length, [[model.hinges]] seat_length and [model.limit_states].
-#include "models/scene_builders.hpp"
+#include "scene/scene_builders.hpp"
 
-#include "models/scene_schema.hpp"
+#include "scene/scene_schema.hpp"
 
 #include <limits>
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 BridgeLimitKeys read_bridge_limits(const Section& m) {
   BridgeLimitKeys out;
@@ -44,4 +46,4 @@ BridgeLimitKeys read_bridge_limits(const Section& m) {
   return out;
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

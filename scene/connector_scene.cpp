@@ -1,7 +1,7 @@
-#include "models/connector_scene.hpp"
+#include "scene/connector_scene.hpp"
 
-#include "models/scene_builders.hpp"
-#include "models/scene_schema.hpp"
+#include "scene/scene_builders.hpp"
+#include "scene/scene_schema.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace c = config;
 
@@ -166,4 +168,4 @@ BridgeConnectors read_connectors(const Section& m, const std::vector<double>& le
   return out;
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

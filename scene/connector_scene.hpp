@@ -11,19 +11,19 @@
 #include "models/assembly.hpp"
 #include "models/bridge_design.hpp"
 #include "models/connectors.hpp"
-#include "models/scene_reader.hpp"
+#include "scene/scene_reader.hpp"
 
 #include <array>
 #include <optional>
 #include <span>
 #include <vector>
 
-namespace nsb::models {
+namespace nsb::scene {
 
 // A restrainer's inline table: the cable law and its length at rest, anchored on the deck
 // axis at (length - clear gap) / 2 inside each side of the joint.
 struct RestrainerSettings {
-  connectors::CableParameters cable;
+  models::connectors::CableParameters cable;
   double length = 1.0;  // rest length between the anchors [m], > the joint's gap
   static std::span<const config::Field<RestrainerSettings>> fields();
 };
@@ -73,14 +73,15 @@ struct BridgeConnectors {
 // `lengths` are the segments' lengths (bearing positions are checked against them), `deck`
 // gives the abutment gaps (a restrainer's length must exceed its joint's gap).
 BridgeConnectors read_connectors(const Section& m, const std::vector<double>& lengths,
-                                 const DeckGeometry& deck);
+                                 const models::DeckGeometry& deck);
 
 // Adds the connectors to the parts of a bridge (models::bridge_parts): p gives the gaps,
 // width and skew; ground the zero-delay support motions (x, y) of the bearings and
 // backfills. A backfill seat replaces the prescribed seat as the obstacle of that end's two
 // deck-corner contacts. Hinge k joins bodies k and k + 1.
-void add_connectors(const BridgeConnectors& c, const BridgeDesign& p,
+void add_connectors(const BridgeConnectors& c, const models::BridgeDesign& p,
                     const std::vector<double>& hinge_gaps,
-                    const std::array<parts::Motion, 2>& ground, Assembly::Parts& parts);
+                    const std::array<models::parts::Motion, 2>& ground,
+                    models::Assembly::Parts& parts);
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,13 +1,13 @@
 // The [solver] table read straight into integrators::RunConfig with the methods' own fields
 // (integrators/options.cpp): one declaration of every key, its unit and its range.
-#include "models/scene_builders.hpp"
-#include "models/scene_schema.hpp"
+#include "scene/scene_builders.hpp"
+#include "scene/scene_schema.hpp"
 
 #include <algorithm>
 #include <type_traits>
 #include <variant>
 
-namespace nsb::models {
+namespace nsb::scene {
 
 namespace {
 
@@ -79,4 +79,4 @@ void check_solver(const Section& s, const RunConfig& config) {
   }
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,10 +1,12 @@
 // The scene keys of the models and of the scene itself: key, unit, range and meaning, declared
 // once (docs/scenes.md is generated from these; units kN, t, m, s, rad unless the unit says).
-#include "models/scene_schema.hpp"
+#include "scene/scene_schema.hpp"
 
 #include "integrators/run.hpp"
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace c = config;
 
@@ -73,146 +75,6 @@ std::span<const c::Field<OutputSettings>> OutputSettings::fields() {
 }
 
 void OutputSettings::validate() const { c::validate_fields<OutputSettings>(*this, fields(), "output."); }
-
-std::span<const c::Field<BouncingBall::Parameters>> bouncing_ball_fields() {
-  using P = BouncingBall::Parameters;
-  static const c::Field<P> f[] = {
-      c::number<&P::mass>("mass", "t", c::positive(), "mass m"),
-      c::number<&P::height>("height", "m", c::non_negative(),
-                            "initial height = the initial gap (< 0 would penetrate)"),
-      c::number<&P::velocity>("velocity", "m/s", c::any(), "initial velocity, upward positive"),
-      c::number<&P::restitution>("restitution", "-", c::closed(0, 1), "Newton's coefficient e"),
-      c::number<&P::gravity>("gravity", "m/s^2", c::non_negative(), "g"),
-  };
-  return f;
-}
-
-std::span<const c::Field<ImpactOscillator::Parameters>> impact_oscillator_fields() {
-  using P = ImpactOscillator::Parameters;
-  static const c::Field<P> f[] = {
-      c::number<&P::mass>("mass", "t", c::positive(), "mass m"),
-      c::number<&P::stiffness>("stiffness", "kN/m", c::non_negative(), "spring k"),
-      c::number<&P::damping_ratio>("damping_ratio", "-", c::non_negative(),
-                                   "ζ; c = 2ζ√(km)"),
-      c::number<&P::gap>("gap", "m", c::any(), "position of the stop"),
-      c::number<&P::restitution>("restitution", "-", c::closed(0, 1), "Newton's coefficient e"),
-      c::number<&P::initial_position>("initial_position", "m", c::any(),
-                                      "x₀; at most gap (else an initial penetration)"),
-      c::number<&P::initial_velocity>("initial_velocity", "m/s", c::any(), "v₀"),
-      c::number<&P::force_amplitude>("force_amplitude", "kN", c::any(), "F₀ of F₀ sin(2π f t)"),
-      c::number<&P::force_frequency>("force_frequency", "Hz", c::non_negative(), "f"),
-  };
-  return f;
-}
-
-std::span<const c::Field<SlidingBlock::Parameters>> sliding_block_fields() {
-  using P = SlidingBlock::Parameters;
-  static const c::Field<P> f[] = {
-      c::number<&P::mass>("mass", "t", c::positive(), "mass m"),
-      c::number<&P::friction>("friction", "-", c::non_negative(), "Coulomb μ"),
-      c::number<&P::gravity>("gravity", "m/s^2", c::non_negative(), "g"),
-      c::number<&P::initial_velocity>("initial_velocity", "m/s", c::any(), "v₀ along x"),
-      c::number<&P::force>("force", "kN", c::any(), "constant driving force along x"),
-      c::number<&P::force_amplitude>("force_amplitude", "kN", c::any(),
-                                     "F₀ of F₀ sin(2π f t) along x"),
-      c::number<&P::force_frequency>("force_frequency", "Hz", c::non_negative(), "f"),
-      c::number<&P::incline_deg>("incline_deg", "deg", c::open(-90, 90), "slope angle β"),
-  };
-  return f;
-}
-
-std::span<const c::Field<BridgeDesign>> rigid_deck_fields() {
-  using P = BridgeDesign;
-  using D = DeckGeometry;
-  static const c::Field<P> f[] = {
-      c::number<&P::mass>("mass", "t", c::positive(), "deck mass (required)"),
-      c::number<&P::inertia>("inertia", "t m^2", c::positive(),
-                             "rotational inertia about the centre (required)"),
-      c::number<&P::deck, &D::length>("length", "m", c::positive(), "L, along the axis (required)"),
-      c::number<&P::deck, &D::width>("width", "m", c::positive(), "W (required)"),
-      c::number<&P::deck, &D::skew_deg>("skew_deg", "deg", c::open(-80, 80), "skew angle α"),
-      c::number<&P::deck, &D::gap_right>("gap_right", "m", c::non_negative(),
-                                         "clear distance along the axis at x = y = θ = 0"),
-      c::number<&P::deck, &D::gap_left>("gap_left", "m", c::non_negative(),
-                                        "clear distance along the axis at x = y = θ = 0"),
-      c::number<&P::restitution>("restitution", "-", c::closed(0, 1), "all four contacts"),
-      c::number<&P::friction>("friction", "-", c::non_negative(), "all four contacts"),
-      c::vector3<&P::initial_position>("initial_position", "m, m, rad",
-                                       "(x, y, θ); no corner may penetrate"),
-      c::vector3<&P::initial_velocity>("initial_velocity", "m/s, m/s, rad/s", "(vx, vy, ω)"),
-  };
-  return f;
-}
-
-std::span<const c::Field<BridgeDesign>> bridge_deck_fields() {
-  using P = BridgeDesign;
-  using D = DeckGeometry;
-  static const c::Field<P> f[] = {
-      c::number<&P::mass>("mass", "t", c::positive(), "deck mass m_d (paper, sec. 3)"),
-      c::number<&P::inertia>("inertia", "t m^2", c::positive(),
-                             "deck inertia I_d about the centre (paper, sec. 3)"),
-      c::number<&P::deck, &D::length>("length", "m", c::positive(),
-                                      "L = 110 ft (Saiidi, Vosooghi & Nelson 2013)"),
-      c::number<&P::deck, &D::width>("width", "m", c::positive(), "W (assumed, docs/bridge.md)"),
-      c::number<&P::deck, &D::skew_deg>("skew_deg", "deg", c::open(-80, 80), "skew angle α"),
-      c::vector3<&P::initial_position>("initial_position", "m, m, rad",
-                                       "absolute (x, y, θ) at t = 0; no corner may penetrate"),
-      c::vector3<&P::initial_velocity>("initial_velocity", "m/s, m/s, rad/s", "(vx, vy, ω)"),
-  };
-  return f;
-}
-
-std::span<const c::Field<BridgeDesign>> bridge_gap_fields() {
-  using P = BridgeDesign;
-  using D = DeckGeometry;
-  static const c::Field<P> f[] = {
-      c::number<&P::deck, &D::gap_left>("left", "m", c::non_negative(),
-                                        "clear distance along the deck axis at rest, left end"),
-      c::number<&P::deck, &D::gap_right>("right", "m", c::non_negative(),
-                                         "clear distance along the deck axis at rest, right end"),
-  };
-  return f;
-}
-
-std::span<const c::Field<ShearKeyParameters>> shear_key_fields() {
-  using K = ShearKeyParameters;
-  static const c::Field<K> f[] = {
-      c::number<&K::gap>("gap", "m", c::non_negative(),
-                         "clear transverse gap between the deck's side and each key at rest"),
-      c::number<&K::restitution>("restitution", "-", c::closed(0, 1),
-                                 "Newton's coefficient e of the key contacts"),
-      c::number<&K::friction>("friction", "-", c::non_negative(),
-                              "Coulomb's coefficient mu of the key contacts"),
-      c::number<&K::capacity>("capacity", "kN", c::non_negative(),
-                              "mean contact force of a step that breaks a key; 0: unbreakable"),
-  };
-  return f;
-}
-
-std::span<const c::Field<BridgeDesign>> bridge_damping_fields() {
-  using P = BridgeDesign;
-  static const c::Field<P> f[] = {
-      c::number<&P::damping_ratio_i>("ratio_i", "-", c::closed_open(0, 1),
-                                     "Rayleigh ratio of mode_i (paper: 8 %)"),
-      c::number<&P::damping_ratio_j>("ratio_j", "-", c::closed_open(0, 1),
-                                     "Rayleigh ratio of mode_j (paper: 8 %)"),
-      c::integer<&P::damping_mode_i>("mode_i", c::closed(1, 3), "1-based mode of ratio_i"),
-      c::integer<&P::damping_mode_j>("mode_j", c::closed(1, 3),
-                                     "1-based mode of ratio_j; differs from mode_i"),
-  };
-  return f;
-}
-
-std::span<const c::Field<BridgeDesign>> bridge_seat_fields() {
-  using P = BridgeDesign;
-  static const c::Field<P> f[] = {
-      c::number<&P::restitution>("restitution", "-", c::closed(0, 1),
-                                 "all four deck-corner contacts (paper: 0)"),
-      c::number<&P::friction>("friction", "-", c::non_negative(),
-                              "all four deck-corner contacts (paper: 0.5)"),
-  };
-  return f;
-}
 
 std::span<const c::Field<BentSettings>> BentSettings::fields() {
   using S = BentSettings;
@@ -325,36 +187,6 @@ std::span<const c::Field<LayoutSettings>> LayoutSettings::fields() {
   return f;
 }
 
-std::span<const c::Field<parts::RigidBody>> segment_fields() {
-  using P = parts::RigidBody;
-  static const c::Field<P> f[] = {
-      c::number<&P::mass>("mass", "t", c::positive(), "mass of the body (required)"),
-      c::number<&P::inertia>("inertia", "t m^2", c::positive(),
-                             "rotational inertia about its centre (required)"),
-      c::number<&P::length>("length", "m", c::positive(), "L along the axis (required)"),
-      c::number<&P::width>("width", "m", c::positive(),
-                           "W (required); every body of a scene has the same width"),
-      c::vector3<&P::initial_position>("initial_position", "m, m, rad",
-                                       "(x, y, θ) at t = 0 from the rest layout; no corner "
-                                       "may penetrate"),
-      c::vector3<&P::initial_velocity>("initial_velocity", "m/s, m/s, rad/s", "(vx, vy, ω)"),
-  };
-  return f;
-}
-
-std::span<const c::Field<DeckChain::Joint>> joint_fields() {
-  using P = DeckChain::Joint;
-  static const c::Field<P> f[] = {
-      c::number<&P::gap>("gap", "m", c::non_negative(),
-                         "clear distance along the axis between the two faces at rest"),
-      c::number<&P::restitution>("restitution", "-", c::closed(0, 1),
-                                 "Newton's ε_N of the joint's two corner contacts"),
-      c::number<&P::friction>("friction", "-", c::non_negative(),
-                              "Coulomb's μ of the joint's two corner contacts"),
-  };
-  return f;
-}
-
 std::span<const c::Field<SeatLengthSettings>> SeatLengthSettings::fields() {
   using S = SeatLengthSettings;
   static const c::Field<S> f[] = {
@@ -379,4 +211,4 @@ std::span<const c::Field<LimitStateSettings>> LimitStateSettings::fields() {
   return f;
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

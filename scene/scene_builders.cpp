@@ -1,11 +1,17 @@
 // The simple systems and the free rigid deck of scene files: their [model] keys read by field
-// (models/scene_schema.hpp), the conditions between keys checked here, the rest by the models'
+// (scene/scene_schema.hpp), the conditions between keys checked here, the rest by the models'
 // own validate().
-#include "models/scene_builders.hpp"
+#include "scene/scene_builders.hpp"
 
-#include "models/scene_schema.hpp"
+#include "models/assembly.hpp"
+#include "models/bridge_fields.hpp"
+#include "models/bridge_parts.hpp"
+#include "models/simple_systems.hpp"
+#include "scene/scene_schema.hpp"
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace {
 
@@ -70,4 +76,4 @@ BridgeScene build_rigid_deck(Section& m) {
   return out;
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,8 +1,12 @@
-#include "models/scene_docs.hpp"
+#include "scene/scene_docs.hpp"
 
 #include "integrators/run.hpp"
-#include "models/connector_scene.hpp"
-#include "models/scene_schema.hpp"
+#include "models/bridge_fields.hpp"
+#include "models/deck_chain.hpp"
+#include "models/shear_keys.hpp"
+#include "models/simple_systems.hpp"
+#include "scene/connector_scene.hpp"
+#include "scene/scene_schema.hpp"
 
 #include <map>
 #include <set>
@@ -10,7 +14,9 @@
 #include <type_traits>
 #include <variant>
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace {
 
@@ -110,7 +116,7 @@ void add_bridge_tables(std::vector<DocTable>& out) {
                  kHeader + rows(joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}) +
                      rows(SeatLengthSettings::fields(), SeatLengthSettings{},
                           {{"seat_length", "none"}})});
-  // Connectors (models/connector_scene.hpp); seat_length is a limit state's.
+  // Connectors (scene/connector_scene.hpp); seat_length is a limit state's.
   out.push_back(table("model.restrainer", RestrainerSettings::fields(), RestrainerSettings{},
                       {{"stiffness", "required"}}));
   out.push_back({"model.abutments",
@@ -141,7 +147,8 @@ std::vector<DocTable> scene_doc_tables() {
   out.push_back(table("model.sliding_block", sliding_block_fields(), SlidingBlock::Parameters{}));
   const DefaultNotes required{
       {"mass", "required"}, {"inertia", "required"}, {"length", "required"}, {"width", "required"}};
-  out.push_back(table("model.rigid_deck", rigid_deck_fields(), BridgeDesign::free_deck(), required));
+  out.push_back(
+      table("model.rigid_deck", rigid_deck_fields(), BridgeDesign::free_deck(), required));
   add_bridge_tables(out);
   return out;
 }
@@ -177,4 +184,4 @@ std::string regenerate_scene_docs(const std::string& doc) {
   return out;
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,9 +1,9 @@
 // scene_docs: the key tables of docs/scenes.md, generated from the scene schema
-// (models/scene_docs.hpp).
+// (scene/scene_docs.hpp).
 //   scene_docs                 prints every table between its markers
 //   scene_docs --write FILE    replaces the tables of FILE with the generated ones
 //   scene_docs --check FILE    exits 1 when FILE's tables differ from the generated ones
-#include "models/scene_docs.hpp"
+#include "scene/scene_docs.hpp"
 
 #include <fstream>
 #include <iostream>
@@ -24,7 +24,7 @@ std::string read_file(const std::string& path) {
 int run(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (argc == 1) {
-    for (const auto& t : nsb::models::scene_doc_tables()) {
+    for (const auto& t : nsb::scene::scene_doc_tables()) {
       std::cout << "<!-- schema:begin " << t.name << " -->\n" << t.markdown
                 << "<!-- schema:end -->\n\n";
     }
@@ -36,15 +36,16 @@ int run(int argc, char** argv) {
   }
   const std::string path = argv[2];
   const std::string doc = read_file(path);
-  const std::string generated = nsb::models::regenerate_scene_docs(doc);
+  const std::string generated = nsb::scene::regenerate_scene_docs(doc);
   if (mode == "--write") {
     if (generated != doc) std::ofstream(path) << generated;
     return 0;
   }
   if (generated == doc) return 0;
   std::cerr << path << ": the key tables differ from the scene schema "
-            << "(models/scene_schema.cpp, integrators/options.cpp); regenerate them with\n"
-            << "  cmake --build build --target scene_docs && build/models/scene_docs --write "
+            << "(the models' fields in models/, scene/scene_schema.cpp, integrators/options.cpp); "
+            << "regenerate them with\n"
+            << "  cmake --build build --target scene_docs && build/scene/scene_docs --write "
             << path << "\n";
   return 1;
 }

@@ -1,6 +1,6 @@
-// Ground-motion record files: the PEER NGA .AT2, two-column and CSV readers and the check
-// of a record built in code. Formats: docs/ground-motions.md.
-#include "models/ground_motion.hpp"
+// Ground-motion record files: the PEER NGA .AT2, two-column and CSV readers (scene/records.hpp).
+// Formats: docs/ground-motions.md.
+#include "scene/records.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -12,11 +12,13 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using models::kMinRecordSamples;
+using models::Record;
+
 namespace {
 
-// A cubic spline needs three samples (GSL's cspline minimum size).
-constexpr std::size_t kMinSamples = 3;
 // Longest AT2 line 4 read ('NPTS= n, DT= dt SEC' and the filter data some files append).
 constexpr std::size_t kMaxHeaderLine = 512;
 
@@ -99,8 +101,8 @@ void push_sample(Record& r, double t, double a, const std::string& file,
 }
 
 void check_size(const Record& r, const std::string& file) {
-  if (r.t.size() < kMinSamples) {
-    fail(file, "a record needs at least " + std::to_string(kMinSamples) +
+  if (r.t.size() < kMinRecordSamples) {
+    fail(file, "a record needs at least " + std::to_string(kMinRecordSamples) +
                             " samples, found " + std::to_string(r.t.size()));
   }
 }
@@ -228,8 +230,8 @@ Record read_at2(std::istream& in, const std::string& file, double g) {
   if (npts_s.size() > 9) fail(at(file, 4), "NPTS = " + npts_s + " is too large");
   const long npts = std::stol(npts_s);
   const double dt = parse_number(dt_s, file, 4);
-  if (npts < static_cast<long>(kMinSamples)) {
-    fail(at(file, 4), "NPTS must be >= " + std::to_string(kMinSamples));
+  if (npts < static_cast<long>(kMinRecordSamples)) {
+    fail(at(file, 4), "NPTS must be >= " + std::to_string(kMinRecordSamples));
   }
   if (!(dt > 0.0)) fail(at(file, 4), "DT must be > 0");
   Record r;
@@ -284,25 +286,4 @@ Record read_csv(std::istream& in, const std::string& file, double unit) {
   return read_text_record(in, file, unit, format);
 }
 
-void validate_record(const Record& r) {
-  const std::string who = "record '" + r.source + "'";
-  if (r.t.size() != r.a.size()) {
-    throw std::invalid_argument(who + ": t and a differ in size (" + std::to_string(r.t.size()) +
-                                " vs " + std::to_string(r.a.size()) + ")");
-  }
-  if (r.t.size() < kMinSamples) {
-    throw std::invalid_argument(who + ": needs at least " + std::to_string(kMinSamples) +
-                                " samples, has " + std::to_string(r.t.size()));
-  }
-  for (std::size_t i = 0; i < r.t.size(); ++i) {
-    if (!std::isfinite(r.t[i]) || !std::isfinite(r.a[i])) {
-      throw std::invalid_argument(who + ": sample " + std::to_string(i) + " is not finite");
-    }
-    if (i > 0 && !(r.t[i] > r.t[i - 1])) {
-      throw std::invalid_argument(who + ": time of sample " + std::to_string(i) +
-                                  " does not increase strictly");
-    }
-  }
-}
-
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -18,10 +18,13 @@
 #include <string_view>
 #include <vector>
 
-namespace nsb::models {
+namespace nsb::scene {
 
-// Where errors point: the file, and for each key either its source position or "(override)".
-struct Context {
+// A TOML document being read (a scene file or table, a sweep design, a fragility table) and
+// the one error format of every value read from it: "<file>:<line>:<col>: <key>: <what>", or
+// "<file>: <key> (override): <what>" for a key set by an override, "<file>: <key>: <what>" for
+// a value without a source position (a table built in code).
+struct Source {
   std::string file;
   std::filesystem::path dir;
   std::set<std::string> overridden;  // key paths set by overrides, e.g. "model.bents[0].height"
@@ -47,11 +50,11 @@ std::vector<std::string_view> keys_of(std::span<const config::Field<S>> fields) 
 // One TOML table of the scene: values read by field, and the check for unknown keys.
 class Section {
  public:
-  Section(const Context& c, const toml::table& t, std::string path)
+  Section(const Source& c, const toml::table& t, std::string path)
       : c_(c), t_(t), path_(std::move(path)) {}
 
   const std::string& path() const { return path_; }
-  const Context& context() const { return c_; }
+  const Source& context() const { return c_; }
   const toml::table& table() const { return t_; }
   std::string key_path(std::string_view key) const;
   bool has(std::string_view key) const { return t_.get(key) != nullptr; }
@@ -92,15 +95,10 @@ class Section {
                             const std::map<std::string, std::string>& field_to_key = {}) const;
 
  private:
-  const Context& c_;
+  const Source& c_;
   const toml::table& t_;
   std::string path_;
   std::vector<std::string_view> known_;
 };
 
-// Applies one override "section.key=value" to the parsed scene (models/overrides.cpp): the
-// value is a TOML value or else taken as a string; tables on the way are created, arrays
-// indexed by 0-based position. Records the key path in ctx.overridden.
-void apply_override(toml::table& root, const std::string& text, Context& ctx);
-
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,23 +1,21 @@
-// The schema of scene files: every key of every table, declared once as a config::Field
-// (key, member, unit, range, meaning; the default is the member's initializer, or the
-// benchmark's value for the bridge). The scene reader reads each table by looping over these
-// declarations and docs/scenes.md's key tables are generated from them (models/scene_docs.hpp).
-// Keys that a model's parameters struct cannot hold (delays, record names, target PGAs) are
-// members of the settings structs below.
+// The schema of scene files beyond the models' own keys: every key of every table is declared
+// once as a config::Field (key, member, unit, range, meaning; the default is the member's
+// initializer, or the benchmark's value for the bridge). A model's keys are declared beside
+// its parameters struct in models/ (simple_systems.hpp, deck_chain.hpp, shear_keys.hpp,
+// bridge_fields.hpp); the keys that a model's parameters struct cannot hold
+// (delays, record names, target PGAs) are members of the settings structs below. The scene
+// reader reads each table by looping over these declarations and docs/scenes.md's key tables
+// are generated from them (scene/scene_docs.hpp).
 #pragma once
 
 #include "config/schema.hpp"
 #include "models/bridge_design.hpp"
-#include "models/deck_chain.hpp"
-#include "models/parts.hpp"
-#include "models/shear_keys.hpp"
-#include "models/simple_systems.hpp"
 
 #include <array>
 #include <span>
 #include <string>
 
-namespace nsb::models {
+namespace nsb::scene {
 
 // The top level and [model]: the free description and the model kind.
 struct SceneHeader {
@@ -44,7 +42,7 @@ struct OutputSettings {
 // derived) and the wave-passage delay of its ground motion.
 struct BentSettings {
   double position = 0.0;                  // s_j along the deck axis from the centre [m]
-  BentDesign design;
+  models::BentDesign design;
   double stiffness_longitudinal = 0.0;    // [kN/m], 0: design.stiffness()
   double yield_force_longitudinal = 0.0;  // [kN], 0: design.yield_force()
   double stiffness_transverse = 0.0;
@@ -91,35 +89,12 @@ struct ExcitationSettings {
   static std::span<const config::Field<ExcitationSettings>> fields();
 };
 
-// The simple systems' [model] keys (besides kind).
-std::span<const config::Field<BouncingBall::Parameters>> bouncing_ball_fields();
-std::span<const config::Field<ImpactOscillator::Parameters>> impact_oscillator_fields();
-std::span<const config::Field<SlidingBlock::Parameters>> sliding_block_fields();
-std::span<const config::Field<BridgeDesign>> rigid_deck_fields();  // a free deck
-
-// The bridge's tables that set its BridgeDesign.
-std::span<const config::Field<BridgeDesign>> bridge_deck_fields();     // [model.deck]
-std::span<const config::Field<BridgeDesign>> bridge_gap_fields();      // [model.gaps]
-std::span<const config::Field<BridgeDesign>> bridge_damping_fields();  // [model.damping]
-std::span<const config::Field<BridgeDesign>> bridge_seat_fields();     // [model.seats]
-
-// [model.shear_keys]: the four exterior shear keys at the abutments (models/shear_keys.hpp).
-std::span<const config::Field<ShearKeyParameters>> shear_key_fields();
-
 // [model] keys of a deck in several bodies (a bridge in [[model.segments]], a deck chain):
 // the skew of every end face.
 struct LayoutSettings {
   double skew_deg = 0.0;  // alpha [deg], |alpha| < 80
   static std::span<const config::Field<LayoutSettings>> fields();
 };
-
-// One rigid deck body: an element of [[model.segments]] (bridge) or [[model.decks]] (deck
-// chain); skew_deg comes from LayoutSettings. initial_position is the displacement from the
-// rest layout (docs/bridge.md, "Bridges in parts").
-std::span<const config::Field<parts::RigidBody>> segment_fields();
-// One joint between two deck bodies or a deck and an abutment: an element of
-// [[model.hinges]] (bridge) or [[model.joints]] (deck chain).
-std::span<const config::Field<DeckChain::Joint>> joint_fields();
 
 // The seat a deck end rests on, of [model.abutments] (both abutments) and of each
 // [[model.hinges]] element: its length along the axis, from the backwall (abutment) or from
@@ -140,4 +115,4 @@ struct LimitStateSettings {
 // The model kinds a scene may name in [model] kind.
 const std::vector<std::string>& scene_kinds();
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,21 +1,23 @@
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
-#include "models/scene_builders.hpp"
-#include "models/scene_reader.hpp"
+#include "scene/scene_builders.hpp"
+#include "scene/scene_reader.hpp"
 
 #include <toml++/toml.h>
 
 #include <sstream>
 #include <stdexcept>
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace {
 
 namespace fs = std::filesystem;
 
 // The parsed TOML of a scene file; a syntax error names its line and column.
-toml::table parse_scene_file(const fs::path& file, const Context& ctx) {
+toml::table parse_scene_file(const fs::path& file, const Source& ctx) {
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) {
     throw std::invalid_argument(ctx.file + ": cannot open scene file (not found)");
@@ -49,16 +51,32 @@ void set_end_time(integrators::RunConfig& run, double t) {
 
 }  // namespace
 
-Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  Context ctx;
-  ctx.file = file.string();
-  ctx.dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
-  toml::table root = parse_scene_file(file, ctx);
-  for (const auto& o : overrides) apply_override(root, o, ctx);
+SceneTable read_scene_table(const std::filesystem::path& file) {
+  SceneTable scene;
+  scene.origin.name = file.string();
+  scene.origin.folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+  Source ctx;
+  ctx.file = scene.origin.name;
+  scene.table = parse_scene_file(file, ctx);
+  return scene;
+}
+
+std::string to_toml(const SceneTable& scene) {
+  std::ostringstream s;
+  s << toml::toml_formatter(scene.table) << '\n';
+  return s.str();
+}
+
+Scene build_scene(const SceneTable& source) {
+  Source ctx;
+  ctx.file = source.origin.name;
+  ctx.dir = source.origin.folder;
+  ctx.overridden = source.overridden;
+  const toml::table& root = source.table;
 
   Scene scene;
-  scene.path = file;
-  scene.name = file.stem().string();
+  scene.path = source.origin.name;
+  scene.name = scene.path.stem().string();
   Section top(ctx, root, "");
   top.only({"description", "model", "solver", "output"});
   SceneHeader header;
@@ -95,7 +113,14 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
     scene.system = build_simple_system(scene.kind, m);
   }
   check_solver(solver, scene.run);
+  scene.table = source;
   return scene;
 }
 
-}  // namespace nsb::models
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  SceneTable source = read_scene_table(file);
+  apply_overrides(source, overrides);
+  return build_scene(source);
+}
+
+}  // namespace nsb::scene

@@ -1,13 +1,16 @@
 // The bridge of a scene file (docs/bridge.md): its tables read by field
-// (models/scene_schema.hpp), in the order of the model: the deck, its gaps, the damping, the
+// (scene/scene_schema.hpp), in the order of the model: the deck, its gaps, the damping, the
 // bents, the seats, the excitation, and the support motions made from the records.
-#include "models/scene_builders.hpp"
+#include "scene/scene_builders.hpp"
 
+#include "models/bridge_fields.hpp"
 #include "models/bridge_parts.hpp"
-#include "models/connector_scene.hpp"
 #include "models/excitation_scaling.hpp"
 #include "models/ground_motion.hpp"
-#include "models/scene_schema.hpp"
+#include "models/shear_keys.hpp"
+#include "scene/connector_scene.hpp"
+#include "scene/records.hpp"
+#include "scene/scene_schema.hpp"
 
 #include <algorithm>
 #include <array>
@@ -17,7 +20,9 @@
 #include <map>
 #include <optional>
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace {
 
@@ -27,7 +32,7 @@ constexpr double kStandardGravity = 9.81;  // [m/s^2]: target PGA in scenes is i
 
 // Finds a record file: absolute, next to the scene, in ../data/ beside it, or in ./data/.
 fs::path find_record(const Section& s, const std::string& key, const std::string& name) {
-  const Context& c = s.context();
+  const Source& c = s.context();
   const fs::path p(name);
   std::vector<fs::path> tried;
   if (p.is_absolute()) {
@@ -48,7 +53,7 @@ fs::path find_record(const Section& s, const std::string& key, const std::string
 
 Record read_record(const Section& s, const std::string& key, const std::string& name,
                    double unit) {
-  const Context& c = s.context();
+  const Source& c = s.context();
   const fs::path path = find_record(s, key, name);
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -441,7 +446,7 @@ struct BridgeAdditions {
 
 // The bridge as an assembly of parts (models/bridge_parts.hpp), one deck (d == nullptr) or
 // segmented, with the additions: the connectors
-// (models/connector_scene.hpp) and their ground motions g, then the shear keys on the deck's
+// (scene/connector_scene.hpp) and their ground motions g, then the shear keys on the deck's
 // bodies, then the limit states watched on its segments (docs/scenes.md: a bridge in segments
 // always watches its joints' closure; one deck only the limit states its scene asks for).
 std::unique_ptr<integrators::System> assemble(const Section& m, const BridgeDesign& p,
@@ -539,4 +544,4 @@ BridgeScene build_bridge(Section& m) {
   return out;
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,4 +1,4 @@
-// The key tables of docs/scenes.md, generated from the scene schema (models/scene_schema.hpp
+// The key tables of docs/scenes.md, generated from the scene schema (scene/scene_schema.hpp
 // and the methods' [solver] fields): one markdown table per scene table, one [solver] table
 // per method. The committed docs hold each table between the marker comments
 //   <!-- schema:begin NAME -->
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace nsb::models {
+namespace nsb::scene {
 
 // One generated table: its marker name ("solver.moreau", "model.deck", ...) and its markdown.
 struct DocTable {
@@ -26,4 +26,4 @@ std::vector<DocTable> scene_doc_tables();
 // unterminated block, or a generated table the document has no block for.
 std::string regenerate_scene_docs(const std::string& doc);
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

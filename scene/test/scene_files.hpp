@@ -2,7 +2,7 @@
 // which is removed when the process ends, and the error message of loading one.
 #pragma once
 
-#include "models/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <unistd.h>
 
@@ -13,7 +13,7 @@
 #include <system_error>
 #include <vector>
 
-namespace nsb::models::test_files {
+namespace nsb::scene::test_files {
 
 // The scratch folder, created at first use and removed at exit.
 inline const std::filesystem::path& scratch_dir() {
@@ -49,4 +49,4 @@ inline std::string error_of(const std::string& name, const std::string& text,
   return {};
 }
 
-}  // namespace nsb::models::test_files
+}  // namespace nsb::scene::test_files

@@ -1,4 +1,4 @@
-// The parts of load_scene (models/scene.hpp): the [solver] table read into the typed run
+// The parts of load_scene (scene/scene.hpp): the [solver] table read into the typed run
 // configuration, the simple systems and the bridge built from their [model] tables.
 #pragma once
 
@@ -6,9 +6,9 @@
 #include "integrators/system.hpp"
 #include "models/bridge_parts.hpp"
 #include "models/deck_chain.hpp"
-#include "models/parts.hpp"
 #include "models/excitation_scaling.hpp"
-#include "models/scene_reader.hpp"
+#include "models/parts.hpp"
+#include "scene/scene_reader.hpp"
 
 #include <memory>
 #include <optional>
@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-namespace nsb::models {
+namespace nsb::scene {
 
 // [solver]: `method` selects the options struct (integrators::default_config); every other
 // key is read into the chosen method's field of that key with that field's range. A key only
@@ -38,8 +38,8 @@ std::unique_ptr<integrators::System> build_simple_system(const std::string& kind
 // records and their scaling.
 struct BridgeScene {
   std::unique_ptr<integrators::System> system;
-  std::optional<BridgeDesign> design;
-  InputMotion input;  // the scaling of each excitation component
+  std::optional<models::BridgeDesign> design;
+  models::InputMotion input;  // the scaling of each excitation component
   double motion_end = 0.0;
   double time_scale = 1.0;
 };
@@ -49,12 +49,12 @@ BridgeScene build_bridge(Section& m);
 // of one body against two fixed seats (models/bridge_parts.hpp); no excitation.
 BridgeScene build_rigid_deck(Section& m);
 
-// The deck bodies of [[model.<key>]] (models/scene_schema.hpp, segment_fields): at least one,
+// The deck bodies of [[model.<key>]] (models/bridge_fields.hpp, segment_fields): at least one,
 // mass, inertia, length and width required, every width equal to the first.
-std::vector<parts::RigidBody> read_bodies(const Section& m, std::string_view key);
+std::vector<models::parts::RigidBody> read_bodies(const Section& m, std::string_view key);
 // Exactly `count` [[model.<key>]] joints (joint_fields; gap required); `rule` says why.
 // `extra`: further keys an element may hold, read by the caller (seat_length, restrainer).
-std::vector<DeckChain::Joint> read_joints(const Section& m, std::string_view key,
+std::vector<models::DeckChain::Joint> read_joints(const Section& m, std::string_view key,
                                           std::size_t count, const std::string& rule,
                                           const std::vector<std::string_view>& extra = {});
 
@@ -63,7 +63,7 @@ std::vector<DeckChain::Joint> read_joints(const Section& m, std::string_view key
 // [model.limit_states]; the bents' heights are the caller's. `requested`: a seat length or a
 // limit of [model.limit_states] is given.
 struct BridgeLimitKeys {
-  BridgeLimits limits;
+  models::BridgeLimits limits;
   bool requested = false;
 };
 BridgeLimitKeys read_bridge_limits(const Section& m);
@@ -71,4 +71,4 @@ BridgeLimitKeys read_bridge_limits(const Section& m);
 // The deck chain of [model] kind = "deck_chain" (models/deck_chain.hpp).
 std::unique_ptr<integrators::System> build_deck_chain(Section& m);
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,13 +1,16 @@
 // The deck bodies and joints of a scene ([[model.segments]] and [[model.hinges]] of a bridge,
 // [[model.decks]] and [[model.joints]] of a deck chain) and the deck chain of [model]
 // kind = "deck_chain" (models/deck_chain.hpp, docs/bridge.md "Bridges in parts").
-#include "models/scene_builders.hpp"
+#include "scene/scene_builders.hpp"
 
 #include "models/assembly.hpp"
+#include "models/bridge_fields.hpp"
 #include "models/deck_chain.hpp"
-#include "models/scene_schema.hpp"
+#include "scene/scene_schema.hpp"
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace {
 
@@ -99,4 +102,4 @@ std::unique_ptr<integrators::System> build_deck_chain(Section& m) {
   }
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

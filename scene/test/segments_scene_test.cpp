@@ -1,8 +1,8 @@
 // Bridges in parts in scene files (docs/scenes.md, "A deck in segments", kind = "deck_chain"):
 // one segment reproduces [model.deck] bit for bit, the outputs name each body's coordinates,
 // and every rule of the layout is an error naming the file, line and key.
-#include "models/scene.hpp"
-#include "models/test/scene_files.hpp"
+#include "scene/scene.hpp"
+#include "scene/test/scene_files.hpp"
 
 #include "integrators/moreau_jean.hpp"
 #include "integrators/recorder.hpp"
@@ -17,12 +17,12 @@
 
 namespace fs = std::filesystem;
 namespace ni = nsb::integrators;
-using nsb::models::load_scene;
+using nsb::scene::load_scene;
 
 namespace {
 
-using nsb::models::test_files::error_of;
-using nsb::models::test_files::write;
+using nsb::scene::test_files::error_of;
+using nsb::scene::test_files::write;
 
 bool contains(const std::string& s, const std::string& part) {
   const bool ok = s.find(part) != std::string::npos;

@@ -1,12 +1,14 @@
-// The connectors of a bridge scene added to its parts (models/connector_scene.hpp).
-#include "models/connector_scene.hpp"
+// The connectors of a bridge scene added to its parts (scene/connector_scene.hpp).
+#include "scene/connector_scene.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 
-namespace nsb::models {
+namespace nsb::scene {
+
+using namespace models;  // the systems and parts a scene builds
 
 namespace {
 
@@ -132,4 +134,4 @@ void add_connectors(const BridgeConnectors& c, const BridgeDesign& p,
   }
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

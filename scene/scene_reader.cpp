@@ -1,11 +1,11 @@
-#include "models/scene_reader.hpp"
+#include "scene/scene_reader.hpp"
 
 #include <algorithm>
 #include <sstream>
 
-namespace nsb::models {
+namespace nsb::scene {
 
-void Context::fail(const toml::node* n, const std::string& key, const std::string& what) const {
+void Source::fail(const toml::node* n, const std::string& key, const std::string& what) const {
   std::ostringstream s;
   s << file;
   if (overridden.count(key) != 0) {
@@ -129,4 +129,4 @@ void Section::rethrow(const std::invalid_argument& e,
   fail_table(msg);
 }
 
-}  // namespace nsb::models
+}  // namespace nsb::scene

@@ -1,7 +1,7 @@
-// Scene files (models/scene.hpp): every shipped scene loads; every bad input gives an error
+// Scene files (scene/scene.hpp): every shipped scene loads; every bad input gives an error
 // naming the file and the key or line; overrides apply before validation.
-#include "models/scene.hpp"
-#include "models/test/scene_files.hpp"
+#include "scene/scene.hpp"
+#include "scene/test/scene_files.hpp"
 
 #include "integrators/run.hpp"
 #include "models/bridge_design.hpp"
@@ -18,14 +18,14 @@
 #include <unistd.h>
 
 namespace fs = std::filesystem;
-using nsb::models::load_scene;
+using nsb::scene::load_scene;
 namespace ni = nsb::integrators;
 
 namespace {
 
-using nsb::models::test_files::error_of;
-using nsb::models::test_files::scratch_dir;
-using nsb::models::test_files::write;
+using nsb::scene::test_files::error_of;
+using nsb::scene::test_files::scratch_dir;
+using nsb::scene::test_files::write;
 
 bool contains(const std::string& s, const std::string& part) {
   const bool ok = s.find(part) != std::string::npos;
