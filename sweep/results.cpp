@@ -2,7 +2,6 @@
 
 #include "integrators/recorder.hpp"
 #include "sweep/csv.hpp"
-#include "sweep/runner.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -77,7 +76,9 @@ ValueKind kind_of_text(const std::string& s) {
 
 ValueKind combined(std::optional<ValueKind> a, ValueKind b) {
   if (!a || *a == b) return b;
-  const auto numeric = [](ValueKind k) { return k == ValueKind::kReal || k == ValueKind::kInteger; };
+  const auto numeric = [](ValueKind k) {
+    return k == ValueKind::kReal || k == ValueKind::kInteger;
+  };
   return numeric(*a) && numeric(b) ? ValueKind::kReal : ValueKind::kText;
 }
 
@@ -140,7 +141,8 @@ void read_cell(Row& row, const Column& c, const std::string& text,
       const std::string& name = limit_names.at(c.index);
       auto it = std::find_if(row.limit_states.begin(), row.limit_states.end(),
                              [&](const LimitCell& l) { return l.name == name; });
-      if (it == row.limit_states.end()) it = row.limit_states.insert(it, {name, false, kNotANumber});
+      if (it == row.limit_states.end())
+        it = row.limit_states.insert(it, {name, false, kNotANumber});
       if (c.field == Field::kExceeded) it->exceeded = text == "1";
       else it->margin = real_of(text);
       break;
@@ -206,7 +208,8 @@ Row make_row(const Design& d, std::size_t index, const runs::RunRecord& record, 
   row.lcp_unsolved = result.lcp_unsolved;
   if (!integrators::succeeded(result.status)) row.failure_time = result.failure_time;
   if (!result.completed) row.message = result.message;
-  for (const auto& l : digest.limit_states) row.limit_states.push_back({l.name, l.exceeded, l.margin});
+  for (const auto& l : digest.limit_states)
+    row.limit_states.push_back({l.name, l.exceeded, l.margin});
   row.wall_s = wall;
   return row;
 }

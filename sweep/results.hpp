@@ -65,6 +65,12 @@ bool is_result(const Row& row);
 
 std::string_view to_string(ValueKind kind);
 
+// The columns of results.csv after `run` and the factor columns, for a system whose
+// generalized coordinates are `coordinates` (base_coordinates of the design), without the
+// limit states': status, peak_<q> for every coordinate q, residual_<q> for the last, then
+// impacts through message, and wall_s.
+std::vector<std::string> result_columns(const std::vector<std::string>& coordinates);
+
 // What a column of results.csv holds: which field of a Row (and, for a factor, a coordinate's
 // peak or a limit state, which one: `index`).
 enum class Field {

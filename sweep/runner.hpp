@@ -41,12 +41,6 @@ struct SweepSummary {
   Results table;                   // what results.csv holds (empty on ranks other than 0)
 };
 
-// The columns of results.csv after `run` and the factor columns, for a system whose
-// generalized coordinates are `coordinates` (base_coordinates of the design), without the
-// limit states': status, peak_<q> for every coordinate q, residual_<q> for the last, then
-// impacts through wall_s (sweep/results.hpp, docs/sweep.md).
-std::vector<std::string> result_columns(const std::vector<std::string>& coordinates);
-
 // One run: runs::execute with the run's overrides, its outputs (runs::write_record, the same
 // files and warnings as `nsbridge run`) into DIR/runs/<id>/, and its typed row, whose resume
 // files row.csv and limit_states.csv (sweep/results.hpp) go beside them (each atomically). A
@@ -65,13 +59,13 @@ RunOutcome run_one(const Design& design, std::size_t index, const std::filesyste
 // The state of DIR before the runs: which are already complete (their rows), which remain.
 struct Plan {
   std::vector<std::optional<Row>> rows;  // one per run; set for completed runs
-  std::vector<std::size_t> pending;              // indices still to run, ascending
+  std::vector<std::size_t> pending;      // indices still to run, ascending
   std::vector<std::string> notes;
 };
 // Prepares DIR for a design: records the design's hash and the code revision in
 // DIR/manifest.toml, and reads the rows of completed runs from their resume files (the only
-// files of a sweep it reads back). A DIR holding a different design is
-// refused (std::invalid_argument) unless options.restart, which removes its runs first.
+// files of a sweep it reads back). A DIR holding a different design is refused
+// (std::invalid_argument) unless options.restart, which removes its runs first.
 Plan prepare(const Design& design, const SweepOptions& options);
 
 // Writes DIR/results.csv from every row (sorted by run id), via a temporary file and rename,

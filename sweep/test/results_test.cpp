@@ -18,16 +18,20 @@ namespace {
 
 const std::string kScenes = NSB_SCENES_DIR;
 
-// A design of the bouncing ball (coordinate "y") with one factor of two levels, and a
-// one-at-a-time base run whose label is empty.
+// A one-at-a-time design of the bouncing ball (coordinate "y"): the base run (both labels
+// empty), gravity 9.81 and 4.905 (TOML floats), and a named level "a, b" (a comma, quoted).
 Design ball_design() {
-  const fs::path dir = fs::temp_directory_path() / ("nsb_results_test_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("nsb_results_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / "ball.toml";
   std::ofstream(file) << "scene = \"" << kScenes << "/bouncing-ball.toml\"\nmode = \"oat\"\n"
                       << "[[factor]]\nkey = \"model.gravity\"\nvalues = [9.81, 4.905]\n"
-                      << "[[factor]]\nkey = \"name\"\nlevels = [{name = \"a, b\", set = [\"model.gravity=9.81\"]}]\n";
-  return load_design(file);
+                      << "[[factor]]\nkey = \"name\"\n"
+                      << "levels = [{name = \"a, b\", set = [\"model.gravity=9.81\"]}]\n";
+  Design d = load_design(file);
+  fs::remove_all(dir);
+  return d;
 }
 
 Row row(const Design& d, std::size_t index, std::string status, std::vector<LimitCell> limits) {
