@@ -30,8 +30,7 @@ struct SweepArgs {
   sweep::PlotOptions plots;
 };
 
-void draw(const SweepArgs& args) {
-  const auto results = args.options.out / "results.csv";
+void draw(const SweepArgs& args, const sweep::Results& results) {
   const auto files = sweep::draw_plots(results, args.options.out / "plots", args.plots);
   std::cout << "plots      "
             << (files.empty() ? "none (no PGA factor and no base run)"
@@ -39,19 +38,22 @@ void draw(const SweepArgs& args) {
             << '\n';
 }
 
-// The fragility curves of a design with [fragility], fitted to DIR/results.csv.
-void fragility(const SweepArgs& args, bool plot) {
+// The fragility curves of a design with [fragility], fitted to the sweep's results.
+void fragility(const SweepArgs& args, const sweep::Results& results, bool plot) {
   const sweep::Design d = sweep::load_design(args.design, args.options.set);
-  const auto files =
-      sweep::write_fragility(d, args.options.out, plot ? args.plots.gnuplot : std::string());
+  const auto files = sweep::write_fragility(d, results, args.options.out,
+                                            plot ? args.plots.gnuplot : std::string());
   for (const auto& f : files) std::cout << "fragility  " << f.string() << '\n';
 }
 
 void run(const SweepArgs& args) {
   args.plots.validate();
   if (args.plot_only) {
-    draw(args);
-    fragility(args, true);
+    // The results of an earlier process: read back from the results.csv it wrote.
+    const sweep::Results results =
+        sweep::results_of(sweep::read_csv(args.options.out / "results.csv"));
+    draw(args, results);
+    fragility(args, results, true);
     return;
   }
   const sweep::SweepSummary s = sweep::run_sweep(args.design, args.options);
@@ -67,8 +69,8 @@ void run(const SweepArgs& args) {
   std::cout << "failed     " << s.failed << " of " << s.runs
             << " runs did not complete (their status is in results.csv)\n";
   std::cout << "results    " << s.results.string() << '\n';
-  if (args.plot) draw(args);
-  fragility(args, args.plot);
+  if (args.plot) draw(args, s.table);
+  fragility(args, s.table, args.plot);
   if (s.failed > 0) exit_code() = 1;
 }
 

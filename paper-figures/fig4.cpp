@@ -12,7 +12,7 @@ Figure fig4_omega() {
         exc5_moreau(), {kExc5Event, exc(kExampleRun), {"solver.method=event_driven"}}};
   };
   f.draw = [name = f.name](const Study& s, const Canvas& canvas) {
-    const RunRecord& mj = s.runs.at(kExc5Moreau);
+    const FigureRun& mj = s.runs.at(kExc5Moreau);
     const History& ed = s.runs.at(kExc5Event).history;
     Table t{{"t", "omega", "omega_event"}};
     const auto ts = mj.history.series("t"), om = mj.history.series("omega");

@@ -69,7 +69,7 @@ Figure fig5_sliding_contact() {
   f.draw = [name = f.name](const Study& s, const Canvas& canvas) {
     const Sliding longest = longest_sliding_of(s.runs.at(kExc5Moreau));
     if (longest.contact == 0) return Drawing{};
-    const RunRecord& run = s.runs.at(kExc5Sliding);
+    const FigureRun& run = s.runs.at(kExc5Sliding);
     const scene::Scene scene = load_run_scene(s, run.spec);
     const models::BridgeDesign& b = scene.design.value();
     const SlidingState st = sliding_state_of(run, longest, b.friction);

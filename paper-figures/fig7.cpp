@@ -45,7 +45,7 @@ Figure fig7_compliance() {
     return v;
   };
   f.draw = [name = f.name](const Study& s, const Canvas& canvas) {
-    const RunRecord& mj = s.runs.at(kExc5Moreau);
+    const FigureRun& mj = s.runs.at(kExc5Moreau);
     const double t_end = s.setup.compliance_end > 0 ? s.setup.compliance_end : mj.end_time;
     // Columns theta_k<f>_<law>: the law is part of every compliance column's name.
     Table t{{"t", "theta_nonsmooth"}};

@@ -85,7 +85,7 @@ Drawing draw_eta_map(const std::string& name, const Study& s, const Canvas& canv
   add_contours(t);
   int agree = 0, total = 0;
   for (const auto& p : eta_points(s.setup)) {
-    const RunRecord& r = s.runs.at(p.name);
+    const FigureRun& r = s.runs.at(p.name);
     if (!r.ok() || r.history.count(integrators::EventKind::kImpact) == 0) continue;
     // omega right after the first impact: the first sample after it.
     const double t_imp = first_impact(r.history).first;

@@ -143,11 +143,11 @@ std::string exc(int n) { return "bridge-exc" + std::to_string(n); }
 
 RunSpec exc5_moreau() { return {kExc5Moreau, exc(kExampleRun), {"solver.method=moreau"}}; }
 
-Sliding longest_sliding_of(const RunRecord& run) {
+Sliding longest_sliding_of(const FigureRun& run) {
   return longest_sliding(sliding_contacts(run.history.events(), run.end_time));
 }
 
-SlidingState sliding_state_of(const RunRecord& sliding, const Sliding& slide, double mu) {
+SlidingState sliding_state_of(const FigureRun& sliding, const Sliding& slide, double mu) {
   const History& h = sliding.history;
   const std::string c = std::to_string(slide.contact);
   return measure_sliding(slide, mu, h.series("t"), h.series("lambdaN" + c),

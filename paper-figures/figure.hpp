@@ -126,10 +126,10 @@ std::string exc(int n);
 RunSpec exc5_moreau();
 
 // The longest sliding contact of a run (contact 0 when none).
-Sliding longest_sliding_of(const RunRecord& run);
+Sliding longest_sliding_of(const FigureRun& run);
 // Coulomb's law over the longest slide of excitation 5, from the run that records its every
 // step (kExc5Sliding) with the friction coefficient of its scene (Fig. 5, C6).
-SlidingState sliding_state_of(const RunRecord& sliding, const Sliding& slide, double mu);
+SlidingState sliding_state_of(const FigureRun& sliding, const Sliding& slide, double mu);
 // A run's scene, loaded with the run's overrides (not integrated): its system's parameters.
 scene::Scene load_run_scene(const Study& study, const RunSpec& spec);
 

@@ -11,7 +11,7 @@ namespace {
 void use_runs(Claim& c, const Study& s, const std::vector<std::string>& names) {
   for (const auto& n : names) {
     c.runs.push_back(n);
-    const RunRecord* r = s.runs.find(n);
+    const FigureRun* r = s.runs.find(n);
     if (r == nullptr) {
       c.failure += (c.failure.empty() ? "" : "; ") + n + ": not run";
     } else if (!r->ok()) {
@@ -61,7 +61,7 @@ void label_law(Claim& c, const Study& s, integrators::DampingLaw law) {
 }
 
 Claim c4_of(const Study& s, integrators::DampingLaw law) {
-  const RunRecord& mj = s.runs.at(kExc5Moreau);
+  const FigureRun& mj = s.runs.at(kExc5Moreau);
   const double t_end = s.setup.compliance_end > 0 ? s.setup.compliance_end : mj.end_time;
   std::vector<CompliancePeak> k;
   std::vector<std::string> names{kExc5Moreau};
@@ -104,7 +104,7 @@ Claim c6_of(const Study& s) {
     c.failure = "excitation 5 has no sliding contact";
     return c;
   }
-  const RunRecord& sr = s.runs.at(kExc5Sliding);
+  const FigureRun& sr = s.runs.at(kExc5Sliding);
   const scene::Scene scene = load_run_scene(s, s.runs.at(kExc5Moreau).spec);
   const double mu = scene.design.value().friction;
   Claim c = claim_c6(sliding_state_of(sr, longest, mu), mu);

@@ -12,6 +12,7 @@
 #include "scene/scene.hpp"
 #include "sweep/csv.hpp"
 #include "sweep/design.hpp"
+#include "runs/run.hpp"
 #include "sweep/runner.hpp"
 
 namespace nsb::paper_figures {
@@ -48,6 +49,20 @@ std::vector<std::string_view> split(std::string_view text, char sep) {
 }
 
 }  // namespace
+
+History::History(const integrators::Recorder& recorder) : columns_(recorder.columns()) {
+  data_.reserve(recorder.rows() * columns_.size());
+  for (std::size_t r = 0; r < recorder.rows(); ++r) {
+    for (std::size_t c = 0; c < columns_.size(); ++c) {
+      const double v = recorder.at(r, c);
+      data_.push_back(std::isfinite(v) ? v : std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  for (integrators::Event e : recorder.events()) {
+    if (!std::isfinite(e.t)) e.t = std::numeric_limits<double>::quiet_NaN();
+    events_.push_back(std::move(e));
+  }
+}
 
 History History::read(const fs::path& dir) {
   History h;
@@ -96,32 +111,32 @@ std::size_t History::count(integrators::EventKind kind) const {
       events_.begin(), events_.end(), [&](const integrators::Event& e) { return e.kind == kind; }));
 }
 
-bool RunRecord::ok() const {
+bool FigureRun::ok() const {
   const auto s = integrators::parse_run_status(status);
   return s && integrators::succeeded(*s);
 }
 
-std::string RunRecord::status_text() const {
+std::string FigureRun::status_text() const {
   std::ostringstream s;
   s << spec.name << ": " << status << " at t = " << failure_time << " s";
   return s.str();
 }
 
-void RunSet::add(RunRecord r) {
+void RunSet::add(FigureRun r) {
   if (find(r.spec.name) != nullptr)
     throw std::logic_error("paper-figures: two runs named " + r.spec.name);
   runs_.push_back(std::move(r));
 }
 
-const RunRecord* RunSet::find(const std::string& name) const {
+const FigureRun* RunSet::find(const std::string& name) const {
   for (const auto& r : runs_) {
     if (r.spec.name == name) return &r;
   }
   return nullptr;
 }
 
-const RunRecord& RunSet::at(const std::string& name) const {
-  const RunRecord* r = find(name);
+const FigureRun& RunSet::at(const std::string& name) const {
+  const FigureRun* r = find(name);
   if (r == nullptr) throw std::logic_error("paper-figures: no run named " + name);
   return *r;
 }
@@ -145,8 +160,8 @@ sweep::Design design_of(const fs::path& scene, const std::vector<const RunSpec*>
   return d;
 }
 
-// Runs a design into dir and reads every run back, in the design's order.
-std::vector<RunRecord> run_design(const sweep::Design& d, const std::vector<const RunSpec*>& specs,
+// Runs a design into dir and keeps every run's row and history, in the design's order.
+std::vector<FigureRun> run_design(const sweep::Design& d, const std::vector<const RunSpec*>& specs,
                                   const fs::path& dir, int workers) {
   sweep::SweepOptions o;
   o.out = dir;
@@ -154,23 +169,23 @@ std::vector<RunRecord> run_design(const sweep::Design& d, const std::vector<cons
   o.restart = true;
   o.progress = false;
   sweep::Plan plan = sweep::prepare(d, o);
-  sweep::run_threaded(d, o, plan, std::min<int>(workers, static_cast<int>(d.runs.size())), {});
+  std::vector<History> histories(d.runs.size());  // one slot per run: no two threads share one
+  sweep::run_threaded(d, o, plan, std::min<int>(workers, static_cast<int>(d.runs.size())), {},
+                      [&histories](std::size_t index, const runs::RunRecord& record) {
+                        histories[index] = History(record.history);
+                      });
   sweep::write_results(d, o, plan.rows);
-  const auto header = sweep::csv_fields(sweep::results_header(d));
-  auto col = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
-  };
-  const std::size_t status = col("status"), end = col("end_time"), failure = col("failure_time");
-  std::vector<RunRecord> out;
+  std::vector<FigureRun> out;
   for (std::size_t i = 0; i < d.runs.size(); ++i) {
-    const auto f = sweep::csv_fields(plan.rows[i].value_or(std::string()));
-    RunRecord r;
+    FigureRun r;
     r.spec = *specs[i];
-    r.status = f.size() > status ? f[status] : "not_run";
-    r.end_time = f.size() > end ? parse_number(f[end]) : 0.0;
-    r.failure_time = f.size() > failure ? parse_number(f[failure]) : r.failure_time;
-    const fs::path run_dir = dir / "runs" / d.runs[i].id;
-    if (fs::exists(run_dir / "history.csv")) r.history = History::read(run_dir);
+    r.status = "not_run";
+    if (const auto& row = plan.rows[i]) {
+      r.status = row->status;
+      r.end_time = row->end_time;
+      r.failure_time = row->failure_time;
+    }
+    r.history = std::move(histories[i]);
     out.push_back(std::move(r));
   }
   fs::remove_all(dir / "runs");
@@ -179,21 +194,21 @@ std::vector<RunRecord> run_design(const sweep::Design& d, const std::vector<cons
 
 }  // namespace
 
-std::vector<RunRecord> make_runs(const std::vector<RunSpec>& specs, const fs::path& scenes,
+std::vector<FigureRun> make_runs(const std::vector<RunSpec>& specs, const fs::path& scenes,
                                  const fs::path& dir, int workers) {
   std::map<std::string, std::vector<const RunSpec*>> by_scene;
   for (const auto& s : specs) {
     scene::load_scene(scenes / (s.scene + ".toml"), s.overrides);
     by_scene[s.scene].push_back(&s);
   }
-  std::map<std::string, RunRecord> made;
+  std::map<std::string, FigureRun> made;
   for (const auto& [scene, list] : by_scene) {
     const sweep::Design d = design_of(scenes / (scene + ".toml"), list);
     for (auto& r : run_design(d, list, dir / scene, workers)) {
       made.emplace(r.spec.name, std::move(r));
     }
   }
-  std::vector<RunRecord> out;
+  std::vector<FigureRun> out;
   for (const auto& s : specs) out.push_back(std::move(made.at(s.name)));
   return out;
 }

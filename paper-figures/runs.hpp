@@ -1,8 +1,8 @@
 // The runs behind the figures: each is a scene of scenes/ with overrides, made by the sweep
-// module's runner (sweep::run_threaded: an ordinary scene::load_scene + integrators::integrate
-// call whose outputs go to runs/<id>/) and read back from those outputs. history.csv and
-// events.csv hold shortest round-trip numbers (std::to_chars), so the history read back holds
-// the very doubles the recorder held.
+// module's runner (sweep::run_threaded: an ordinary runs::execute call whose outputs go to
+// runs/<id>/). Its status comes from the run's typed row, its history from the record in
+// memory, as history.csv and events.csv hold it: a value that is not finite (an empty field
+// there) is NaN.
 #pragma once
 
 #include "integrators/recorder.hpp"
@@ -28,6 +28,9 @@ struct RunSpec {
 // the recorder writes for a non-finite value, reads as NaN) and its events.csv.
 class History {
  public:
+  History() = default;
+  // The history a recorder holds, as its history.csv and events.csv say it.
+  explicit History(const integrators::Recorder& recorder);
   // Reads <dir>/history.csv and <dir>/events.csv. Throws std::runtime_error naming the file
   // when one cannot be read or a row's width differs from the header's.
   static History read(const std::filesystem::path& dir);
@@ -45,8 +48,9 @@ class History {
   std::vector<integrators::Event> events_;
 };
 
-// One run made: what was asked, how it ended (its row of results.csv) and what it recorded.
-struct RunRecord {
+// One run made for a figure: what was asked, how it ended (its row of results.csv) and what
+// it recorded.
+struct FigureRun {
   RunSpec spec;
   std::string status;  // integrators::RunStatus name, or "rejected" (the scene refused the run)
   double end_time = 0.0;                                            // [s] reached
@@ -59,20 +63,20 @@ struct RunRecord {
 // The runs of a study by name, in the order they were made.
 class RunSet {
  public:
-  void add(RunRecord r);  // throws std::logic_error for a name already present
-  const RunRecord* find(const std::string& name) const;
-  const RunRecord& at(const std::string& name) const;  // throws std::logic_error when absent
-  const std::vector<RunRecord>& all() const { return runs_; }
+  void add(FigureRun r);  // throws std::logic_error for a name already present
+  const FigureRun* find(const std::string& name) const;
+  const FigureRun& at(const std::string& name) const;  // throws std::logic_error when absent
+  const std::vector<FigureRun>& all() const { return runs_; }
 
  private:
-  std::vector<RunRecord> runs_;
+  std::vector<FigureRun> runs_;
 };
 
 // Makes the runs on `workers` threads: one list design per scene (a factor "run" labelled with
 // the run's name) in dir/<scene>/, which keeps the design's results.csv and manifest.toml; the
 // runs' own folders are removed once read back. Every scene is loaded with its run's overrides
 // before any run, so bad input throws std::invalid_argument before anything is written.
-std::vector<RunRecord> make_runs(const std::vector<RunSpec>& specs,
+std::vector<FigureRun> make_runs(const std::vector<RunSpec>& specs,
                                  const std::filesystem::path& scenes,
                                  const std::filesystem::path& dir, int workers);
 

@@ -1,5 +1,5 @@
-// The runs step of the uncertainty study: a design run through the sweep runner and read back
-// from its results.csv, and the claims judged at one point from its runs' rows and outputs.
+// The runs step of the uncertainty study: a design run through the sweep runner, its rows
+// typed in memory, and the claims judged at one point from its runs' rows and outputs.
 #include "paper-figures/uncertainty_steps.hpp"
 
 #include <algorithm>
@@ -42,24 +42,27 @@ Rows run_design(const sweep::Design& d, const fs::path& dir, int workers, int& r
   o.progress = false;
   sweep::Plan plan = sweep::prepare(d, o);
   sweep::run_threaded(d, o, plan, workers, {});
-  sweep::write_results(d, o, plan.rows);
+  const sweep::Results t = sweep::write_results(d, o, plan.rows);
   runs += static_cast<int>(plan.pending.size());
-  const sweep::Table t = sweep::read_csv(dir / "results.csv");
   const std::size_t point = t.column("point"), run = t.column("claim_run"),
-                    status = t.column("status"), peak = t.column(kTornadoResponse),
-                    impacts = t.column("impacts"), end = t.column("end_time");
+                    peak = t.column(kTornadoResponse), impacts = t.column("impacts"),
+                    end = t.column("end_time");
+  const auto number = [&t](const sweep::Row& row, std::size_t column) {
+    return t.number(row, column).value_or(std::numeric_limits<double>::quiet_NaN());
+  };
   Rows rows;
   for (const auto& f : t.rows) {
     RunRow r;
-    r.status = f[status];
-    r.peak_theta = number_or_nan(f[peak]);
-    r.impacts = static_cast<std::size_t>(std::max(0.0, number_or_nan(f[impacts])));
-    r.end_time = number_or_nan(f[end]);
-    r.dir = dir / "runs" / f[0];
+    r.status = f.status;
+    r.peak_theta = number(f, peak);
+    r.impacts = static_cast<std::size_t>(std::max(0.0, number(f, impacts)));
+    r.end_time = number(f, end);
+    r.dir = dir / "runs" / f.run;
+    const std::string at = t.cell(f, point), claim_run = t.cell(f, run);
     if (!r.ok())
-      failed.push_back(dir.filename().string() + " " + f[0] + " (" + f[point] + ", " + f[run] +
+      failed.push_back(dir.filename().string() + " " + f.run + " (" + at + ", " + claim_run +
                        "): " + r.status);
-    rows[f[point]][f[run]] = r;
+    rows[at][claim_run] = r;
   }
   return rows;
 }

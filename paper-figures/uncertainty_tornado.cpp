@@ -50,7 +50,8 @@ sweep::Table tornado_runs(const fs::path& results, const fs::path& file) {
 
 void tornado(const Rows& oat_rows, const fs::path& work, const fs::path& out,
              UncertaintyResult& res) {
-  const sweep::Table t = tornado_runs(work / "oat" / "results.csv", work / "tornado-runs.csv");
+  const sweep::Results t =
+      sweep::results_of(tornado_runs(work / "oat" / "results.csv", work / "tornado-runs.csv"));
   sweep::PlotOptions po;
   po.response = kTornadoResponse;
   res.tornado_base = tornado_peak(oat_rows, "nominal");
@@ -59,7 +60,7 @@ void tornado(const Rows& oat_rows, const fs::path& work, const fs::path& out,
                            tornado_peak(oat_rows, b.factor + "-high")});
   }
   try {
-    sweep::draw_plots(work / "tornado-runs.csv", work / "plots", po);
+    sweep::draw_plots(t, work / "plots", po);
     for (const char* ext : {".png", ".svg", ".csv"}) {
       fs::copy_file(work / "plots" / (std::string("tornado") + ext),
                     out / (std::string("uncertainty-tornado") + ext),

@@ -2,15 +2,13 @@
 // runs it, and what the module was built from (io/build_info.hpp).
 #include "io/build_info.hpp"
 #include "python/bindings.hpp"
-#include "sweep/csv.hpp"
 #include "sweep/runner.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include <charconv>
-#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -23,45 +21,66 @@ namespace nsb::python {
 
 namespace {
 
-// A results.csv field as a number: the whole field parsed, or an empty field (a value that
-// was not finite, io::csv_number) as NaN; std::nullopt for text.
-std::optional<double> number(const std::string& field) {
-  if (field.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double v = 0.0;
-  const char* end = field.data() + field.size();
-  const auto [ptr, ec] = std::from_chars(field.data(), end, v);
-  if (ec != std::errc{} || ptr != end) return std::nullopt;
-  return v;
-}
-
-// The columns of results.csv that hold text whatever their fields look like: the run id
-// ("0007"), the status and the message (docs/sweep.md).
-bool text_column(const std::string& name) {
-  return name == "run" || name == "status" || name == "message";
-}
-
-// One column of a table: a numpy float64 array when every field is a number, else a list of
-// str (the text columns, a factor's level names).
-py::object column(const sweep::Table& table, std::size_t c) {
-  const std::size_t n = table.rows.size();
-  const bool is_text = text_column(table.header[c]);
-  py::array_t<double> values(static_cast<py::ssize_t>(n));
-  double* out = values.mutable_data();
-  for (std::size_t r = 0; r < n; ++r) {
-    const std::optional<double> v = is_text ? std::nullopt : number(table.rows[r][c]);
-    if (!v) {
-      py::list text;
-      for (const auto& row : table.rows) text.append(py::str(row[c]));
-      return text;
+// One column of a sweep's results, typed as its Column says (sweep/results.hpp): a tuple
+// (name, kind, values, missing) with kind "real" (float64, NaN where missing), "integer"
+// (int64) or "boolean" (bool), each with `missing` a bool array marking the absent values (a
+// rejected run's counts, a limit state a run does not have), or "text" (a list of str).
+py::tuple column(const sweep::Results& results, std::size_t c) {
+  const sweep::Column& col = results.columns[c];
+  const auto n = static_cast<py::ssize_t>(results.rows.size());
+  py::array_t<bool> missing(n);
+  bool* absent = missing.mutable_data();
+  const auto typed = [&](auto* out, auto cast) {
+    for (py::ssize_t r = 0; r < n; ++r) {
+      const std::optional<double> v = results.number(results.rows[static_cast<std::size_t>(r)], c);
+      absent[r] = !v;
+      out[r] = v ? cast(*v) : decltype(cast(0.0)){};
     }
-    out[r] = *v;
+  };
+  py::object values;
+  switch (col.kind) {
+    case sweep::ValueKind::kReal: {
+      py::array_t<double> a(n);
+      typed(a.mutable_data(), [](double v) { return v; });
+      // A value that is not finite, or absent, is NaN (an empty field of results.csv).
+      for (py::ssize_t r = 0; r < n; ++r)
+        if (absent[r]) a.mutable_data()[r] = std::numeric_limits<double>::quiet_NaN();
+      values = a;
+      break;
+    }
+    case sweep::ValueKind::kInteger: {
+      py::array_t<std::int64_t> a(n);
+      typed(a.mutable_data(), [](double v) { return static_cast<std::int64_t>(v); });
+      values = a;
+      break;
+    }
+    case sweep::ValueKind::kBoolean: {
+      py::array_t<bool> a(n);
+      // A factor level "true"/"false", or a limit state's exceeded (1/0).
+      for (py::ssize_t r = 0; r < n; ++r) {
+        const sweep::Row& row = results.rows[static_cast<std::size_t>(r)];
+        const std::string cell = results.cell(row, c);
+        absent[r] = cell.empty();
+        a.mutable_data()[r] = cell == "1" || cell == "true";
+      }
+      values = a;
+      break;
+    }
+    case sweep::ValueKind::kText: {
+      py::list text;
+      for (const auto& row : results.rows) text.append(py::str(results.cell(row, c)));
+      for (py::ssize_t r = 0; r < n; ++r) absent[r] = false;
+      values = text;
+      break;
+    }
   }
-  return values;
+  return py::make_tuple(col.name, std::string(sweep::to_string(col.kind)), values, missing);
 }
 
 // Runs a sweep as `nsbridge sweep design --out out --jobs jobs --set ... [--restart]` does (no
-// progress bar, no plot), the GIL released, and returns the columns of its results.csv.
-py::dict run_sweep(const std::filesystem::path& design, const std::filesystem::path& out,
+// progress bar, no plot), the GIL released, and returns its typed columns (column()), in the
+// order of results.csv.
+py::list run_sweep(const std::filesystem::path& design, const std::filesystem::path& out,
                    const std::optional<int>& jobs, const std::vector<std::string>& overrides,
                    bool restart) {
   sweep::SweepOptions options;
@@ -70,15 +89,14 @@ py::dict run_sweep(const std::filesystem::path& design, const std::filesystem::p
   options.restart = restart;
   options.progress = false;
   options.set = overrides;
-  sweep::Table table;
+  sweep::Results results;
   {
     py::gil_scoped_release release;
-    const sweep::SweepSummary summary = sweep::run_sweep(design, options);
-    table = sweep::read_csv(summary.results);
+    results = sweep::run_sweep(design, options).table;
   }
-  py::dict d;
-  for (std::size_t c = 0; c < table.header.size(); ++c) d[py::str(table.header[c])] = column(table, c);
-  return d;
+  py::list columns;
+  for (std::size_t c = 0; c < results.columns.size(); ++c) columns.append(column(results, c));
+  return columns;
 }
 
 py::dict build_info() {
@@ -105,12 +123,11 @@ void bind_sweep(py::module_& m) {
   m.def("build_info", &build_info,
         "What the module was built from: version, revision (git, at build time), build_type, "
         "compiler and libraries (name -> version), as `nsbridge --version` says");
-  m.def("sweep", &run_sweep, py::arg("design_path"), py::arg("out"), py::arg("jobs") = py::none(),
-        py::arg("overrides") = std::vector<std::string>{}, py::arg("restart") = false,
-        "Runs a sweep design (docs/sweep.md) into the folder out, as `nsbridge sweep` does "
-        "(runs already complete there are kept; a folder of another design is refused unless "
-        "restart), on jobs threads (None: all cores), the GIL released; returns results.csv's columns: numpy float64 arrays for numeric columns, "
-        "lists of str otherwise");
+  m.def("_sweep_columns", &run_sweep, py::arg("design_path"), py::arg("out"),
+        py::arg("jobs") = py::none(), py::arg("overrides") = std::vector<std::string>{},
+        py::arg("restart") = false,
+        "Runs a sweep design as nsbridge.sweep does; returns its columns as tuples (name, kind, "
+        "values, missing), kind one of real, integer, boolean, text");
 }
 
 }  // namespace nsb::python

@@ -18,7 +18,7 @@ packages=(
   gnuplot-nox
   libopenmpi-dev openmpi-bin
   clang libfuzzer-14-dev libclang-rt-14-dev
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-pandas
   python3-venv python3-pip python3-setuptools
   python3-siconos
 )

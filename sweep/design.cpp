@@ -76,19 +76,19 @@ Level value_level(const scene::Source& c, const toml::node& n, const std::string
                   const std::string& fkey) {
   if (n.is_integer()) {
     const std::string s = std::to_string(*n.value<std::int64_t>());
-    return {s, {fkey + "=" + s}};
+    return {s, {fkey + "=" + s}, ValueKind::kInteger};
   }
   if (n.is_floating_point()) {
     const std::string s = io::csv_number(number(c, n, key));
-    return {s, {fkey + "=" + s}};
+    return {s, {fkey + "=" + s}, ValueKind::kReal};
   }
   if (n.is_boolean()) {
     const std::string s = *n.value<bool>() ? "true" : "false";
-    return {s, {fkey + "=" + s}};
+    return {s, {fkey + "=" + s}, ValueKind::kBoolean};
   }
   if (n.is_string()) {
     const std::string s = *n.value<std::string>();
-    return {s, {fkey + "=" + toml_string(s)}};
+    return {s, {fkey + "=" + toml_string(s)}, ValueKind::kText};
   }
   c.fail(&n, key, "must be a number, a string or a boolean");
 }
@@ -253,7 +253,7 @@ Factor read_factor(const scene::Source& c, const toml::table& t, const fs::path&
     if (const auto* n = t.get(name)) {
       for (const double v : spaced(c, *n, where + "." + name, geometric)) {
         const std::string s = io::csv_number(v);
-        f.levels.push_back({s, {f.key + "=" + s}});
+        f.levels.push_back({s, {f.key + "=" + s}, ValueKind::kReal});
       }
     }
   }

@@ -28,10 +28,15 @@ enum class Mode {
 };
 std::string_view to_string(Mode m);
 
+// The type of a value: a factor level's, a results.csv column's.
+enum class ValueKind { kReal, kInteger, kBoolean, kText };
+
 // One level of a factor: the text that names it in results.csv and the overrides it applies.
 struct Level {
   std::string label;                   // e.g. "0.5", or a record's name
   std::vector<std::string> overrides;  // e.g. {"model.seats.friction=0.5"}
+  std::optional<ValueKind> kind{};     // a `values` entry's or a range's TOML type; none for
+                                       //   a name (its label's text says: sweep/results.hpp)
 };
 
 struct Factor {

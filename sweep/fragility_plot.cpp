@@ -111,10 +111,9 @@ std::string fragility_script(const FragilityReport& report) {
   return script;
 }
 
-std::vector<fs::path> write_fragility(const Design& d, const fs::path& out,
+std::vector<fs::path> write_fragility(const Design& d, const Results& results, const fs::path& out,
                                       const std::string& gnuplot) {
   if (!d.fragility) return {};
-  const Table results = read_csv(out / "results.csv");
   const FragilityReport report =
       fit_fragility(*d.fragility, results, is_ida(d, d.fragility->im));
   std::vector<fs::path> files{out / "fragility.json"};

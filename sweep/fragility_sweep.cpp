@@ -207,14 +207,14 @@ bool is_ida(const Design& d, const std::string& im) {
 
 namespace {
 
-// The columns of results.csv that a fit reads: the factor columns lie between "run" and
+// The columns of results that a fit reads: the factor columns lie between "run" and
 // "status".
 struct Columns {
   std::size_t im = 0, status = 0;
   std::vector<std::size_t> others;  // the other factors' columns: together they name a record
 };
 
-Columns columns_of(const Table& t, const std::string& im) {
+Columns columns_of(const Results& t, const std::string& im) {
   Columns c;
   c.status = t.column("status");
   try {
@@ -229,43 +229,38 @@ Columns columns_of(const Table& t, const std::string& im) {
 
 // An unseated run counts: it is a result up to the loss of seat (docs/limit-states.md), and
 // its limit-state columns say which seat was lost.
-bool completed(const std::string& status) {
-  const auto s = integrators::parse_run_status(status);
-  return s && integrators::is_result(*s);
-}
-
-bool unseated(const std::vector<std::string>& row, const Columns& c) {
-  return integrators::parse_run_status(row[c.status]) == integrators::RunStatus::kUnseated;
+bool unseated(const Row& row) {
+  return integrators::parse_run_status(row.status) == integrators::RunStatus::kUnseated;
 }
 
 // One row's outcome for a limit state: std::nullopt when it does not count (not completed,
 // or no value of the response). An unseated run reaches every limit state unless the limit
 // state compares its response (UnseatedRuns::kResponse).
-std::optional<bool> reached(const std::vector<std::string>& row, const Columns& c,
-                            std::size_t response, const LimitState& ls) {
-  if (!completed(row[c.status])) return std::nullopt;
-  if (ls.unseated == UnseatedRuns::kExceed && unseated(row, c)) return true;
-  const auto v = parse_number(row[response]);
+std::optional<bool> reached(const Results& t, const Row& row, std::size_t response,
+                            const LimitState& ls) {
+  if (!is_result(row)) return std::nullopt;
+  if (ls.unseated == UnseatedRuns::kExceed && unseated(row)) return true;
+  const auto v = t.number(row, response);
   if (!v) return std::nullopt;
   const double r = ls.absolute ? std::abs(*v) : *v;
   return ls.below ? r <= ls.threshold : r >= ls.threshold;
 }
 
-std::vector<StripeCount> count_stripes(const Table& t, const Columns& c, std::size_t response,
+std::vector<StripeCount> count_stripes(const Results& t, const Columns& c, std::size_t response,
                                        const LimitState& ls) {
   std::map<double, StripeCount> levels;
   for (const auto& row : t.rows) {
-    const auto im = parse_number(row[c.im]);
+    const auto im = t.number(row, c.im);
     if (!im || *im <= 0.0) continue;  // no IM: the row belongs to no stripe
     StripeCount& s = levels[*im];
     s.im = *im;
-    const auto r = reached(row, c, response, ls);
+    const auto r = reached(t, row, response, ls);
     if (!r) {
       ++s.left_out;
     } else {
       ++s.n;
       s.exceeded += *r ? 1 : 0;
-      s.unseated += unseated(row, c) ? 1 : 0;
+      s.unseated += unseated(row) ? 1 : 0;
     }
   }
   std::vector<StripeCount> out;
@@ -273,16 +268,16 @@ std::vector<StripeCount> count_stripes(const Table& t, const Columns& c, std::si
   return out;
 }
 
-MomentsFit fit_capacities(const Table& t, const Columns& c, std::size_t response,
+MomentsFit fit_capacities(const Results& t, const Columns& c, std::size_t response,
                           const LimitState& ls) {
   // record -> (IM -> reached), completed runs only; the map keeps the IMs ascending.
   std::map<std::string, std::map<double, bool>> curves;
   for (const auto& row : t.rows) {
-    const auto im = parse_number(row[c.im]);
+    const auto im = t.number(row, c.im);
     std::string record;
-    for (const std::size_t k : c.others) record += row[k] + '\x1f';
+    for (const std::size_t k : c.others) record += t.cell(row, k) + '\x1f';
     auto& curve = curves[record];
-    const auto r = reached(row, c, response, ls);
+    const auto r = reached(t, row, response, ls);
     if (im && *im > 0.0 && r) curve[*im] = *r;
   }
   MomentsFit m;
@@ -313,7 +308,7 @@ MomentsFit fit_capacities(const Table& t, const Columns& c, std::size_t response
 
 // The column of a limit state's response; a missing column names the limit states the runs
 // watch when the limit state is one of them.
-std::size_t response_column(const Table& results, const LimitState& ls) {
+std::size_t response_column(const Results& results, const LimitState& ls) {
   try {
     return results.column(ls.response);
   } catch (const std::invalid_argument&) {
@@ -321,8 +316,8 @@ std::size_t response_column(const Table& results, const LimitState& ls) {
       throw std::invalid_argument("fragility.limit_state " + ls.name +
                                   ": results.csv has no column \"" + ls.response + "\"");
     std::vector<std::string> watched;
-    for (const auto& h : results.header)
-      if (ends_with(h, "_exceeded")) watched.push_back(h.substr(0, h.size() - 9));
+    for (const auto& h : results.columns)
+      if (ends_with(h.name, "_exceeded")) watched.push_back(h.name.substr(0, h.name.size() - 9));
     throw std::invalid_argument(
         "fragility.limit_state " + ls.name + ": no run of the sweep watches \"" + ls.watched +
         "\" (results.csv has no column " + ls.response + "; watched: " +
@@ -332,7 +327,7 @@ std::size_t response_column(const Table& results, const LimitState& ls) {
 
 }  // namespace
 
-FragilityReport fit_fragility(const FragilitySpec& spec, const Table& results, bool ida,
+FragilityReport fit_fragility(const FragilitySpec& spec, const Results& results, bool ida,
                               const FitOptions& options) {
   const Columns c = columns_of(results, spec.im);
   FragilityReport report{spec.im, {}};

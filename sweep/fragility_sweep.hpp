@@ -17,6 +17,7 @@
 #include "sweep/design.hpp"
 #include "sweep/fragility.hpp"
 #include "sweep/limit_states.hpp"
+#include "sweep/results.hpp"
 
 #include <toml++/toml.h>
 
@@ -76,10 +77,10 @@ struct FragilityReport {
 // others, a record, is run at every IM level).
 bool is_ida(const Design& d, const std::string& im);
 
-// Fits every limit state of spec to the rows of results (a results.csv). ida: also fit the
+// Fits every limit state of spec to the rows of results (results.csv's table). ida: also fit the
 // moments on the IDA capacities. Throws std::invalid_argument when results lacks the IM or a
 // response column; every numerical outcome is a status.
-FragilityReport fit_fragility(const FragilitySpec& spec, const Table& results, bool ida,
+FragilityReport fit_fragility(const FragilitySpec& spec, const Results& results, bool ida,
                               const FitOptions& options = {});
 
 // fragility.json: {"im", "limit_states": {name: {"response", "threshold", "absolute",
@@ -92,11 +93,11 @@ std::string fragility_json(const FragilityReport& report);
 // bands and the stripes' observed fractions, the data inline.
 std::string fragility_script(const FragilityReport& report);
 
-// For a design with [fragility]: fits DIR/results.csv, writes DIR/fragility.json and, when
-// gnuplot is not empty, draws DIR/fragility.png with it. Returns the files written (none for a
-// design without [fragility]). Throws std::invalid_argument when results.csv cannot be read,
-// std::runtime_error when gnuplot fails.
-std::vector<std::filesystem::path> write_fragility(const Design& d,
+// For a design with [fragility]: fits the sweep's results (those of DIR/results.csv), writes
+// DIR/fragility.json and, when gnuplot is not empty, draws DIR/fragility.png with it. Returns
+// the files written (none for a design without [fragility]). Throws std::invalid_argument when
+// results lack a column the fit reads, std::runtime_error when gnuplot fails.
+std::vector<std::filesystem::path> write_fragility(const Design& d, const Results& results,
                                                    const std::filesystem::path& out,
                                                    const std::string& gnuplot);
 

@@ -1,7 +1,7 @@
 // The sweep over MPI ranks (built only when MPI is found). Dynamic distribution: every worker
 // asks rank 0 for the next run index when it is free, so runs of unequal cost balance
-// themselves; its request carries the row of the run it just finished, so the rows gather on
-// rank 0 without a shared file system for results.csv.
+// themselves; its request carries the row of the run it just finished (as its resume files
+// say it: sweep/results.hpp), so the rows gather on rank 0 without a shared file system.
 #include "sweep/mpi.hpp"
 
 #include "sweep/csv.hpp"
@@ -22,7 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kRequestTag = 1;      // worker -> rank 0: "<thread> <index> <state>\n<row>"
+constexpr int kRequestTag = 1;      // worker -> rank 0: "<thread> <index> <state>\n<row>\0
+                                    //   <limit_states.csv>" (a message may span lines)
 constexpr int kReplyTagBase = 100;  // rank 0 -> worker thread t: the next index, tag base + t
 
 // What a finished run reports with its request (the first request reports none).
@@ -65,7 +66,8 @@ void remote_worker(const Design& d, const SweepOptions& options, int thread) {
     if (index < 0) return;
     try {
       const RunOutcome o = run_one(d, static_cast<std::size_t>(index), options.out);
-      out = message(thread, index, o.succeeded ? Report::kSucceeded : Report::kFailed, o.row);
+      out = message(thread, index, o.succeeded ? Report::kSucceeded : Report::kFailed,
+                    row_line(d, o.row) + '\0' + limit_states_csv(o.row.limit_states));
     } catch (const std::exception& e) {
       out = message(thread, index, Report::kError, e.what());
     }
@@ -137,7 +139,7 @@ void local_worker(Dispatch& work, const Design& d, const SweepOptions& options) 
 
 // Answers one request of a remote worker (status: its probe): records the row of the run it
 // reports, and replies with the next index (-1: stop, and the worker counts as gone).
-void serve(Dispatch& work, const MPI_Status& status, int& remote_active) {
+void serve(Dispatch& work, const Design& d, const MPI_Status& status, int& remote_active) {
   int size = 0;
   MPI_Get_count(&status, MPI_CHAR, &size);
   std::string in(static_cast<std::size_t>(size), '\0');
@@ -155,7 +157,9 @@ void serve(Dispatch& work, const MPI_Status& status, int& remote_active) {
         work.remote_error = "rank " + std::to_string(status.MPI_SOURCE) + ": " + text;
       work.stop.store(true);
     } else {
-      work.plan.rows[static_cast<std::size_t>(index)] = text;
+      const std::size_t at = text.find('\0');
+      work.plan.rows[static_cast<std::size_t>(index)] =
+          parse_row(d, static_cast<std::size_t>(index), text.substr(0, at), text.substr(at + 1));
       ++work.ran_elsewhere;
       if (static_cast<Report>(report) == Report::kFailed) work.failed.fetch_add(1);
     }
@@ -188,7 +192,7 @@ void dispatch(Dispatch& work, const Design& d, const SweepOptions& options, int 
         std::this_thread::sleep_for(std::chrono::microseconds(remote_active > 0 ? 500 : 20000));
         continue;
       }
-      serve(work, status, remote_active);
+      serve(work, d, status, remote_active);
     }
     bar.update(s.already_done + work.done.load(), work.failed.load(), s.runs);
   }
@@ -230,8 +234,8 @@ SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& opti
   s.notes = plan.notes;
   Dispatch work(plan);
   dispatch(work, d, options, jobs, remote_workers, s);
-  write_results(d, options, plan.rows);
-  s.failed = count_failed(d, plan.rows);
+  s.table = write_results(d, options, plan.rows);
+  s.failed = count_failed(plan.rows);
   s.results = options.out / "results.csv";
   return s;
 }

@@ -6,7 +6,6 @@
 #include "sweep/design.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -26,21 +25,12 @@ void PlotOptions::validate() const {
 
 namespace {
 
-std::optional<double> parse(const std::string& s) {
-  double v = 0.0;
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v)) {
-    return std::nullopt;
-  }
-  return v;
-}
-
 // The factor columns lie between "run" and "status".
 struct Layout {
   std::size_t first = 1, end = 1;  // factor columns [first, end)
   std::size_t status = 0, response = 0;
 };
-Layout layout(const Table& t, const PlotOptions& o) {
+Layout layout(const Results& t, const PlotOptions& o) {
   Layout l;
   l.status = t.column("status");
   l.end = l.status;
@@ -52,37 +42,37 @@ Layout layout(const Table& t, const PlotOptions& o) {
   return l;
 }
 
-bool completed(const std::vector<std::string>& row, const Layout& l) {
-  const auto status = integrators::parse_run_status(row[l.status]);
+bool completed(const Row& row) {
+  const auto status = integrators::parse_run_status(row.status);
   return status && integrators::succeeded(*status);
 }
 
-bool unseated(const std::vector<std::string>& row, const Layout& l) {
-  return integrators::parse_run_status(row[l.status]) == integrators::RunStatus::kUnseated;
+bool unseated(const Row& row) {
+  return integrators::parse_run_status(row.status) == integrators::RunStatus::kUnseated;
 }
 
-std::optional<std::size_t> find_column(const Table& t, const std::string& name) {
-  const auto it = std::find(t.header.begin(), t.header.end(), name);
-  if (it == t.header.end()) return std::nullopt;
-  return static_cast<std::size_t>(it - t.header.begin());
+std::optional<std::size_t> find_column(const Results& t, const std::string& name) {
+  for (std::size_t k = 0; k < t.columns.size(); ++k)
+    if (t.columns[k].name == name) return k;
+  return std::nullopt;
 }
 
 }  // namespace
 
-std::vector<IdaPoint> ida_points(const Table& t, const PlotOptions& o) {
+std::vector<IdaPoint> ida_points(const Results& t, const PlotOptions& o) {
   const Layout l = layout(t, o);
   const auto pga = find_column(t, o.pga_key);
   std::vector<IdaPoint> points;
   if (!pga || *pga >= l.end) return points;
   for (const auto& row : t.rows) {
-    const auto x = parse(row[*pga]);
-    const auto y = parse(row[l.response]);
-    const bool lost_seat = unseated(row, l);
-    if (!(completed(row, l) || lost_seat) || !x || !y) continue;
+    const auto x = t.number(row, *pga);
+    const auto y = t.number(row, l.response);
+    const bool lost_seat = unseated(row);
+    if (!(completed(row) || lost_seat) || !x || !y) continue;
     std::string curve;
     for (std::size_t k = l.first; k < l.end; ++k) {
       if (k == *pga) continue;
-      curve += (curve.empty() ? "" : "; ") + t.header[k] + "=" + row[k];
+      curve += (curve.empty() ? "" : "; ") + t.columns[k].name + "=" + t.cell(row, k);
     }
     points.push_back({curve.empty() ? "all" : curve, *x, *y, lost_seat});
   }
@@ -92,7 +82,7 @@ std::vector<IdaPoint> ida_points(const Table& t, const PlotOptions& o) {
   return points;
 }
 
-std::vector<ExceedancePoint> exceedance_points(const Table& t, const PlotOptions& o) {
+std::vector<ExceedancePoint> exceedance_points(const Results& t, const PlotOptions& o) {
   std::map<double, ExceedancePoint> by_pga;
   for (const auto& p : ida_points(t, o)) {
     auto& e = by_pga[p.pga];
@@ -109,32 +99,33 @@ std::vector<ExceedancePoint> exceedance_points(const Table& t, const PlotOptions
   return out;
 }
 
-std::vector<TornadoBar> tornado_bars(const Table& t, const PlotOptions& o) {
+std::vector<TornadoBar> tornado_bars(const Results& t, const PlotOptions& o) {
   const Layout l = layout(t, o);
   std::optional<double> base;
   std::map<std::size_t, TornadoBar> bars;
   for (const auto& row : t.rows) {
     std::vector<std::size_t> set;
     for (std::size_t k = l.first; k < l.end; ++k) {
-      if (!row[k].empty()) set.push_back(k);
+      if (!row.labels.at(t.columns[k].index).empty()) set.push_back(k);
     }
-    const auto y = parse(row[l.response]);
-    if (!completed(row, l) || !y) continue;
+    const auto y = t.number(row, l.response);
+    if (!completed(row) || !y) continue;
     if (set.empty()) {
       base = *y;
     } else if (set.size() == 1) {
       auto [it, fresh] = bars.try_emplace(set[0]);
       TornadoBar& b = it->second;
+      const std::string level = t.cell(row, set[0]);
       if (fresh) {
-        b = {t.header[set[0]], *y, *y, row[set[0]], row[set[0]], 0.0};
+        b = {t.columns[set[0]].name, *y, *y, level, level, 0.0};
       } else {
         if (*y < b.low) {
           b.low = *y;
-          b.low_level = row[set[0]];
+          b.low_level = level;
         }
         if (*y > b.high) {
           b.high = *y;
-          b.high_level = row[set[0]];
+          b.high_level = level;
         }
       }
     }
@@ -213,7 +204,7 @@ void draw_ida(const std::vector<IdaPoint>& ida, const fs::path& dir, const PlotO
 
 // exceedance.{csv,gp,png,svg}: the share of runs above the limit at each PGA; an unseated run
 // counts as exceeding, and the CSV then has a column `unseated` with their number.
-void draw_exceedance(const Table& t, const fs::path& dir, const PlotOptions& o,
+void draw_exceedance(const Results& t, const fs::path& dir, const PlotOptions& o,
                      std::vector<fs::path>& files) {
   const auto points = exceedance_points(t, o);
   const bool lost = std::any_of(points.begin(), points.end(),
@@ -265,10 +256,8 @@ void draw_tornado(const std::vector<TornadoBar>& bars, const fs::path& dir, cons
 
 // The options with the default response resolved: a bridge in segments has one rotation per
 // frame (peak_theta1, peak_theta2, ...) and no peak_theta; the default then plots frame 1's.
-PlotOptions resolve_response(const Table& t, PlotOptions o) {
-  const auto has = [&t](const std::string& c) {
-    return std::find(t.header.begin(), t.header.end(), c) != t.header.end();
-  };
+PlotOptions resolve_response(const Results& t, PlotOptions o) {
+  const auto has = [&t](const std::string& c) { return find_column(t, c).has_value(); };
   if (o.response == "peak_theta" && !has("peak_theta") && has("peak_theta1")) {
     o.response = "peak_theta1";
   }
@@ -277,10 +266,9 @@ PlotOptions resolve_response(const Table& t, PlotOptions o) {
 
 }  // namespace
 
-std::vector<fs::path> draw_plots(const fs::path& results_csv, const fs::path& dir,
+std::vector<fs::path> draw_plots(const Results& t, const fs::path& dir,
                                  const PlotOptions& options) {
   options.validate();
-  const Table t = read_csv(results_csv);
   const PlotOptions o = resolve_response(t, options);
   (void)layout(t, o);
   fs::create_directories(dir);

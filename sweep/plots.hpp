@@ -1,4 +1,4 @@
-// Plots of a sweep's results.csv, drawn with gnuplot into DIR/plots/ as PNG and SVG, each
+// Plots of a sweep's results (those of results.csv, sweep/results.hpp), drawn with gnuplot into DIR/plots/ as PNG and SVG, each
 // beside the CSV it is drawn from (docs/sweep.md):
 //   ida.{csv,gp,png,svg}         incremental dynamic analysis: the response against the PGA,
 //                                one curve per combination of the other factors (record, mu)
@@ -12,7 +12,7 @@
 // fragility curves, sweep/limit_states.hpp); the tornado chart leaves it out.
 #pragma once
 
-#include "sweep/csv.hpp"
+#include "sweep/results.hpp"
 
 #include <filesystem>
 #include <string>
@@ -37,7 +37,7 @@ struct IdaPoint {
 };
 // One point per completed or unseated run that has a PGA, sorted by curve then PGA. Empty
 // when results.csv has no column named options.pga_key.
-std::vector<IdaPoint> ida_points(const Table& results, const PlotOptions& options);
+std::vector<IdaPoint> ida_points(const Results& results, const PlotOptions& options);
 
 struct ExceedancePoint {
   double pga = 0.0;           // [g]
@@ -46,7 +46,7 @@ struct ExceedancePoint {
   std::size_t unseated = 0;   // of runs: unseated (each counted as exceeding)
   double share = 0.0;         // exceeding / runs
 };
-std::vector<ExceedancePoint> exceedance_points(const Table& results, const PlotOptions& options);
+std::vector<ExceedancePoint> exceedance_points(const Results& results, const PlotOptions& options);
 
 struct TornadoBar {
   std::string factor;
@@ -57,12 +57,12 @@ struct TornadoBar {
 // For a one-factor-at-a-time design: the base run is the row whose factor columns are all
 // empty; a factor's bar spans the runs that set that factor alone. Sorted by swing
 // (high - low), largest first. Empty when there is no base run.
-std::vector<TornadoBar> tornado_bars(const Table& results, const PlotOptions& options);
+std::vector<TornadoBar> tornado_bars(const Results& results, const PlotOptions& options);
 
 // Writes every plot that the results support into dir and runs gnuplot on each script.
-// Returns the files written. Throws std::invalid_argument for bad options or a results.csv
+// Returns the files written. Throws std::invalid_argument for bad options or results
 // without the response column, std::runtime_error when gnuplot fails.
-std::vector<std::filesystem::path> draw_plots(const std::filesystem::path& results_csv,
+std::vector<std::filesystem::path> draw_plots(const Results& results,
                                               const std::filesystem::path& dir,
                                               const PlotOptions& options);
 

@@ -6,7 +6,6 @@
 #include "runs/files.hpp"
 #include "runs/run.hpp"
 #include "sweep/csv.hpp"
-#include "sweep/limit_columns.hpp"
 #include "sweep/mpi.hpp"
 
 #include <toml++/toml.h>
@@ -45,85 +44,24 @@ bool mpi_built_in() {
 #endif
 }
 
-std::vector<std::string> result_columns(const std::vector<std::string>& coordinates) {
-  std::vector<std::string> c = {"status"};  // RunStatus name, or "rejected" (scene refused)
-  for (const auto& q : coordinates) c.push_back("peak_" + q);  // max |q| over the samples
-  if (!coordinates.empty()) c.push_back("residual_" + coordinates.back());  // q at the end
-  for (const char* name : {
-           "impacts",          // impact events
-           "max_penetration",  // max over samples and contacts of -gN, >= 0 [m]
-           "energy_error",     // relative energy-balance error at the end (energy.error)
-           "end_time",         // simulated time reached [s]
-           "steps",            // accepted steps
-           "lcp_solves", "lcp_fallbacks", "lcp_unsolved",
-           "failure_time",     // [s], empty for a completed run
-           "message",          // why the run stopped early or was rejected; empty otherwise
-           "wall_s",           // wall time of the run [s]; the only machine-dependent column
-       }) {
-    c.emplace_back(name);
-  }
-  return c;
-}
-
-std::string results_header(const Design& design) {
-  std::string h = "run";
-  for (const auto& f : design.factors) h.append(",").append(csv_quote(f.key));
-  for (const auto& c : result_columns(base_coordinates(design))) h.append(",").append(c);
-  return h;
-}
-
 namespace {
 
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-std::string row_prefix(const Design& d, std::size_t index) {
-  const Run& run = d.runs[index];
-  std::string row = run.id;
-  for (const auto& l : run.labels) row.append(",").append(csv_quote(l));
-  return row;
-}
-
-std::string rejected_row(const Design& d, std::size_t index, const std::string& message,
-                         double wall) {
-  std::string row = row_prefix(d, index) + ",rejected";
-  // Every numeric column stays empty; message and wall_s are the last two.
-  for (std::size_t k = 1; k + 2 < result_columns(base_coordinates(d)).size(); ++k) row += ",";
-  return row.append(",").append(csv_quote(message)).append(",").append(io::csv_number(wall));
-}
-
-// The results.csv fields of a record after the run's labels: every column of
-// result_columns(base_coordinates(d)) from "status" on.
-std::string record_fields(const Design& d, const runs::RunRecord& record, double wall) {
-  const integrators::RunResult& result = record.result;
-  const runs::Digest& digest = record.digest;
-  const bool succeeded = integrators::succeeded(result.status);
-  std::string f(integrators::to_string(result.status));
-  const auto& coordinates = base_coordinates(d);
-  const runs::CoordinatePeak* last = nullptr;
-  for (const auto& name : coordinates) {
-    last = nullptr;
-    for (const auto& c : digest.coordinates) {
-      if (c.name == name) last = &c;
-    }
-    f.append(",").append(last ? io::csv_number(last->peak) : std::string());
-  }
-  if (!coordinates.empty()) f.append(",").append(last ? io::csv_number(last->residual) : "");
-  f.append(",").append(std::to_string(digest.count(integrators::EventKind::kImpact)));
-  for (const double v : {digest.max_penetration, digest.energy.error, result.end_time})
-    f.append(",").append(io::csv_number(v));
-  for (const std::int64_t n :
-       {result.steps, result.lcp_solves, result.lcp_fallbacks, result.lcp_unsolved})
-    f.append(",").append(std::to_string(n));
-  f.append(",").append(succeeded ? std::string() : io::csv_number(result.failure_time));
-  f.append(",").append(csv_quote(result.completed ? std::string() : result.message));
-  return f.append(",").append(io::csv_number(wall));
+// A file's text; empty when there is none (a rejected run has no limit_states.csv).
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 }  // namespace
 
-RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out) {
+RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out,
+                   const RecordSink& on_record) {
   const Run& run = d.runs.at(index);
   const fs::path dir = out / "runs" / run.id;
   const double start = now_s();
@@ -131,20 +69,21 @@ RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out) {
   try {
     const runs::RunRecord record = runs::execute({d.scene, run.overrides, {}, {}});
     runs::write_record(dir, record);
-    write_file_atomically(dir / "limit_states.csv", limit_states_csv(record.digest));
     // An unseated run is a result (the bridge collapsed), not a failed run.
     outcome.succeeded = integrators::is_result(record.result.status);
-    outcome.row = row_prefix(d, index) + "," + record_fields(d, record, now_s() - start);
+    outcome.row = make_row(d, index, record, now_s() - start);
+    if (on_record) on_record(index, record);
   } catch (const std::invalid_argument& e) {
     // The design was validated factor by factor; a combination of values can still be one the
     // scene rejects (e.g. a step larger than a shortened end_time). That run is a row.
     fs::create_directories(dir);
     outcome.row = rejected_row(d, index, e.what(), now_s() - start);
   }
-  write_file_atomically(dir / "row.csv", outcome.row + "\n");
+  if (outcome.row.status != "rejected")
+    write_file_atomically(dir / "limit_states.csv", limit_states_csv(outcome.row.limit_states));
+  write_file_atomically(dir / "row.csv", row_line(d, outcome.row) + "\n");
   return outcome;
 }
-
 Plan prepare(const Design& d, const SweepOptions& options) {
   Plan plan;
   const fs::path manifest = options.out / "manifest.toml";
@@ -187,33 +126,25 @@ Plan prepare(const Design& d, const SweepOptions& options) {
   }
   plan.rows.resize(d.runs.size());
   for (std::size_t i = 0; i < d.runs.size(); ++i) {
-    std::ifstream in(options.out / "runs" / d.runs[i].id / "row.csv");
+    const fs::path dir = options.out / "runs" / d.runs[i].id;
+    std::ifstream in(dir / "row.csv");
     std::string line;
-    if (in && std::getline(in, line) && line.rfind(d.runs[i].id + ",", 0) == 0) {
-      plan.rows[i] = line;
-    } else {
-      plan.pending.push_back(i);
-    }
+    if (in && std::getline(in, line))
+      plan.rows[i] = parse_row(d, i, line, read_text(dir / "limit_states.csv"));
+    if (!plan.rows[i]) plan.pending.push_back(i);
   }
   return plan;
 }
 
-void write_results(const Design& d, const SweepOptions& options,
-                   const std::vector<std::optional<std::string>>& rows) {
-  std::string header = results_header(d);
-  std::vector<std::optional<std::string>> full = rows;
-  std::vector<fs::path> dirs;
-  for (const auto& run : d.runs) dirs.push_back(options.out / "runs" / run.id);
-  add_limit_columns(header, full, dirs);
-  std::string text = header + "\n";
-  for (const auto& r : full) {
-    if (r) text += *r + "\n";
-  }
-  write_file_atomically(options.out / "results.csv", text);
+Results write_results(const Design& d, const SweepOptions& options,
+                      const std::vector<std::optional<Row>>& rows) {
+  Results results = results_of(d, rows);
+  write_file_atomically(options.out / "results.csv", results.csv());
+  return results;
 }
 
 std::size_t run_threaded(const Design& d, const SweepOptions& options, Plan& plan, int threads,
-                         const SweepProgress& progress) {
+                         const SweepProgress& progress, const RecordSink& on_record) {
   const std::size_t total = plan.rows.size();
   const std::size_t before = total - plan.pending.size();
   std::atomic<std::size_t> next{0}, done{0}, failed{0}, ticks{0};
@@ -230,7 +161,7 @@ std::size_t run_threaded(const Design& d, const SweepOptions& options, Plan& pla
           const std::size_t k = next.fetch_add(1);
           if (k >= plan.pending.size()) break;
           try {
-            RunOutcome o = run_one(d, plan.pending[k], options.out);
+            RunOutcome o = run_one(d, plan.pending[k], options.out, on_record);
             plan.rows[plan.pending[k]] = std::move(o.row);
             if (!o.succeeded) failed.fetch_add(1);
           } catch (...) {
@@ -268,18 +199,9 @@ int env_int(const char* name, int fallback) {
 
 }  // namespace
 
-std::size_t count_failed(const Design& d, const std::vector<std::optional<std::string>>& rows) {
-  const std::size_t status = 1 + d.factors.size();
-  std::size_t failed = 0;
-  for (const auto& r : rows) {
-    if (!r) continue;
-    const auto f = csv_fields(*r);
-    if (f.size() <= status) continue;
-    // "rejected" is no RunStatus: a run the scene refused did not complete either.
-    const auto s = integrators::parse_run_status(f[status]);
-    if (!s || !integrators::is_result(*s)) ++failed;
-  }
-  return failed;
+std::size_t count_failed(const std::vector<std::optional<Row>>& rows) {
+  return static_cast<std::size_t>(
+      std::count_if(rows.begin(), rows.end(), [](const auto& r) { return r && !is_result(*r); }));
 }
 
 int launcher_rank() { return env_int("OMPI_COMM_WORLD_RANK", env_int("PMI_RANK", 0)); }
@@ -328,8 +250,8 @@ SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options)
     }
     run_threaded(d, options, plan, s.workers, progress);
   }
-  write_results(d, options, plan.rows);
-  s.failed = count_failed(d, plan.rows);
+  s.table = write_results(d, options, plan.rows);
+  s.failed = count_failed(plan.rows);
   s.results = options.out / "results.csv";
   return s;
 }

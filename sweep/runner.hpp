@@ -5,6 +5,7 @@
 #pragma once
 
 #include "sweep/design.hpp"
+#include "sweep/results.hpp"
 
 #include <cstddef>
 #include <filesystem>
@@ -37,53 +38,50 @@ struct SweepSummary {
   bool primary = true;             // false on MPI ranks other than 0: they print nothing
   std::vector<std::string> notes;  // things to tell the user (revision changed, MPI absent)
   std::filesystem::path results;   // DIR/results.csv
+  Results table;                   // what results.csv holds (empty on ranks other than 0)
 };
-
-// The columns of results.csv after `run` and the factor columns, for a system whose
-// generalized coordinates are `coordinates` (base_coordinates of the design): status,
-// peak_<q> for every coordinate q, residual_<q> for the last (the deck rotation theta of the
-// bridge and the rigid decks: status, peak_x, peak_y, peak_theta, residual_theta, ...), then
-// impacts through wall_s (docs/sweep.md). wall_s is last, so that comparing two results.csv
-// without it is one `cut`.
-std::vector<std::string> result_columns(const std::vector<std::string>& coordinates);
-
-// The header line of results.csv for a design (no newline).
-std::string results_header(const Design& design);
 
 // One run: runs::execute with the run's overrides, its outputs (runs::write_record, the same
-// files and warnings as `nsbridge run`) into DIR/runs/<id>/ and its row, from the record's
-// digest, into DIR/runs/<id>/row.csv (each atomically). A numerical failure
-// is a row with its status; a scene that rejects the run's combination of values is a row with
-// status "rejected". Throws std::runtime_error only when the outputs cannot be written.
+// files and warnings as `nsbridge run`) into DIR/runs/<id>/, and its typed row, whose resume
+// files row.csv and limit_states.csv (sweep/results.hpp) go beside them (each atomically). A
+// numerical failure is a row with its status; a scene that rejects the run's combination of
+// values is a row with status "rejected". Throws std::runtime_error only when the outputs
+// cannot be written. on_record, when given, sees the run's record (not for a rejected run)
+// before it is dropped, from the worker thread that made it.
+using RecordSink = std::function<void(std::size_t index, const runs::RunRecord& record)>;
 struct RunOutcome {
-  std::string row;         // the results.csv line, without newline
+  Row row;
   bool succeeded = false;  // a completed or unseated status (integrators::is_result)
 };
-RunOutcome run_one(const Design& design, std::size_t index, const std::filesystem::path& out);
+RunOutcome run_one(const Design& design, std::size_t index, const std::filesystem::path& out,
+                   const RecordSink& on_record = {});
 
 // The state of DIR before the runs: which are already complete (their rows), which remain.
 struct Plan {
-  std::vector<std::optional<std::string>> rows;  // one per run; set for completed runs
-  std::vector<std::size_t> pending;              // indices still to run, ascending
+  std::vector<std::optional<Row>> rows;  // one per run; set for completed runs
+  std::vector<std::size_t> pending;      // indices still to run, ascending
   std::vector<std::string> notes;
 };
 // Prepares DIR for a design: records the design's hash and the code revision in
-// DIR/manifest.toml, and reads the rows of completed runs. A DIR holding a different design is
-// refused (std::invalid_argument) unless options.restart, which removes its runs first.
+// DIR/manifest.toml, and reads the rows of completed runs from their resume files (the only
+// files of a sweep it reads back). A DIR holding a different design is refused
+// (std::invalid_argument) unless options.restart, which removes its runs first.
 Plan prepare(const Design& design, const SweepOptions& options);
 
-// Writes DIR/results.csv from every row (sorted by run id), via a temporary file and rename.
-void write_results(const Design& design, const SweepOptions& options,
-                   const std::vector<std::optional<std::string>>& rows);
+// Writes DIR/results.csv from every row (sorted by run id), via a temporary file and rename,
+// and returns the table it was written from.
+Results write_results(const Design& design, const SweepOptions& options,
+                      const std::vector<std::optional<Row>>& rows);
 
 // Reports progress: runs done and failed so far (of the total). Called from one thread at a
 // time; may be empty.
 using SweepProgress = std::function<void(std::size_t done, std::size_t failed, std::size_t total)>;
 
 // Runs the pending runs of plan on `threads` workers that take the next index from one
-// atomic counter, filling plan.rows. Returns the number of failed runs among them.
+// atomic counter, filling plan.rows (on_record: as run_one). Returns the number of failed
+// runs among them.
 std::size_t run_threaded(const Design& design, const SweepOptions& options, Plan& plan, int threads,
-                         const SweepProgress& progress);
+                         const SweepProgress& progress, const RecordSink& on_record = {});
 
 // The whole sweep: validate, prepare, run (threaded, or over MPI when the process was started
 // by mpirun and MPI is built in), write results.csv. Throws std::invalid_argument for a bad
@@ -97,7 +95,7 @@ bool mpi_built_in();
 std::string code_revision();
 
 // Rows whose status is not a result (integrators::is_result), "rejected" included.
-std::size_t count_failed(const Design& design, const std::vector<std::optional<std::string>>& rows);
+std::size_t count_failed(const std::vector<std::optional<Row>>& rows);
 
 // A progress bar on stderr (terminal only): runs done, failed, estimated time left.
 class ProgressBar {

@@ -24,8 +24,10 @@ a = args.parse_args()
 sets = [f"solver.end_time={a.end_time}"] if a.end_time else []
 runs = a.out / (f"sweep-{a.end_time:g}s" if a.end_time else "sweep")  # kept for the next time
 r = nsbridge.sweep(ROOT / "scenes/sweeps/fig6.toml", runs, jobs=a.jobs, overrides=sets)
-pga, mu, theta = r["model.excitation.target_pga"], r["model.seats.friction"], r["peak_theta"]
-pounding = np.array(r["pounding"])
+# A pandas DataFrame, or numpy arrays without pandas: either way, plain arrays here.
+pga, mu, theta = (np.asarray(r[c], dtype=float)
+                  for c in ("model.excitation.target_pga", "model.seats.friction", "peak_theta"))
+pounding = np.asarray(r["pounding"], dtype=str)
 fig, ax = plt.subplots(figsize=(8, 5))
 for mu_i, color in zip(np.unique(mu), ("C0", "C1", "C2")):
     for level, style, what in (("yes", "o-", "with"), ("no", "s--", "without")):

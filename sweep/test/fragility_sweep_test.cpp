@@ -167,7 +167,7 @@ TEST_CASE("stripes counted by hand; the fit is fit_mle's on the same stripes") {
       {"1", "a", "completed", "0.05"},    {"1", "b", "completed", "0.04"},
       {"1", "c", "completed_with_fallbacks", "0.02"}, {"1", "d", "completed", "0.008"},
   });
-  const FragilityReport r = fit_fragility(spec(0.01), t, false);
+  const FragilityReport r = fit_fragility(spec(0.01), results_of(t), false);
   REQUIRE(r.fits.size() == 1);
   const auto& s = r.fits[0].stripes;
   REQUIRE(s.size() == 3);
@@ -195,7 +195,7 @@ TEST_CASE("runs that did not complete are left out of n and counted as left_out"
       {"1", "a", "stalled", "0.5"},       {"1", "b", "contact_unsolved", "0.5"},
       {"", "c", "completed", "0.5"},  // no IM (an empty label): no stripe
   });
-  const FragilityReport r = fit_fragility(spec(0.01), t, false);
+  const FragilityReport r = fit_fragility(spec(0.01), results_of(t), false);
   const auto& s = r.fits[0].stripes;
   REQUIRE(s.size() == 3);
   CHECK((s[0].n == 1 && s[0].exceeded == 0 && s[0].left_out == 1));
@@ -209,15 +209,15 @@ TEST_CASE("runs that did not complete are left out of n and counted as left_out"
 TEST_CASE("absolute compares |response| with the threshold") {
   const Table t = results({{"0.2", "a", "completed", "0", "-0.02"},
                            {"0.2", "b", "completed", "0", "0.001"}});
-  CHECK(fit_fragility(spec(0.01, "residual_theta"), t, false).fits[0].stripes[0].exceeded == 0);
-  CHECK(fit_fragility(spec(0.01, "residual_theta", true), t, false).fits[0].stripes[0].exceeded ==
+  CHECK(fit_fragility(spec(0.01, "residual_theta"), results_of(t), false).fits[0].stripes[0].exceeded == 0);
+  CHECK(fit_fragility(spec(0.01, "residual_theta", true), results_of(t), false).fits[0].stripes[0].exceeded ==
         1);
 }
 
 TEST_CASE("no exceedance: null theta, beta and bands with the status, never NaN") {
   const Table t = results({{"0.2", "a", "completed", "0.001"}, {"0.5", "a", "completed", "0.002"},
                            {"1", "a", "completed", "0.003"}});
-  const FragilityReport r = fit_fragility(spec(0.01), t, true);
+  const FragilityReport r = fit_fragility(spec(0.01), results_of(t), true);
   CHECK(r.fits[0].mle.status == FitStatus::kNoExceedances);
   const std::string json = fragility_json(r);
   CHECK(json.find("\"status\": \"no_exceedances\"") != std::string::npos);
@@ -242,7 +242,7 @@ TEST_CASE("IDA: each record's capacity is its lowest IM that reaches the limit s
       {"1", "c", "completed", "0.04"},    {"0.2", "d", "completed", "0.001"},
       {"0.5", "d", "diverged", ""},       {"1", "d", "completed", "0.02"},
   });
-  const FragilityReport r = fit_fragility(spec(0.01), t, true);
+  const FragilityReport r = fit_fragility(spec(0.01), results_of(t), true);
   REQUIRE(r.fits[0].moments.has_value());
   const MomentsFit& m = *r.fits[0].moments;
   const FragilityFit direct = fit_moments({0.5, 1.0, 0.2, 1.0});
@@ -252,7 +252,7 @@ TEST_CASE("IDA: each record's capacity is its lowest IM that reaches the limit s
   CHECK(m.theta == direct.theta);
   CHECK(m.beta == direct.beta);
   // A record that never reaches the limit state: censored, no moments.
-  const FragilityReport c = fit_fragility(spec(0.025), t, true);
+  const FragilityReport c = fit_fragility(spec(0.025), results_of(t), true);
   CHECK(c.fits[0].moments->status == "censored");
   CHECK(c.fits[0].moments->censored == 2);
   CHECK(c.fits[0].moments->theta == 0.0);
@@ -262,9 +262,9 @@ TEST_CASE("IDA: each record's capacity is its lowest IM that reaches the limit s
 
 TEST_CASE("results without the IM or the response column") {
   const Table t = results({{"0.2", "a", "completed", "0.001"}});
-  CHECK_THROWS_WITH_AS(fit_fragility({"pga", {{"ls", "peak_theta", 1.0, false}}}, t, false),
+  CHECK_THROWS_WITH_AS(fit_fragility({"pga", {{"ls", "peak_theta", 1.0, false}}}, results_of(t), false),
                        "fragility.im: results.csv has no column \"pga\"", std::invalid_argument);
-  CHECK_THROWS_WITH_AS(fit_fragility(spec(1.0, "peak_x"), t, false),
+  CHECK_THROWS_WITH_AS(fit_fragility(spec(1.0, "peak_x"), results_of(t), false),
                        "fragility.limit_state ls: results.csv has no column \"peak_x\"",
                        std::invalid_argument);
 }
@@ -315,7 +315,7 @@ TEST_CASE("an unseated run counts in n; it reaches every limit state unless unse
                            {"1", "b", "unseated", "0.003"},
                            {"1", "c", "diverged", ""}});
   FragilitySpec s = spec(0.01);
-  const FragilityReport r = fit_fragility(s, t, false);
+  const FragilityReport r = fit_fragility(s, results_of(t), false);
   const auto& st = r.fits[0].stripes;
   CHECK((st[0].n == 2 && st[0].exceeded == 1 && st[0].unseated == 1 && st[0].left_out == 0));
   CHECK((st[1].n == 2 && st[1].exceeded == 2 && st[1].unseated == 1 && st[1].left_out == 1));
@@ -324,12 +324,12 @@ TEST_CASE("an unseated run counts in n; it reaches every limit state unless unse
   CHECK(json.find("{\"im\": 0.5, \"n\": 2, \"exceeded\": 1, \"left_out\": 0, \"unseated\": 1}") !=
         std::string::npos);
   s.limit_states[0].unseated = UnseatedRuns::kResponse;
-  const FragilityReport rr = fit_fragility(s, t, false);
+  const FragilityReport rr = fit_fragility(s, results_of(t), false);
   const auto& sr = rr.fits[0].stripes;
   CHECK((sr[0].n == 2 && sr[0].exceeded == 0));
   CHECK((sr[1].n == 2 && sr[1].exceeded == 1));
   // Without an unseated run the JSON has no "unseated" (the files of sweeps without seats).
-  CHECK(fragility_json(fit_fragility(spec(0.01), results({{"1", "a", "completed", "0.02"}}),
+  CHECK(fragility_json(fit_fragility(spec(0.01), results_of(results({{"1", "a", "completed", "0.02"}})),
                                      false))
             .find("unseated") == std::string::npos);
 }
@@ -340,7 +340,7 @@ TEST_CASE("a watched limit state no run watches names those the runs watch") {
   for (auto& row : t.rows) row.insert(row.end() - 1, {"0", "0.01"});
   LimitState ls{"u", "unseating_left_exceeded", 1.0};
   ls.watched = "unseating_left";
-  CHECK_THROWS_WITH_AS(fit_fragility({"im", {ls}}, t, false),
+  CHECK_THROWS_WITH_AS(fit_fragility({"im", {ls}}, results_of(t), false),
                        "fragility.limit_state u: no run of the sweep watches \"unseating_left\" "
                        "(results.csv has no column unseating_left_exceeded; watched: "
                        "closure_left)",
