@@ -9,6 +9,10 @@ The engine is the C++ one; this package converts its inputs and outputs (docs/py
     result.history["theta"]       # numpy float64 array, a column of history.csv
     result.summary["peaks"]       # summary.json as a dict
 
+    scene = nsbridge.Scene.from_dict({"model": {"kind": "bouncing_ball", "mass": 1.0,
+                                                "height": 1.0}})   # a scene without a file
+    nsbridge.run(scene.with_overrides({"model.height": 0.5}))
+
 Bad input raises nsbridge.InputError (a ValueError) with the command line's message
 (file:line:col: key: what is allowed); a numerical failure is a status, never an exception.
 """
