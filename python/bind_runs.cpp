@@ -1,5 +1,6 @@
 // nsbridge.load_scene, Scene, run and Result: the run pipeline (runs/run.hpp) from Python.
-// A run is runs::prepare then runs::run, exactly as `nsbridge run` does it; its outputs are
+// A run is runs::prepare then runs::run, exactly as `nsbridge run` does it; its inputs are
+// converted once (a dict to a scene table, Python values to typed overrides), its outputs are
 // the record's, converted once: summary.json's text parsed by Python's json module, each
 // history column copied into one numpy array (docs/python.md).
 #include "integrators/run.hpp"
@@ -10,11 +11,15 @@
 #include "runs/files.hpp"
 #include "runs/run.hpp"
 
+#include <toml++/toml.h>
+
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -26,30 +31,199 @@ namespace nsb::python {
 
 namespace {
 
-// A scene file with its overrides, loaded and checked once (runs::prepare): what it says is
-// kept, the system is not. run() loads it again from the same file and overrides, since a
-// run consumes its system.
-struct Scene {
-  std::filesystem::path path;
-  std::vector<std::string> overrides;
-  std::string name, kind, method;
-  double end_time = 0.0;               // [s]
-  std::vector<std::string> warnings;   // the step warnings found before a run (runs/trust.hpp)
+// The Python name of a value's type ("NoneType", "dict", ...), for messages.
+std::string type_name(const py::handle& v) {
+  return py::type::of(v).attr("__name__").cast<std::string>();
+}
+
+// Where a converted value goes: a table's key, or the end of an array.
+struct Slot {
+  toml::table* table = nullptr;
+  std::string name;
+  toml::array* array = nullptr;
+
+  template <class T>
+  void put(T&& value) const {
+    if (table != nullptr) {
+      table->insert(name, std::forward<T>(value));
+    } else {
+      array->push_back(std::forward<T>(value));
+    }
+  }
 };
 
-Scene load_scene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+void put_node(const py::handle& v, const std::string& origin, const std::string& key,
+              const Slot& slot);
+
+// A dict as a scene table, the key path of a value as the scene's messages write it
+// ("model.bents[0].height"); put_node converts each value.
+toml::table to_table(const py::dict& d, const std::string& origin, const std::string& path) {
+  toml::table t;
+  for (const auto& [k, v] : d) {
+    if (!py::isinstance<py::str>(k)) {
+      throw std::invalid_argument(origin + ": " + (path.empty() ? "" : path + ": ") +
+                                  "expected str keys, got the " + type_name(k) + " " +
+                                  py::repr(k).cast<std::string>());
+    }
+    const std::string name = k.cast<std::string>();
+    put_node(v, origin, path.empty() ? name : path + "." + name, Slot{&t, name, nullptr});
+  }
+  return t;
+}
+
+// A Python value as the TOML node of a scene table: a dict is a table (str keys), a list or
+// tuple an array (of tables when its elements are dicts), a bool a boolean, an int an integer
+// (64 bits), a float a float, a str a string. Anything else is bad input, "<origin>: <key>:
+// ...".
+void put_node(const py::handle& v, const std::string& origin, const std::string& key,
+              const Slot& slot) {
+  if (py::isinstance<py::bool_>(v)) {
+    slot.put(v.cast<bool>());
+  } else if (PyLong_Check(v.ptr())) {
+    try {
+      slot.put(v.cast<std::int64_t>());
+    } catch (const py::cast_error&) {
+      throw std::invalid_argument(origin + ": " + key + ": the integer " +
+                                  py::repr(v).cast<std::string>() + " does not fit in 64 bits");
+    }
+  } else if (PyFloat_Check(v.ptr())) {
+    slot.put(v.cast<double>());
+  } else if (py::isinstance<py::str>(v)) {
+    slot.put(v.cast<std::string>());
+  } else if (py::isinstance<py::dict>(v)) {
+    slot.put(to_table(v.cast<py::dict>(), origin, key));
+  } else if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
+    toml::array a;
+    std::size_t i = 0;
+    for (const auto& e : v) {
+      put_node(e, origin, key + "[" + std::to_string(i++) + "]", Slot{nullptr, {}, &a});
+    }
+    slot.put(std::move(a));
+  } else {
+    throw std::invalid_argument(origin + ": " + key + ": expected a dict, a list, a bool, an " +
+                                "int, a float or a str, got " + type_name(v));
+  }
+}
+
+// The typed override of one Python value: a str is the text after "=" (scene::parse_override's
+// rule, as on the command line); a bool, an int, a float or a list or tuple of numbers is
+// taken as it is.
+scene::Override to_override(const std::string& key, const py::handle& v) {
+  if (py::isinstance<py::str>(v)) return scene::parse_override(key + "=" + v.cast<std::string>());
+  if (py::isinstance<py::bool_>(v)) return {key, v.cast<bool>()};
+  if (PyLong_Check(v.ptr())) {
+    try {
+      return {key, v.cast<std::int64_t>()};
+    } catch (const py::cast_error&) {
+      throw std::invalid_argument("override \"" + key + "\": the integer " +
+                                  py::repr(v).cast<std::string>() + " does not fit in 64 bits");
+    }
+  }
+  if (PyFloat_Check(v.ptr())) return {key, v.cast<double>()};
+  if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
+    std::vector<double> x;
+    for (const auto& e : v) {
+      if (py::isinstance<py::bool_>(e) || !(PyLong_Check(e.ptr()) || PyFloat_Check(e.ptr()))) {
+        throw std::invalid_argument("override \"" + key + "\": expected a list of numbers, " +
+                                    "got an element of type " + type_name(e));
+      }
+      x.push_back(e.cast<double>());
+    }
+    return {key, std::move(x)};
+  }
+  throw std::invalid_argument("override \"" + key + "\": expected a bool, an int, a float, " +
+                              "a str or a list of numbers, got " + type_name(v));
+}
+
+// The overrides of a Python argument, in order: a dict {"section.key": value} (to_override),
+// a list of "section.key=value" strings, or one such string; None is none.
+std::vector<scene::Override> to_overrides(const py::handle& arg) {
+  std::vector<scene::Override> out;
+  if (arg.is_none()) return out;
+  if (py::isinstance<py::str>(arg)) return {scene::parse_override(arg.cast<std::string>())};
+  if (py::isinstance<py::dict>(arg)) {
+    for (const auto& [k, v] : arg.cast<py::dict>()) {
+      if (!py::isinstance<py::str>(k)) {
+        throw std::invalid_argument("overrides: expected str keys (\"section.key\"), got " +
+                                    type_name(k));
+      }
+      out.push_back(to_override(k.cast<std::string>(), v));
+    }
+    return out;
+  }
+  if (py::isinstance<py::list>(arg) || py::isinstance<py::tuple>(arg)) {
+    for (const auto& e : arg) {
+      if (!py::isinstance<py::str>(e)) {
+        throw std::invalid_argument("overrides: expected \"section.key=value\" strings in a " +
+                                    std::string("list, got ") + type_name(e) +
+                                    " (typed values go in a dict {\"section.key\": value})");
+      }
+      out.push_back(scene::parse_override(e.cast<std::string>()));
+    }
+    return out;
+  }
+  throw std::invalid_argument("overrides: expected a dict {\"section.key\": value}, a list of " +
+                              std::string("\"section.key=value\" strings or one such string, got ") +
+                              type_name(arg));
+}
+
+// nsbridge.Scene: a scene value (its table, overrides applied) built and checked once
+// (runs::prepare), and what the check found. A run builds the system again from the table,
+// since a run consumes its system; it reads no scene file, only the scene's record files.
+struct PyScene {
+  scene::SceneTable table;
+  std::optional<std::filesystem::path> path;  // the scene file; none for a dict
+  std::vector<std::string> overrides;         // the overrides applied, in text form, in order
+  std::string name, kind, method;
+  double end_time = 0.0;                      // [s]
+  std::vector<std::string> warnings;          // the step warnings found before a run (runs/trust.hpp)
+};
+
+// The scene of a request, built and checked (runs::prepare) with the GIL released.
+PyScene check_scene(const runs::RunRequest& request, std::optional<std::filesystem::path> path,
+                    std::vector<std::string> overrides) {
   runs::PreparedRun p;
   {
     py::gil_scoped_release release;
-    p = runs::prepare({path, overrides, {}, {}});
+    p = runs::prepare(request);
   }
-  return Scene{path,
-               overrides,
-               p.scene.name,
-               p.scene.kind,
-               std::string(integrators::method_name(p.scene.run)),
-               integrators::end_time(p.scene.run),
-               std::move(p.warnings)};
+  return PyScene{std::move(p.scene.table),
+                 std::move(path),
+                 std::move(overrides),
+                 p.scene.name,
+                 p.scene.kind,
+                 std::string(integrators::method_name(p.scene.run)),
+                 integrators::end_time(p.scene.run),
+                 std::move(p.warnings)};
+}
+
+std::vector<std::string> texts(const std::vector<scene::Override>& overrides) {
+  std::vector<std::string> out;
+  for (const auto& o : overrides) out.push_back(models::to_string(o));
+  return out;
+}
+
+PyScene load_scene(const std::filesystem::path& path, const py::object& overrides) {
+  runs::RunRequest request;
+  request.scene = path;
+  request.typed_overrides = to_overrides(overrides);
+  return check_scene(request, path, texts(request.typed_overrides));
+}
+
+PyScene scene_from_dict(const py::dict& d, const std::string& name,
+                        const std::filesystem::path& folder) {
+  runs::RunRequest request;
+  request.scene = scene::SceneTable{to_table(d, name, ""), {name, folder}, {}};
+  return check_scene(request, std::nullopt, {});
+}
+
+PyScene with_overrides(const PyScene& s, const py::object& overrides) {
+  runs::RunRequest request;
+  request.scene = s.table;
+  request.typed_overrides = to_overrides(overrides);
+  std::vector<std::string> all = s.overrides;
+  for (auto& t : texts(request.typed_overrides)) all.push_back(std::move(t));
+  return check_scene(request, s.path, std::move(all));
 }
 
 // One run's record and, built on first use, its Python views.
@@ -126,21 +300,20 @@ class Result {
   py::object summary_, history_, events_;  // null until first asked for
 };
 
-// run(scene_or_path, method, overrides, progress): the request, then runs::prepare and
-// runs::run with the GIL released, so that other Python threads run meanwhile.
+// run(scene_or_path, method, overrides, progress): the request (a Scene's table, or a path),
+// then runs::prepare and runs::run with the GIL released, so that other Python threads run
+// meanwhile.
 Result run(const py::object& scene, const std::optional<std::string>& method,
-           const std::vector<std::string>& overrides, const py::object& progress) {
+           const py::object& overrides, const py::object& progress) {
   runs::RunRequest request;
-  if (py::isinstance<Scene>(scene)) {
-    const Scene& s = scene.cast<const Scene&>();
-    request.scene = s.path;
-    request.overrides = s.overrides;
+  if (py::isinstance<PyScene>(scene)) {
+    request.scene = scene.cast<const PyScene&>().table;
   } else if (py::isinstance<py::str>(scene) || py::hasattr(scene, "__fspath__")) {
     request.scene = scene.cast<std::filesystem::path>();
   } else {
     throw py::type_error("run: scene_or_path: expected a Scene or a path");
   }
-  request.overrides.insert(request.overrides.end(), overrides.begin(), overrides.end());
+  request.typed_overrides = to_overrides(overrides);
   request.method = method.value_or("");
   ProgressReport report(progress);
   std::optional<runs::RunRecord> record;
@@ -154,34 +327,44 @@ Result run(const py::object& scene, const std::optional<std::string>& method,
   return Result(std::move(*record));
 }
 
-std::string scene_repr(const Scene& s) {
-  return "Scene('" + s.path.string() + "', name='" + s.name + "', method='" + s.method +
-         "', end_time=" + io::three_digits(s.end_time) + ")";
+std::string scene_repr(const PyScene& s) {
+  return "Scene('" + (s.path ? s.path->string() : s.table.origin.name) + "', name='" + s.name +
+         "', method='" + s.method + "', end_time=" + io::three_digits(s.end_time) + ")";
 }
 
 void bind_scene(py::module_& m) {
-  py::class_<Scene>(m, "Scene",
-                    "A scene file with its overrides, loaded and checked (nsbridge.load_scene)")
-      .def_readonly("path", &Scene::path, "The scene file")
-      .def_readonly("overrides", &Scene::overrides, "\"section.key=value\" overrides, in order")
-      .def_readonly("name", &Scene::name, "The scene's name (the file's stem)")
-      .def_readonly("kind", &Scene::kind, "[model] kind")
-      .def_readonly("method", &Scene::method,
+  py::class_<PyScene>(m, "Scene",
+                      "A scene, built and checked: from a file (nsbridge.load_scene) or a dict "
+                      "(Scene.from_dict)")
+      .def_static("from_dict", &scene_from_dict, py::arg("d"), py::arg("name") = "scene",
+                  py::arg("folder") = std::filesystem::path("."),
+                  "A scene from a nested dict with the scene file's keys (tables as dicts, "
+                  "arrays of tables as lists of dicts), checked as a file is; name stands for "
+                  "the file in messages, record files are looked up from folder. Bad input "
+                  "raises InputError naming the key")
+      .def_property_readonly(
+          "path", [](const PyScene& s) { return s.path; },
+          "The scene file (pathlib.Path); None for a scene from a dict")
+      .def_readonly("overrides", &PyScene::overrides,
+                    "The overrides applied, \"section.key=value\" (the value as TOML), in order")
+      .def_readonly("name", &PyScene::name,
+                    "The scene's name (the file's stem; from_dict's name)")
+      .def_readonly("kind", &PyScene::kind, "[model] kind")
+      .def_readonly("method", &PyScene::method,
                     "solver.method: 'moreau', 'event_driven' or 'compliance'")
-      .def_readonly("end_time", &Scene::end_time, "solver.end_time [s]")
-      .def_readonly("warnings", &Scene::warnings, "Step warnings found before a run")
-      .def("with_overrides",
-           [](const Scene& s, const std::vector<std::string>& more) {
-             std::vector<std::string> all = s.overrides;
-             all.insert(all.end(), more.begin(), more.end());
-             return load_scene(s.path, all);
-           },
-           py::arg("overrides"),
-           "A new Scene: this one's overrides followed by these, loaded and checked")
+      .def_readonly("end_time", &PyScene::end_time, "solver.end_time [s]")
+      .def_readonly("warnings", &PyScene::warnings, "Step warnings found before a run")
+      .def("with_overrides", &with_overrides, py::arg("overrides"),
+           "A new Scene: these overrides (a dict {\"section.key\": value}, a list of "
+           "\"section.key=value\" strings or one such string) applied to this one's table, "
+           "checked; no file is read")
+      .def("to_toml", [](const PyScene& s) { return scene::to_toml(s.table); },
+           "The scene's TOML text, overrides applied: read back, it is the same scene")
       .def("__repr__", &scene_repr);
-  m.def("load_scene", &load_scene, py::arg("path"), py::arg("overrides") = std::vector<std::string>{},
-        "Loads and checks a scene file (TOML, docs/scenes.md) with \"section.key=value\" "
-        "overrides; bad input raises InputError naming the file, line and key");
+  m.def("load_scene", &load_scene, py::arg("path"), py::arg("overrides") = py::none(),
+        "Loads and checks a scene file (TOML, docs/scenes.md) with overrides (a dict "
+        "{\"section.key\": value}, a list of \"section.key=value\" strings or one such "
+        "string); bad input raises InputError naming the file, line and key");
 }
 
 void bind_result(py::module_& m) {
@@ -219,7 +402,7 @@ void bind_runs(py::module_& m) {
   bind_scene(m);
   bind_result(m);
   m.def("run", &run, py::arg("scene_or_path"), py::arg("method") = py::none(),
-        py::arg("overrides") = std::vector<std::string>{}, py::arg("progress") = false,
+        py::arg("overrides") = py::none(), py::arg("progress") = false,
         "Runs a scene (a Scene or a path) with `nsbridge run`'s pipeline, the GIL released; "
         "method overrides solver.method; progress: False, True (a line on stderr) or a "
         "callable f(t). A numerical failure is Result.status, bad input raises InputError");

@@ -8,14 +8,30 @@
 #include <optional>
 #include <stdexcept>
 #include <utility>
+#include <variant>
 
 namespace nsb::runs {
 
+namespace {
+
+// The request's scene table with its overrides applied, the method's last.
+scene::SceneTable scene_table(const RunRequest& request) {
+  const auto* file = std::get_if<std::filesystem::path>(&request.scene);
+  scene::SceneTable table = file != nullptr ? scene::read_scene_table(*file)
+                                             : std::get<scene::SceneTable>(request.scene);
+  scene::apply_overrides(table, request.overrides);
+  scene::apply_overrides(table, request.typed_overrides);
+  if (!request.method.empty()) {
+    scene::apply_overrides(table, std::vector<std::string>{"solver.method=" + request.method});
+  }
+  return table;
+}
+
+}  // namespace
+
 PreparedRun prepare(const RunRequest& request) {
-  std::vector<std::string> overrides = request.overrides;
-  if (!request.method.empty()) overrides.push_back("solver.method=" + request.method);
-  PreparedRun p{scene::load_scene(request.scene, overrides), {}};
-  const std::string file = request.scene.string();
+  PreparedRun p{scene::build_scene(scene_table(request)), {}};
+  const std::string file = p.scene.table.origin.name;
   if (!p.scene.system) throw std::invalid_argument(file + ": the scene built no system");
   try {
     check_initial_state(*p.scene.system);

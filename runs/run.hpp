@@ -3,12 +3,15 @@
 // (docs/run-api.md, "The run pipeline").
 //
 //   RunRequest ──prepare──► PreparedRun ──run──► RunRecord ──write_record──► history.csv,
-//   (scene, overrides,      (scene loaded,        (result, history,          events.csv,
-//    method, progress)       checked, step         digest with every          summary.json
-//                            warnings)             warning)
+//   (scene file or value,   (scene built,         (result, history,          events.csv,
+//    overrides, method,      checked, step         digest with every          summary.json
+//    progress)               warnings)             warning)
 //
 // execute() is prepare() then run(). A caller that must know the scene before it integrates
 // (`nsbridge run`: its default output folder is named after the scene) calls the two steps.
+// A caller that runs one scene many times (Python, a sweep's base scene) reads it once
+// (scene::read_scene_table, or a table built in code) and passes the value: prepare then reads
+// no scene file, only the scene's record files.
 #pragma once
 
 #include "integrators/recorder.hpp"
@@ -17,12 +20,15 @@
 
 #include <filesystem>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace nsb::runs {
 
 struct RunRequest {
-  std::filesystem::path scene;         // the scene file (TOML, docs/scenes.md)
+  // The scene file (TOML, docs/scenes.md), or a scene value: its table, origin and overridden
+  // keys (scene/scene.hpp), checked by prepare exactly as the file's would be.
+  std::variant<std::filesystem::path, scene::SceneTable> scene;
   std::vector<std::string> overrides;  // "section.key=value", applied in order
   std::string method;                  // an integrators::method_names() entry; empty: the
                                        //   scene's solver.method
@@ -30,6 +36,7 @@ struct RunRequest {
   std::filesystem::path dump_lcp{};    // a folder that receives every contact problem of the
                                        //   run and manifest.csv (runs/lcp_dump.hpp); empty:
                                        //   none
+  std::vector<scene::Override> typed_overrides{};  // applied after `overrides`, in order
 };
 
 struct RunRecord {
@@ -46,10 +53,13 @@ struct PreparedRun {
   std::filesystem::path dump_lcp{};    // RunRequest::dump_lcp, created and checked writable
 };
 
-// Loads the scene with the overrides (and "solver.method=<method>" last when a method is
-// given), checks its initial state and finds the step warnings, and creates the dump_lcp
-// folder when one is asked for. Throws std::invalid_argument for bad input, naming the file
-// and key ("<file>:<line>:<col>: <key>: ...") or the folder, before any integration.
+// Reads the scene file (or copies the scene value), applies the overrides, then the typed
+// overrides (and "solver.method=<method>" last when a method is given), builds and checks the
+// scene (scene::build_scene), checks its initial state and finds the step warnings, and
+// creates the dump_lcp folder when one is asked for. A scene value gives the scene its file
+// gives, bit for bit. Throws std::invalid_argument for bad input, naming the file (a value's
+// origin name) and key ("<file>:<line>:<col>: <key>: ...") or the folder, before any
+// integration.
 PreparedRun prepare(const RunRequest& request);
 
 // Integrates a prepared scene and digests the run: the trust checks' warnings follow the

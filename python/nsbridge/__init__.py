@@ -10,6 +10,10 @@ The engine is the C++ one; this package converts its inputs and outputs (docs/py
     result.summary["peaks"]       # summary.json as a dict
     table = nsbridge.sweep("scenes/sweeps/fig6.toml", "out/fig6")   # results.csv, typed
 
+    scene = nsbridge.Scene.from_dict({"model": {"kind": "bouncing_ball", "mass": 1.0,
+                                                "height": 1.0}})   # a scene without a file
+    nsbridge.run(scene.with_overrides({"model.height": 0.5}))
+
 Bad input raises nsbridge.InputError (a ValueError) with the command line's message
 (file:line:col: key: what is allowed); a numerical failure is a status, never an exception.
 """
