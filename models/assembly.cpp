@@ -54,11 +54,20 @@ Assembly::Assembly(Parts parts)
   set_initial_state(q0, u0);
   connectors_ = ConnectorSet(parts_.bodies, parts_.prescribed, parts_.restrainers, parts_.links,
                              motions_);
+  connected_ = !connectors_.empty();
   build_bents(mass);
   build_contacts();
+  // The seats at rest. A component without a motion keeps this value (update_seat_poses moves
+  // the others); + 0.0 is the zero displacement update_seat_poses would add.
   seats_.assign(parts_.prescribed.size(), PlanarMotion{});
+  for (std::size_t p = 0; p < seats_.size(); ++p) {
+    const Eigen::Vector2d& a = parts_.prescribed[p].reference;
+    seats_[p].position << a.x() + 0.0, a.y() + 0.0, 0.0;
+  }
+  one_body_ = parts_.bodies.size() == 1;
   check_initial_gaps();
   build_limits();
+  watches_steps_ = !keys_.empty() || !watch_.empty();
 }
 
 void Assembly::validate_parts() const {
@@ -190,9 +199,18 @@ void Assembly::check_initial_gaps() const {
   }
 }
 
-void Assembly::update_motions(double t) const {
-  if (!motions_.update(t)) return;
-  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+void Assembly::update_quasi_static() const {
+  if (one_body_) {
+    quasi_static<true>();
+  } else {
+    quasi_static<false>();
+  }
+}
+
+template <bool kOneBody>
+void Assembly::quasi_static() const {
+  const std::size_t bodies = kOneBody ? 1 : body_forces_.size();
+  for (std::size_t i = 0; i < bodies; ++i) {
     const BodyForces& body = body_forces_[i];
     if (!body.damped) continue;
     Eigen::Vector3d us = Eigen::Vector3d::Zero();
@@ -200,24 +218,41 @@ void Assembly::update_motions(double t) const {
       const BentState& b = bents_[j];
       us += b.qs_x * motions_.value(b.ground_x).v + b.qs_y * motions_.value(b.ground_y).v;
     }
-    connectors_.add_support_velocity(static_cast<int>(i), motions_, us);
+    if (connected_) connectors_.add_support_velocity(static_cast<int>(i), motions_, us);
     us_dot_[i] = us;
   }
-  for (std::size_t p = 0; p < seats_.size(); ++p) seat_pose(p, seats_[p]);
 }
 
-void Assembly::seat_pose(std::size_t p, PlanarMotion& m) const {
-  const SeatIndex& ix = seat_index_[p];
-  const auto &mx = motions_.value(ix.x), &my = motions_.value(ix.y),
-             &mr = motions_.value(ix.phi);
-  const Eigen::Vector2d& a = parts_.prescribed[p].reference;
-  m.position << a.x() + mx.d, a.y() + my.d, mr.d;
-  m.velocity << mx.v, my.v, mr.v;
-  m.acceleration << mx.a, my.a, mr.a;
+void Assembly::update_seat_poses(double t) const {
+  for (std::size_t p = 0; p < seats_.size(); ++p) {
+    const SeatIndex& ix = seat_index_[p];
+    const Eigen::Vector2d& a = parts_.prescribed[p].reference;
+    PlanarMotion& m = seats_[p];
+    // Only the components with a motion move (a seat driven along x alone moves in x only).
+    if (ix.x != parts::MotionTable::kNone) {
+      const auto& mx = motions_.value(ix.x);
+      m.position.x() = a.x() + mx.d;
+      m.velocity.x() = mx.v;
+      m.acceleration.x() = mx.a;
+    }
+    if (ix.y != parts::MotionTable::kNone) {
+      const auto& my = motions_.value(ix.y);
+      m.position.y() = a.y() + my.d;
+      m.velocity.y() = my.v;
+      m.acceleration.y() = my.a;
+    }
+    if (ix.phi != parts::MotionTable::kNone) {
+      const auto& mr = motions_.value(ix.phi);
+      m.position.z() = mr.d;
+      m.velocity.z() = mr.v;
+      m.acceleration.z() = mr.a;
+    }
+  }
+  seats_time_ = t;
 }
 
 PlanarMotion Assembly::prescribed_motion(int p, double t) const {
-  update_motions(t);
+  update_seats(t);
   return seats_.at(static_cast<std::size_t>(p));
 }
 
@@ -248,14 +283,25 @@ double Assembly::bent_force_transverse(int j) const {
 
 void Assembly::forces(double t, const integrators::Vector& q, const integrators::Vector& u,
                       integrators::Vector& f) {
+  if (one_body_) {
+    forces_of<true>(t, q, u, f);
+  } else {
+    forces_of<false>(t, q, u, f);
+  }
+}
+
+template <bool kOneBody>
+void Assembly::forces_of(double t, const integrators::Vector& q, const integrators::Vector& u,
+                         integrators::Vector& f) {
   update_motions(t);
-  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+  const std::size_t bodies = kOneBody ? 1 : body_forces_.size();
+  for (std::size_t i = 0; i < bodies; ++i) {
     const BodyForces& body = body_forces_[i];
+    const int o = kOneBody ? 0 : body.offset;  // the bents of a body share its offset
     Eigen::Vector3d fs = Eigen::Vector3d::Zero();
     for (std::size_t j = body.bent_begin; j < body.bent_end; ++j) {
       BentState& b = bents_[j];
       const double s = b.position;
-      const int o = b.offset;
       // Body displacement at the bent relative to the bent's own ground (small rotations).
       const double dx = q(o) - motions_.value(b.ground_x).d;
       const double dy = q(o + 1) + s * q(o + 2) - motions_.value(b.ground_y).d;
@@ -266,13 +312,16 @@ void Assembly::forces(double t, const integrators::Vector& q, const integrators:
       fs(2) -= s * fy;  // torque of the transverse bent force about the body centre
     }
     if (body.damped) {
-      const Eigen::Vector3d vr = u.segment<3>(body.offset) - us_dot_[i];
-      f.segment<3>(body.offset) = fs - body.c * vr;
+      const Eigen::Vector3d vr = u.segment<3>(o) - us_dot_[i];
+      f.segment<3>(o) = fs - body.c * vr;
     } else {
-      f.segment<3>(body.offset) = fs;
+      f.segment<3>(o) = fs;
     }
   }
-  if (!connectors_.empty()) connectors_.forces(q, motions_, seats_, f);
+  if (connected_) {
+    update_seats(t);
+    connectors_.forces(q, motions_, seats_, f);
+  }
 }
 
 void Assembly::tangent(double, const integrators::Vector&, const integrators::Vector&,
@@ -288,7 +337,7 @@ void Assembly::tangent(double, const integrators::Vector&, const integrators::Ve
     K(o + 2, o + 1) += ky * s;
     K(o + 2, o + 2) += ky * s * s;
   }
-  connectors_.tangent(K);
+  if (connected_) connectors_.tangent(K);
   C.setZero(dofs(), dofs());
   for (const auto& b : body_forces_) C.block<3, 3>(b.offset, b.offset) = b.c;
 }
@@ -297,19 +346,19 @@ bool Assembly::tangent_changed() const {
   for (const auto& b : bents_) {
     if (b.x.tangent_changed() || b.y.tangent_changed()) return true;
   }
-  return connectors_.tangent_changed();
+  return connected_ && connectors_.tangent_changed();
 }
 
 void Assembly::commit() {
   for (auto& b : bents_) b.x.commit();
   for (auto& b : bents_) b.y.commit();
-  connectors_.commit();
+  if (connected_) connectors_.commit();
 }
 
 void Assembly::revert() {
   for (auto& b : bents_) b.x.revert();
   for (auto& b : bents_) b.y.revert();
-  connectors_.revert();
+  if (connected_) connectors_.revert();
 }
 
 void Assembly::resize_buffer(std::vector<integrators::ContactData>& out) const {
@@ -322,27 +371,40 @@ void Assembly::resize_buffer(std::vector<integrators::ContactData>& out) const {
 
 void Assembly::contact_data(double t, const integrators::Vector& q, const integrators::Vector& u,
                             std::vector<integrators::ContactData>& out) const {
+  if (one_body_) {
+    contacts_of<true>(t, q, u, out);
+  } else {
+    contacts_of<false>(t, q, u, out);
+  }
+}
+
+template <bool kOneBody>
+void Assembly::contacts_of(double t, const integrators::Vector& q, const integrators::Vector& u,
+                           std::vector<integrators::ContactData>& out) const {
   size_buffer(out);
-  update_motions(t);
+  update_seats(t);
   // The corners of one body are consecutive: its state is copied once for them.
   Eigen::Vector3d qa, ua;
   int body = -1;
   for (const auto& c : seat_contacts_) {
-    if (c.offset != body) {
-      body = c.offset;
+    const int offset = kOneBody ? 0 : c.offset;
+    if (offset != body) {
+      body = offset;
       qa = q.segment<3>(body) + c.rest;
       ua = u.segment<3>(body);
     }
     const auto k = corner_contact(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
-    parts::write_contact(k, c.offset, c.restitution, c.friction, out[c.slot]);
+    parts::write_contact(k, offset, c.restitution, c.friction, out[c.slot]);
   }
-  for (const auto& c : body_contacts_) {
-    const auto k = parts::corner_on_body(c.geometry, q.segment<3>(c.offset_a) + c.rest_a,
-                                         u.segment<3>(c.offset_a),
-                                         q.segment<3>(c.offset_b) + c.rest_b,
-                                         u.segment<3>(c.offset_b));
-    parts::write_body_contact(k, c.offset_a, c.offset_b, c.restitution, c.friction,
-                              out[c.slot]);
+  if (!kOneBody) {  // a contact against a body needs two
+    for (const auto& c : body_contacts_) {
+      const auto k = parts::corner_on_body(c.geometry, q.segment<3>(c.offset_a) + c.rest_a,
+                                           u.segment<3>(c.offset_a),
+                                           q.segment<3>(c.offset_b) + c.rest_b,
+                                           u.segment<3>(c.offset_b));
+      parts::write_body_contact(k, c.offset_a, c.offset_b, c.restitution, c.friction,
+                                out[c.slot]);
+    }
   }
   mark_broken(out);
 }
@@ -367,7 +429,7 @@ bool Assembly::normals_at(double t, const integrators::Vector& q,
 
 void Assembly::evaluate_normals(double t, const integrators::Vector& q,
                                 const integrators::Vector& u) const {
-  update_motions(t);
+  update_seats(t);
   Eigen::Vector3d qa, ua;
   int body = -1;
   for (std::size_t i = 0; i < seat_contacts_.size(); ++i) {
@@ -405,38 +467,57 @@ void Assembly::contact_normals(double t, const integrators::Vector& q,
     mark_broken(out);
     return;
   }
-  update_motions(t);
+  if (one_body_) {
+    normals_of<true>(t, q, u, out);
+  } else {
+    normals_of<false>(t, q, u, out);
+  }
+}
+
+template <bool kOneBody>
+void Assembly::normals_of(double t, const integrators::Vector& q, const integrators::Vector& u,
+                          std::vector<integrators::ContactData>& out) const {
+  update_seats(t);
   Eigen::Vector3d qa, ua;
   int body = -1;
   for (const auto& c : seat_contacts_) {
-    if (c.offset != body) {
-      body = c.offset;
+    const int offset = kOneBody ? 0 : c.offset;
+    if (offset != body) {
+      body = offset;
       qa = q.segment<3>(body) + c.rest;
       ua = u.segment<3>(body);
     }
     const auto k =
         corner_contact_normal(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
-    parts::write_contact_normal(k, c.offset, out[c.slot]);
+    parts::write_contact_normal(k, offset, out[c.slot]);
   }
-  for (const auto& c : body_contacts_) {
-    const auto k = parts::corner_on_body_normal(
-        c.geometry, q.segment<3>(c.offset_a) + c.rest_a, u.segment<3>(c.offset_a),
-        q.segment<3>(c.offset_b) + c.rest_b, u.segment<3>(c.offset_b));
-    parts::write_body_contact_normal(k, c.offset_a, c.offset_b, out[c.slot]);
+  if (!kOneBody) {
+    for (const auto& c : body_contacts_) {
+      const auto k = parts::corner_on_body_normal(
+          c.geometry, q.segment<3>(c.offset_a) + c.rest_a, u.segment<3>(c.offset_a),
+          q.segment<3>(c.offset_b) + c.rest_b, u.segment<3>(c.offset_b));
+      parts::write_body_contact_normal(k, c.offset_a, c.offset_b, out[c.slot]);
+    }
   }
   mark_broken(out);
 }
 
 integrators::PowerTerms Assembly::power(double t, const integrators::Vector&,
                                         const integrators::Vector& u) const {
+  return one_body_ ? power_of<true>(t, u) : power_of<false>(t, u);
+}
+
+template <bool kOneBody>
+integrators::PowerTerms Assembly::power_of(double t, const integrators::Vector& u) const {
   integrators::PowerTerms pw;
   update_motions(t);
   double ground = 0.0;
-  for (std::size_t i = 0; i < body_forces_.size(); ++i) {
+  const std::size_t bodies = kOneBody ? 1 : body_forces_.size();
+  for (std::size_t i = 0; i < bodies; ++i) {
     const BodyForces& body = body_forces_[i];
     if (!body.damped) continue;
     const Eigen::Vector3d& us = us_dot_[i];
-    const Eigen::Vector3d vr = u.segment<3>(body.offset) - us;
+    const Eigen::Vector3d vr = u.segment<3>(kOneBody ? 0 : body.offset) - us;
     const Eigen::Vector3d cvr = body.c * vr;
     pw.damping += vr.dot(cvr);
     ground -= us.dot(cvr);
@@ -445,7 +526,10 @@ integrators::PowerTerms Assembly::power(double t, const integrators::Vector&,
     ground -= b.x.force() * motions_.value(b.ground_x).v +
               b.y.force() * motions_.value(b.ground_y).v;
   }
-  if (!connectors_.empty()) ground += connectors_.ground_power(motions_, seats_);
+  if (connected_) {
+    update_seats(t);
+    ground += connectors_.ground_power(motions_, seats_);
+  }
   pw.ground = ground;
   return pw;
 }
@@ -456,7 +540,7 @@ integrators::EnergyState Assembly::energy(double, const integrators::Vector&) co
     e.stored += b.x.stored_energy() + b.y.stored_energy();
     e.hysteretic += b.x.dissipated_energy() + b.y.dissipated_energy();
   }
-  connectors_.energy(e);
+  if (connected_) connectors_.energy(e);
   return e;
 }
 

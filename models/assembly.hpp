@@ -16,8 +16,12 @@
 //
 // Cost: every evaluation is a pass over vectors of concrete part types sized at
 // construction; no allocation and no virtual call per part. Ground motions are evaluated once
-// per distinct t (parts::MotionTable, a cache inside const calls): one Assembly must not be
-// used from several threads at once.
+// per distinct t (parts::MotionTable, a cache inside const calls), the seats' poses once per
+// distinct t at which contacts or connectors ask for them: one Assembly must not be used from
+// several threads at once. An assembly of one body (the bridge of one deck, the free deck)
+// runs the per-step evaluations compiled for it, chosen at construction: its coordinates are
+// the first three, its contact columns have three rows and every contact is against a
+// prescribed face. The numbers are the general form's, operation for operation.
 //
 // A copy is an independent system in the same state (the bents' committed and trial Takeda
 // states, the connectors', the keys' peaks and breaks, the limit watch; the ground motions,
@@ -175,9 +179,34 @@ class Assembly final : public integrators::SystemBase {
   void build_damping(const integrators::Matrix& mass);
   void build_contacts();
   void check_initial_gaps() const;
-  // Evaluates the motions at t unless cached, then us_dot and the seats' poses.
-  void update_motions(double t) const;
-  void seat_pose(std::size_t p, PlanarMotion& m) const;
+  // Evaluates the motions and us_dot at t unless they are at t already (every force, contact
+  // and power call of a step asks at the same t: the check is inline).
+  void update_motions(double t) const {
+    if (motions_.update(t)) update_quasi_static();
+  }
+  // update_motions(t) and the seats' poses at t, computed once per distinct t and only for
+  // what reads them (contacts, connectors): a force evaluation alone does not pose the seats.
+  void update_seats(double t) const {
+    update_motions(t);
+    if (!(seats_time_ == t)) update_seat_poses(t);
+  }
+  void update_quasi_static() const;  // us_dot_ from the motions' values
+  void update_seat_poses(double t) const;
+  // The per-step evaluations, compiled for one body (kOneBody: offset 0, 3-row columns, only
+  // prescribed faces) and for any number; the public calls pick one by one_body_.
+  template <bool kOneBody>
+  void quasi_static() const;
+  template <bool kOneBody>
+  void forces_of(double t, const integrators::Vector& q, const integrators::Vector& u,
+                 integrators::Vector& f);
+  template <bool kOneBody>
+  void contacts_of(double t, const integrators::Vector& q, const integrators::Vector& u,
+                   std::vector<integrators::ContactData>& out) const;
+  template <bool kOneBody>
+  void normals_of(double t, const integrators::Vector& q, const integrators::Vector& u,
+                  std::vector<integrators::ContactData>& out) const;
+  template <bool kOneBody>
+  integrators::PowerTerms power_of(double t, const integrators::Vector& u) const;
   // Sizes `out` for contacts() entries of dofs() rows, unless it already has them.
   void size_buffer(std::vector<integrators::ContactData>& out) const {
     if (out.size() != parts_.contacts.size()) resize_buffer(out);
@@ -185,6 +214,10 @@ class Assembly final : public integrators::SystemBase {
   void resize_buffer(std::vector<integrators::ContactData>& out) const;
 
   Parts parts_;
+  bool one_body_ = false;  // parts_.bodies.size() == 1: the evaluations compiled for one body
+  // Whether accept_step has anything to watch (shear keys or limit states).
+  bool watches_steps_ = false;
+  bool connected_ = false;  // !connectors_.empty(): restrainers or ground links
   parts::MotionTable motions_;
   std::vector<BentState> bents_;         // grouped by body, in the given order within a body
   std::vector<std::size_t> bent_slot_;   // bents_ index of the given bent j
@@ -197,7 +230,8 @@ class Assembly final : public integrators::SystemBase {
   ConnectorSet connectors_;
   // Workspaces of the const evaluations, sized at construction.
   mutable std::vector<Eigen::Vector3d> us_dot_;  // us_dot per body at the motions' time
-  mutable std::vector<PlanarMotion> seats_;   // prescribed poses at that time
+  mutable std::vector<PlanarMotion> seats_;   // prescribed poses at seats_time_
+  mutable double seats_time_ = std::numeric_limits<double>::quiet_NaN();
   // The normal kinematics of every contact at one state, sized at construction when joints
   // are watched: the limit watch and contact_normals() read the same accepted state,
   // evaluated once. (t, q, u) is the state the watch evaluated them at.

@@ -81,6 +81,7 @@ std::vector<integrators::LimitStateValue> Assembly::watched_limit_states() const
 }
 
 integrators::StepVerdict Assembly::accept_step(const integrators::AcceptedStep& step) {
+  if (!watches_steps_) return integrators::StepVerdict::kContinue;
   const integrators::StepVerdict keys = watch_keys(step);
   const integrators::StepVerdict limits = watch_limits(step);
   return limits == integrators::StepVerdict::kUnseated ? limits : keys;

@@ -19,11 +19,6 @@ DeckGeometry plan(const RigidBody& b) {
           .gap_left = 0.0};
 }
 
-// `far`: the contact cannot close within kFarHorizon (models/parts.hpp).
-bool is_far(double gap_normal, double gap_rate_normal) {
-  return gap_normal > kFarGap + kFarHorizon * std::max(0.0, -gap_rate_normal);
-}
-
 }  // namespace
 
 void RigidBody::validate(const std::string& prefix) const {
@@ -78,23 +73,6 @@ BodyContactNormal corner_on_body_normal(const CornerFace& c, const Eigen::Vector
   return k;
 }
 
-void write_contact(const ContactKinematics& k, int offset_a, double restitution,
-                   double friction, integrators::ContactData& out) {
-  // A column of a 3-DOF system is the body's alone; a longer one is zero outside the body.
-  out.gap_normal = k.gap_normal;
-  if (out.w_normal.size() != 3) out.w_normal.setZero();
-  if (out.w_tangent.size() != 3) out.w_tangent.setZero();
-  out.w_normal.segment<3>(offset_a) = k.w_normal;
-  out.w_tangent.segment<3>(offset_a) = k.w_tangent;
-  out.what_normal = k.what_normal;
-  out.what_tangent = k.what_tangent;
-  out.wbar_normal = k.wbar_normal;
-  out.wbar_tangent = k.wbar_tangent;
-  out.restitution = restitution;
-  out.friction = friction;
-  out.far = is_far(k.gap_normal, k.gap_rate_normal);
-}
-
 void write_body_contact(const BodyContactKinematics& k, int offset_a, int offset_b,
                         double restitution, double friction, integrators::ContactData& out) {
   write_contact(k.a, offset_a, restitution, friction, out);
@@ -102,14 +80,6 @@ void write_body_contact(const BodyContactKinematics& k, int offset_a, int offset
   out.w_tangent.segment<3>(offset_b) = k.w_tangent_b;
   out.what_normal = 0.0;  // scleronomic: both sides are free bodies
   out.what_tangent = 0.0;
-}
-
-void write_contact_normal(const ContactNormal& k, int offset_a, integrators::ContactData& out) {
-  out.gap_normal = k.gap_normal;
-  if (out.w_normal.size() != 3) out.w_normal.setZero();
-  out.w_normal.segment<3>(offset_a) = k.w_normal;
-  out.what_normal = k.what_normal;
-  out.far = is_far(k.gap_normal, k.gap_rate_normal);
 }
 
 void write_body_contact_normal(const BodyContactKinematics& k, int offset_a, int offset_b,
@@ -144,17 +114,6 @@ int MotionTable::add(const Motion& m, bool needs_acceleration) {
   if (needs_acceleration) needs_acceleration_[i] = 1;
   t_ = std::numeric_limits<double>::quiet_NaN();
   return static_cast<int>(i);
-}
-
-void MotionTable::evaluate(double t) const {
-  for (std::size_t i = 0; i < motions_.size(); ++i) {
-    const GroundMotion::Values g = motions_[i]->values(t);
-    Value& v = values_[i];
-    v.d = g.displacement;
-    v.v = g.velocity;
-    v.a = needs_acceleration_[i] ? g.acceleration : 0.0;
-  }
-  t_ = t;
 }
 
 }  // namespace nsb::models::parts

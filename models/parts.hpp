@@ -21,6 +21,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <string>
@@ -196,17 +197,51 @@ BodyContactNormal corner_on_body_normal(const CornerFace& c, const Eigen::Vector
 // given, of body B (at offset_b) into `out`, whose vectors are sized dofs(): the other entries
 // are zeroed. `far` as kFarGap and kFarHorizon say (above). write_contact takes
 // what_N, what_T from `k` (a prescribed obstacle); write_body_contact sets them to zero.
-void write_contact(const ContactKinematics& k, int offset_a, double restitution,
-                   double friction, integrators::ContactData& out);
+// write_contact and write_contact_normal run for every contact at every step: inline, so
+// that a one-body system's columns (offset 0, size 3) are plain copies.
+inline void write_contact(const ContactKinematics& k, int offset_a, double restitution,
+                          double friction, integrators::ContactData& out);
 void write_body_contact(const BodyContactKinematics& k, int offset_a, int offset_b,
                         double restitution, double friction, integrators::ContactData& out);
 // The normal fields only (System::contact_normals): gap_normal, w_normal, what_normal, far,
 // as write_contact writes them; the other fields of `out` keep their values.
-void write_contact_normal(const ContactNormal& k, int offset_a, integrators::ContactData& out);
+inline void write_contact_normal(const ContactNormal& k, int offset_a,
+                                 integrators::ContactData& out);
 void write_body_contact_normal(const BodyContactKinematics& k, int offset_a, int offset_b,
                                integrators::ContactData& out);
 void write_body_contact_normal(const BodyContactNormal& k, int offset_a, int offset_b,
                                integrators::ContactData& out);
+
+// `far`: the contact cannot close within kFarHorizon (models/parts.hpp, kFarGap).
+inline bool is_far(double gap_normal, double gap_rate_normal) {
+  return gap_normal > kFarGap + kFarHorizon * std::max(0.0, -gap_rate_normal);
+}
+
+inline void write_contact(const ContactKinematics& k, int offset_a, double restitution,
+                          double friction, integrators::ContactData& out) {
+  // A column of a 3-DOF system is the body's alone; a longer one is zero outside the body.
+  out.gap_normal = k.gap_normal;
+  if (out.w_normal.size() != 3) out.w_normal.setZero();
+  if (out.w_tangent.size() != 3) out.w_tangent.setZero();
+  out.w_normal.segment<3>(offset_a) = k.w_normal;
+  out.w_tangent.segment<3>(offset_a) = k.w_tangent;
+  out.what_normal = k.what_normal;
+  out.what_tangent = k.what_tangent;
+  out.wbar_normal = k.wbar_normal;
+  out.wbar_tangent = k.wbar_tangent;
+  out.restitution = restitution;
+  out.friction = friction;
+  out.far = is_far(k.gap_normal, k.gap_rate_normal);
+}
+
+inline void write_contact_normal(const ContactNormal& k, int offset_a,
+                                 integrators::ContactData& out) {
+  out.gap_normal = k.gap_normal;
+  if (out.w_normal.size() != 3) out.w_normal.setZero();
+  out.w_normal.segment<3>(offset_a) = k.w_normal;
+  out.what_normal = k.what_normal;
+  out.far = is_far(k.gap_normal, k.gap_rate_normal);
+}
 
 // The distinct ground motions of an assembly, each evaluated once per distinct time t (an
 // integrator asks for forces, contacts and power at the same t several times per step, and
@@ -234,7 +269,16 @@ class MotionTable {
   }
 
  private:
-  void evaluate(double t) const;
+  void evaluate(double t) const {
+    for (std::size_t i = 0; i < motions_.size(); ++i) {
+      const GroundMotion::Values g = motions_[i]->values(t);
+      Value& v = values_[i];
+      v.d = g.displacement;
+      v.v = g.velocity;
+      v.a = needs_acceleration_[i] ? g.acceleration : 0.0;
+    }
+    t_ = t;
+  }
 
   std::vector<Motion> motions_;
   std::vector<char> needs_acceleration_;
