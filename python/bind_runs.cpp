@@ -199,7 +199,7 @@ PyScene check_scene(const runs::RunRequest& request, std::optional<std::filesyst
 
 std::vector<std::string> texts(const std::vector<scene::Override>& overrides) {
   std::vector<std::string> out;
-  for (const auto& o : overrides) out.push_back(models::to_string(o));
+  for (const auto& o : overrides) out.push_back(scene::to_string(o));
   return out;
 }
 
