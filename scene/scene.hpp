@@ -80,7 +80,9 @@ void apply_overrides(SceneTable& scene, const std::vector<Override>& overrides);
 void apply_overrides(SceneTable& scene, const std::vector<std::string>& overrides);
 
 // The scene's TOML text: read back (read_scene_table, or toml::parse and a SceneTable with the
-// same origin) it builds the same scene. Numbers are written in their shortest round-trip form.
+// same origin) it builds the same scene. Numbers are written as toml++ writes them, with enough
+// digits to read back to the same double (up to 17 significant digits: 2e-4 is written
+// 0.00020000000000000001).
 std::string to_toml(const SceneTable& scene);
 
 struct Scene {

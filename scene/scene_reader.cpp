@@ -11,10 +11,12 @@ void Source::fail(const toml::node* n, const std::string& key, const std::string
   if (overridden.count(key) != 0) {
     s << ": " << key << " (override)";
   } else if (n != nullptr && n->source().begin.line > 0) {
-    s << ':' << n->source().begin.line << ':' << n->source().begin.column << ": " << key;
-  } else {
+    s << ':' << n->source().begin.line << ':' << n->source().begin.column;
+    if (!key.empty()) s << ": " << key;
+  } else if (!key.empty()) {
     s << ": " << key;
   }
+  // The top-level table has no key: its messages go straight after the file's position.
   s << ": " << what;
   throw std::invalid_argument(s.str());
 }

@@ -147,6 +147,14 @@ TEST_CASE("longitudinal_pga without a longitudinal record is an error naming the
   CHECK(contains(e, "longitudinal_record"));
 }
 
+TEST_CASE("a scene without [model] is reported at the file's first position, with no empty key") {
+  // The top-level table has no key of its own: "<file>:1:1: missing table [model]", not
+  // "<file>:1:1: : missing table [model]".
+  const auto e = error_of("nomodel.toml", "[solver]\nmethod = \"moreau\"\n");
+  CHECK(e.find("nomodel.toml:1:1: missing table [model]") != std::string::npos);
+  CHECK(e.find(": :") == std::string::npos);
+}
+
 TEST_CASE("scale_to = \"sa\": errors name the file, the line and the key") {
   const std::string record = std::string(NSB_DATA_DIR) + "/ground-motions/RSN988_NORTHR_CCN360.AT2";
   const std::string sa = "scale_to = \"sa\"\ntarget_sa = 0.5\n";  // lines 16 and 17
