@@ -1,27 +1,43 @@
 // nsbridge figures --out DIR [--quick]
 //
 // Regenerates the paper's figures (PNG and SVG, each with its CSV) and writes claims.json and
-// claims.md (paper-figures/, docs/paper-figures.md). Exit code 1 when a run or a plot failed
-// (the claims that used a failed run say "not evaluated"); 2 for bad input.
+// claims.md (paper-figures/, docs/paper-figures.md), then the uncertainty study of the claims'
+// verdicts beside them (studies/). Exit code 1 when a run or a plot failed (the claims that
+// used a failed run say "not evaluated"); 2 for bad input.
+#include <chrono>
 #include <iostream>
 #include <memory>
 
 #include "app/commands.hpp"
 #include "paper-figures/figures.hpp"
+#include "studies/uncertainty.hpp"
 
 namespace nsb::app {
 
 namespace {
 
 void run_figures(const paper_figures::FigureOptions& o) {
-  const auto res = paper_figures::make_figures(o);
+  const auto t0 = std::chrono::steady_clock::now();
+  auto res = paper_figures::make_figures(o);
+  // The uncertainty of the verdicts over the assumed values' ranges, beside the figures. Its
+  // failed runs are outcomes at points of the plausible space (the claims there are not
+  // evaluated), not failed runs of the figures.
+  studies::UncertaintyOptions uo;
+  uo.out = o.out;
+  uo.scenes = res.scenes;
+  uo.quick = o.quick;
+  uo.workers = o.workers;
+  const studies::UncertaintyResult u = studies::run_uncertainty(uo);
+  res.runs += u.runs;
+  res.plot_errors.insert(res.plot_errors.end(), u.plot_errors.begin(), u.plot_errors.end());
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "figures    " << res.figures.size() << " in " << o.out.string() << " (" << res.runs
-            << " runs, " << res.wall_time << " s)\n";
+            << " runs, " << wall_time << " s)\n";
   for (const auto& c : res.claims) {
     std::cout << "claim " << c.id << "   " << (c.holds() ? "holds" : "does not hold") << ": "
               << c.reason() << '\n';
   }
-  const auto& u = res.uncertainty;
   for (const auto& id : u.claims) {
     const auto& sh = u.shares.at(id);
     std::size_t flips = 0;

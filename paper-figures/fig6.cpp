@@ -1,6 +1,6 @@
 // Fig. 6 of Shi & Dimitrakopoulos (2017): the peak deck rotation against the transverse PGA,
 // with pounding, with mu = 0 and without pounding. Its runs are the nominal sweep of
-// Study::fig6 (fig6_sweep, paper-figures/uncertainty.hpp), which claims C1-C3 read too.
+// Study::fig6 (fig6_sweep, paper-figures/claim_runs.hpp), which claims C1-C3 read too.
 #include "paper-figures/figure.hpp"
 
 namespace nsb::paper_figures {

@@ -15,9 +15,9 @@
 #pragma once
 
 #include "integrators/compliance.hpp"
+#include "paper-figures/claim_runs.hpp"
 #include "paper-figures/plot.hpp"
 #include "paper-figures/runs.hpp"
-#include "paper-figures/uncertainty.hpp"
 #include "scene/scene.hpp"
 
 #include <array>

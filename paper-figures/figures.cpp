@@ -89,6 +89,7 @@ FigureResult make_figures(const FigureOptions& options) {
   s.setup = make_setup(options.quick);
   s.scenes = options.scenes.empty() ? fs::path(NSB_SCENES_DIR) : options.scenes;
   FigureResult res;
+  res.scenes = s.scenes;
   make_figure_runs(s, options, res);
 
   // Fig. 6 and C1-C3: one sweep over the runs with and without pounding and with mu = 0.
@@ -107,16 +108,6 @@ FigureResult make_figures(const FigureOptions& options) {
   res.claims = nominal_claims(s);
   write_claims(options.out, res.claims);
 
-  // The uncertainty of the verdicts over the assumed values' ranges.
-  UncertaintyOptions uo;
-  uo.out = options.out;
-  uo.scenes = s.scenes;
-  uo.quick = options.quick;
-  uo.workers = options.workers;
-  res.uncertainty = run_uncertainty(uo);
-  res.runs += res.uncertainty.runs;
-  res.plot_errors.insert(res.plot_errors.end(), res.uncertainty.plot_errors.begin(),
-                         res.uncertainty.plot_errors.end());
   res.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }

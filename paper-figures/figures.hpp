@@ -9,7 +9,6 @@
 #pragma once
 
 #include "paper-figures/claims.hpp"
-#include "paper-figures/uncertainty.hpp"
 #include "scene/scene.hpp"
 
 #include <filesystem>
@@ -33,9 +32,7 @@ struct FigureResult {
   int runs = 0;                       // integrations performed
   std::vector<std::string> failed;    // "<run>: <status> at t = <s>" for each failed run
   std::vector<std::string> plot_errors;  // figures gnuplot did not draw
-  // The verdicts over the assumed values' ranges. Its failed runs are outcomes at points of
-  // the plausible space (the claims there are not evaluated); they are not in `failed`.
-  UncertaintyResult uncertainty;
+  std::filesystem::path scenes;       // the folder the scenes were read from
   double wall_time = 0.0;             // [s]
   bool succeeded() const { return failed.empty() && plot_errors.empty(); }
 };
@@ -45,8 +42,9 @@ struct FigureResult {
 // claim C2 use it.
 double input_pga(const scene::Scene& scene, bool transverse);
 
-// Runs everything and writes the figures, claims.json and claims.md into options.out, then
-// the uncertainty study (paper-figures/uncertainty.hpp) beside them.
+// Runs everything and writes the figures, claims.json and claims.md into options.out. The
+// uncertainty study of the claims' verdicts (studies/uncertainty.hpp) is run after it by the
+// caller, into the same folder; claims.md points to its uncertainty.md.
 // Throws std::invalid_argument for bad options or a scene that does not load (before any
 // file is written); failed runs and plots are reported in the result, never thrown.
 FigureResult make_figures(const FigureOptions& options);

@@ -1,11 +1,13 @@
 // The flips step of the uncertainty study: the claims' verdicts at the one-at-a-time points,
 // and the verdicts that differ from the base point's.
-#include "paper-figures/uncertainty_steps.hpp"
+#include "studies/uncertainty_steps.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-namespace nsb::paper_figures {
+namespace nsb::studies {
+
+using namespace paper_figures;  // the claims and the claim runs the study judges
 
 std::vector<Flip> find_flips(const std::vector<OatPoint>& points) {
   const OatPoint* base = nullptr;
@@ -41,11 +43,11 @@ std::string judge_oat(const std::vector<Point>& oat, const Rows& oat_rows, const
     if (it == oat_rows.end()) continue;
     // A point with the tornado's run only: --quick, or an end at the nominal value.
     if (!has_claim_runs(it->second)) continue;
-    const double mu = p.values[index_of("friction")];
+    const double mu = p.values[assumption_index("friction")];
     const auto claims = judge(it->second, mu, pga);
     if (cols.empty()) cols = check_columns(claims);
-    OatPoint op{
-        p.assumption, p.end, p.assumption.empty() ? 0.0 : p.values[index_of(p.assumption)], {}};
+    const double value = p.assumption.empty() ? 0.0 : p.values[assumption_index(p.assumption)];
+    OatPoint op{p.assumption, p.end, value, {}};
     for (const auto& c : claims) op.verdicts[c.id] = verdict_of(c);
     if (p.assumption.empty()) res.nominal = op.verdicts;
     res.oat.push_back(op);
@@ -59,4 +61,4 @@ std::string judge_oat(const std::vector<Point>& oat, const Rows& oat_rows, const
 
 }  // namespace uncertainty
 
-}  // namespace nsb::paper_figures
+}  // namespace nsb::studies

@@ -1,6 +1,6 @@
-// The design step of the uncertainty study: the assumptions and their ranges, the claim runs,
-// the overrides of a point, and the sweep designs of the one-at-a-time and hypercube points.
-#include "paper-figures/uncertainty_steps.hpp"
+// The claim runs at a point: the assumptions and their ranges, the runs of Fig. 6, the
+// overrides of a point, and the sweep design of a set of points.
+#include "paper-figures/claim_runs.hpp"
 
 #include <toml++/toml.h>
 
@@ -16,8 +16,6 @@
 namespace nsb::paper_figures {
 
 namespace fs = std::filesystem;
-using uncertainty::index_of;
-using uncertainty::kv;
 
 // ---------------------------------------------------------------------------------------------
 // The assumptions and their plausible ranges (docs/bridge.md, "Assumed"; the reasons are
@@ -72,17 +70,6 @@ std::vector<ClaimRun> fig6_runs(const std::vector<int>& pga_runs,
   return r;
 }
 
-const std::vector<ClaimRun>& claim_runs() {
-  static const std::vector<ClaimRun> r = [] {
-    std::vector<ClaimRun> v = fig6_runs(uncertainty::kStudyPgaRuns, uncertainty::kStudyMu0Runs);
-    for (auto& c : uncertainty::compliance_claim_runs()) v.push_back(std::move(c));
-    return v;
-  }();
-  return r;
-}
-
-namespace uncertainty {
-
 namespace {
 
 // Gaps that never close (the runs without pounding, as in the nominal figures).
@@ -90,17 +77,17 @@ constexpr double kNoPoundingGap = 1.0;  // [m]
 
 }  // namespace
 
-std::size_t index_of(const std::string& key) {
+std::size_t assumption_index(const std::string& key) {
   const auto& a = assumptions();
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i].key == key) return i;
   }
-  throw std::logic_error("uncertainty: no assumption " + key);
+  throw std::logic_error("claim runs: no assumption " + key);
 }
 
-std::string kv(const std::string& key, double v) { return key + "=" + io::csv_number(v); }
-
-}  // namespace uncertainty
+std::string override_text(const std::string& key, double v) {
+  return key + "=" + io::csv_number(v);
+}
 
 std::vector<std::string> point_overrides(const std::vector<double>& v, const ClaimRun& run,
                                          const SceneTargets& targets) {
@@ -114,28 +101,28 @@ std::vector<std::string> point_overrides(const std::vector<double>& v, const Cla
     throw std::invalid_argument("point_overrides: no targets for excitation " +
                                 std::to_string(run.excitation));
   }
-  auto at = [&](const char* key) { return v[index_of(key)]; };
+  auto at = [&](const char* key) { return v[assumption_index(key)]; };
   const double width = at("deck_width"),
-               gap = run.pounding ? at("gap") : uncertainty::kNoPoundingGap;
+               gap = run.pounding ? at("gap") : kNoPoundingGap;
   // The scenes' longitudinal targets are 1.2 times the transverse ones (docs/bridge.md); the
   // ratio scales them, so that the nominal ratio gives the scenes' values exactly.
-  const double nominal_ratio = assumptions()[index_of("longitudinal_ratio")].nominal;
+  const double nominal_ratio = assumptions()[assumption_index("longitudinal_ratio")].nominal;
   const double pga_x = tx->second * (at("longitudinal_ratio") / nominal_ratio);
   std::vector<std::string> o{
-      kv("model.excitation.target_pga", ty->second),
-      kv("model.excitation.longitudinal_pga", pga_x),
-      kv("model.deck.width", width),
-      kv("model.bents.0.height", at("height_bent1")),
-      kv("model.bents.1.height", at("height_bent2")),
-      kv("model.bents.2.height", at("height_bent3")),
-      kv("model.gaps.left", gap),
-      kv("model.gaps.right", gap),
-      kv("model.seats.friction", run.mu0 ? 0.0 : at("friction")),
-      kv("model.damping.ratio_i", at("damping")),
-      kv("model.damping.ratio_j", at("damping")),
-      kv("model.excitation.time_scale", at("time_scale")),
-      kv("model.seats.delay_left", at("seat_delay")),
-      kv("model.seats.delay_right", at("seat_delay")),
+      override_text("model.excitation.target_pga", ty->second),
+      override_text("model.excitation.longitudinal_pga", pga_x),
+      override_text("model.deck.width", width),
+      override_text("model.bents.0.height", at("height_bent1")),
+      override_text("model.bents.1.height", at("height_bent2")),
+      override_text("model.bents.2.height", at("height_bent3")),
+      override_text("model.gaps.left", gap),
+      override_text("model.gaps.right", gap),
+      override_text("model.seats.friction", run.mu0 ? 0.0 : at("friction")),
+      override_text("model.damping.ratio_i", at("damping")),
+      override_text("model.damping.ratio_j", at("damping")),
+      override_text("model.excitation.time_scale", at("time_scale")),
+      override_text("model.seats.delay_left", at("seat_delay")),
+      override_text("model.seats.delay_right", at("seat_delay")),
   };
   // Seat rotation phi = c u_x / W: the longitudinal record, read as an angular acceleration
   // and processed as the seats' displacement is (same time scale, baseline correction and
@@ -146,16 +133,16 @@ std::vector<std::string> point_overrides(const std::vector<double>& v, const Cla
       o.push_back(std::string("model.seats.rotation_record_") + side + "=" +
                   targets.longitudinal_record);
     }
-    o.push_back(kv("model.seats.rotation_scale", c / width * factor));
+    o.push_back(override_text("model.seats.rotation_scale", c / width * factor));
   }
   if (run.factor > 0) {
     for (auto& s : compliance_overrides(run.factor, run.law)) o.push_back(std::move(s));
   }
-  if (run.factor > 0 && run.tolerance > 0) o.push_back(kv("solver.tolerance", run.tolerance));
+  if (run.factor > 0 && run.tolerance > 0) {
+    o.push_back(override_text("solver.tolerance", run.tolerance));
+  }
   return o;
 }
-
-namespace uncertainty {
 
 SceneTargets scene_targets(const fs::path& scenes, const std::vector<ClaimRun>& runs) {
   SceneTargets t;
@@ -189,14 +176,11 @@ SceneTargets scene_targets(const fs::path& scenes, const std::vector<ClaimRun>& 
                          {"model.excitation.target_pga=0", "model.excitation.longitudinal_pga=0"});
   t.longitudinal_record_pga = input_pga(raw, false);
   if (!(t.longitudinal_record_pga > 0)) {
-    throw std::invalid_argument("uncertainty: the longitudinal record has no acceleration");
+    throw std::invalid_argument("scene_targets: the longitudinal record has no acceleration");
   }
   return t;
 }
 
-// The sweep design of a set of points: every point with the claim runs it needs. Factor
-// columns: point, claim_run, then one per assumption. The hash only names the design: the
-// figures rewrite their folder every time (restart).
 sweep::Design make_design(const std::string& name, const fs::path& base_scene,
                           const std::vector<Point>& points, const SceneTargets& targets,
                           double end_time, const std::vector<ClaimRun>& claim_set,
@@ -219,51 +203,12 @@ sweep::Design make_design(const std::string& name, const fs::path& base_scene,
       run.labels = {p.name, r.name};
       run.labels.insert(run.labels.end(), p.labels.begin(), p.labels.end());
       run.overrides = point_overrides(p.values, r, targets);
-      if (end_time > 0) run.overrides.push_back(kv("solver.end_time", end_time));
+      if (end_time > 0) run.overrides.push_back(override_text("solver.end_time", end_time));
       d.runs.push_back(std::move(run));
     }
   }
   d.hash = name + "-" + std::to_string(d.runs.size());
   return d;
 }
-
-std::vector<Point> oat_points() {
-  const auto& as = assumptions();
-  std::vector<Point> oat{{"nominal", nominal_point(), std::vector<std::string>(as.size()), "", ""}};
-  for (std::size_t k = 0; k < as.size(); ++k) {
-    for (const char* end : {"low", "high"}) {
-      Point p{as[k].key + "-" + end, nominal_point(), std::vector<std::string>(as.size()),
-              as[k].key, end};
-      p.values[k] = std::string(end) == "low" ? as[k].low : as[k].high;
-      p.labels[k] = io::csv_number(p.values[k]);
-      oat.push_back(std::move(p));
-    }
-  }
-  return oat;
-}
-
-std::vector<Point> latin_points(std::size_t samples, std::uint64_t seed) {
-  const auto& as = assumptions();
-  const auto draw = sweep::latin_hypercube(samples, as.size(), seed);
-  std::vector<Point> lhs;
-  for (std::size_t i = 0; i < samples; ++i) {
-    std::ostringstream name;
-    name << "s" << std::setw(4) << std::setfill('0') << i;
-    Point p{name.str(), {}, {}, "", ""};
-    for (std::size_t k = 0; k < as.size(); ++k) {
-      const double u = draw[k][i];
-      // A two-valued assumption takes the end whose half of [0, 1) holds the draw, as the
-      // sweep's latin mode does for a factor of two levels.
-      const double v = as[k].two_values ? (u < 0.5 ? as[k].low : as[k].high)
-                                        : as[k].low + u * (as[k].high - as[k].low);
-      p.values.push_back(v);
-      p.labels.push_back(io::csv_number(v));
-    }
-    lhs.push_back(std::move(p));
-  }
-  return lhs;
-}
-
-}  // namespace uncertainty
 
 }  // namespace nsb::paper_figures

@@ -1,13 +1,15 @@
 // The tornado step of the uncertainty study: run 7's peak rotation at the two ends of each
 // assumption's range, from the one-at-a-time sweep, drawn by the sweep module's tornado plot.
-#include "paper-figures/uncertainty_steps.hpp"
+#include "studies/uncertainty_steps.hpp"
 
 #include <cmath>
 
 #include "sweep/csv.hpp"
 #include "sweep/plots.hpp"
 
-namespace nsb::paper_figures::uncertainty {
+namespace nsb::studies::uncertainty {
+
+using namespace paper_figures;  // the claims and the claim runs the study judges
 
 namespace fs = std::filesystem;
 
@@ -71,4 +73,4 @@ void tornado(const Rows& oat_rows, const fs::path& work, const fs::path& out,
   }
 }
 
-}  // namespace nsb::paper_figures::uncertainty
+}  // namespace nsb::studies::uncertainty

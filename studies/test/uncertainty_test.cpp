@@ -1,9 +1,9 @@
 // The uncertainty study's pure logic: shares with their binomial standard error, flips against
 // the base point, the overrides of a point, and the claims from hand-made numbers. Expected
 // values are worked out by hand beside each case.
-#include "paper-figures/uncertainty.hpp"
+#include "studies/uncertainty.hpp"
 #include "io/csv.hpp"
-#include "paper-figures/uncertainty_steps.hpp"
+#include "studies/uncertainty_steps.hpp"
 
 #include <doctest/doctest.h>
 
@@ -13,17 +13,17 @@
 #include <string>
 #include <vector>
 
-using nsb::paper_figures::assumptions;
-using nsb::paper_figures::claim_runs;
-using nsb::paper_figures::find_flips;
-using nsb::paper_figures::Flip;
-using nsb::paper_figures::nominal_point;
-using nsb::paper_figures::OatPoint;
 using nsb::paper_figures::Peaks;
-using nsb::paper_figures::point_overrides;
-using nsb::paper_figures::SceneTargets;
-using nsb::paper_figures::share_of;
-using nsb::paper_figures::Verdict;
+using nsb::studies::assumptions;
+using nsb::studies::claim_runs;
+using nsb::studies::find_flips;
+using nsb::studies::Flip;
+using nsb::studies::nominal_point;
+using nsb::studies::OatPoint;
+using nsb::studies::point_overrides;
+using nsb::studies::SceneTargets;
+using nsb::studies::share_of;
+using nsb::studies::Verdict;
 
 namespace {
 // Shares are ratios of small integers and one square root: round-off only.
@@ -168,7 +168,7 @@ TEST_CASE("C4's runs: excitation 5 under the compliance method, both laws, the s
     const auto o = point_overrides(nominal_point(), r, targets());
     CHECK(has(o, "model.excitation.target_pga=0.83"));
     CHECK(has(o, "solver.method=compliance"));
-    const double tol = nsb::paper_figures::uncertainty::kStudyComplianceTolerance;
+    const double tol = nsb::studies::uncertainty::kStudyComplianceTolerance;
     CHECK(has(o, "solver.tolerance=" + nsb::io::csv_number(tol)));
     if (r.name == "exc5-k100") {
       CHECK(has(o, "solver.stiffness_factor=100"));
@@ -219,9 +219,9 @@ TEST_CASE("claims C1-C3 from hand-made peaks") {
   c3 = nsb::paper_figures::claim_c3(p);
   CHECK(c3.checks[0].value == doctest::Approx(0.4).epsilon(1e-15));
   CHECK_FALSE(c3.holds());
-  CHECK(nsb::paper_figures::verdict_of(c3) == F);
+  CHECK(nsb::studies::verdict_of(c3) == F);
   c3.failure = "exc3: diverged";
-  CHECK(nsb::paper_figures::verdict_of(c3) == N);
+  CHECK(nsb::studies::verdict_of(c3) == N);
 }
 
 TEST_CASE("C6: sliding contacts from events and Coulomb's law over them") {

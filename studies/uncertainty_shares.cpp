@@ -1,10 +1,12 @@
 // The shares step of the uncertainty study: the claims' verdicts over the Latin hypercube,
 // and the share of the samples in which each holds with its binomial standard error.
-#include "paper-figures/uncertainty_steps.hpp"
+#include "studies/uncertainty_steps.hpp"
 
 #include <cmath>
 
-namespace nsb::paper_figures {
+namespace nsb::studies {
+
+using namespace paper_figures;  // the claims and the claim runs the study judges
 
 Verdict verdict_of(const Claim& c) {
   if (!c.failure.empty()) return Verdict::kNotEvaluated;
@@ -52,7 +54,7 @@ std::string judge_latin(const std::vector<Point>& lhs, const Rows& lhs_rows, con
   std::string lhs_csv;
   for (const auto& p : lhs) {
     const auto& runs = lhs_rows.at(p.name);
-    const auto claims = judge(runs, p.values[index_of("friction")], pga);
+    const auto claims = judge(runs, p.values[assumption_index("friction")], pga);
     if (cols.empty()) cols = check_columns(claims);
     if (lhs_csv.empty()) lhs_csv = csv_header({"sample"}, cols);
     for (const auto& c : claims) verdicts[c.id].push_back(verdict_of(c));
@@ -66,4 +68,4 @@ std::string judge_latin(const std::vector<Point>& lhs, const Rows& lhs_rows, con
 
 }  // namespace uncertainty
 
-}  // namespace nsb::paper_figures
+}  // namespace nsb::studies

@@ -2,14 +2,16 @@
 // nonsmooth run 5 over the whole record) and C5 (the first pounding of run 5), each under both
 // compared damping laws of eq. (9) (C4', C5' for the law that is not Hertz-damp), judged with
 // the functions of paper-figures/claims.hpp on the runs of every point.
-#include "paper-figures/uncertainty_steps.hpp"
+#include "studies/uncertainty_steps.hpp"
 
 #include <cmath>
 #include <limits>
 
 #include "paper-figures/figure.hpp"
 
-namespace nsb::paper_figures::uncertainty {
+namespace nsb::studies::uncertainty {
+
+using namespace paper_figures;  // the claims and the claim runs the study judges
 
 namespace fs = std::filesystem;
 using integrators::DampingLaw;
@@ -129,7 +131,7 @@ void add_first_poundings(const std::string& name, const fs::path& base_scene,
       [&](const Point& p, const ClaimRun&) { return ends.count(p.name) > 0; });
   if (d.runs.empty()) return;
   for (auto& run : d.runs) {
-    run.overrides.push_back(kv("solver.end_time", ends.at(run.labels[0])));
+    run.overrides.push_back(override_text("solver.end_time", ends.at(run.labels[0])));
     run.overrides.push_back("output.sample_dt=0");
   }
   const Rows first = run_design(d, dir, workers, res.runs, res.failed);
@@ -146,4 +148,4 @@ Claim judge_compliance(const std::string& id, const std::map<std::string, RunRow
   return c;
 }
 
-}  // namespace nsb::paper_figures::uncertainty
+}  // namespace nsb::studies::uncertainty

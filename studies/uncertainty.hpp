@@ -1,7 +1,7 @@
 // The uncertainty of the claims' verdicts: the assumed values of the benchmark
 // (docs/bridge.md, "Assumed") over their plausible ranges, run through the sweep module
 // (sweep/), and the claims C1 ... C6, C4' and C5' judged at every point with the functions of
-// paper-figures/claims.hpp. Two designs:
+// paper-figures/claims.hpp, on the claim runs of paper-figures/claim_runs.hpp. Two designs:
 //   - one factor at a time (each assumption at the low and the high end of its range, the
 //     others nominal): the tornado chart of run 7's peak rotation and the verdicts that flip;
 //   - a Latin hypercube over all assumptions at once: the share of the plausible space in
@@ -10,7 +10,7 @@
 // "Uncertainty of the verdicts".
 #pragma once
 
-#include "integrators/compliance.hpp"
+#include "paper-figures/claim_runs.hpp"
 #include "paper-figures/claims.hpp"
 
 #include <array>
@@ -22,57 +22,24 @@
 #include <utility>
 #include <vector>
 
-namespace nsb::paper_figures {
+namespace nsb::studies {
 
-// One assumed value with its plausible range. A point of the study gives every assumption a
-// value; point_overrides() turns it into scene overrides.
-struct Assumption {
-  std::string key;               // column name in the CSV files, e.g. "deck_width"
-  std::string name;              // in words, e.g. "deck width W"
-  std::string unit;              // "m", "-", "s"
-  double nominal = 0.0;          // the benchmark's value (scenes/bridge-exc*.toml)
-  double low = 0.0, high = 0.0;  // the plausible range, low < high
-  bool two_values = false;       // only the two ends are plausible (the Latin hypercube picks one)
-  std::string reason;            // why this range: source or derivation
-};
-// The assumptions, in the order of the CSV columns.
-const std::vector<Assumption>& assumptions();
-// Every assumption at its nominal value.
-std::vector<double> nominal_point();
+// The study speaks the figures' vocabulary: their claims, and the claim runs at a point of the
+// assumed values (paper-figures/claim_runs.hpp).
+using paper_figures::Assumption;
+using paper_figures::assumptions;
+using paper_figures::Claim;
+using paper_figures::ClaimRun;
+using paper_figures::nominal_point;
+using paper_figures::point_overrides;
+using paper_figures::SceneTargets;
 
-// One run of the claims' set at a point: an excitation with or without pounding, or with
-// mu = 0, or excitation 5 under the compliance method. The set is that of --quick's Fig. 6:
-// runs 1, 3, 5, 7 with and without pounding, and runs 5 and 7 with mu = 0 (C1, C2, C3), C6 on
-// run 5 with pounding, and run 5 under the compliance method at the stiffness factors of C4's
-// checks under both compared laws (C4, C4'). C5's runs of the first pounding follow from each
-// point's run 5 (uncertainty_compliance.cpp).
-struct ClaimRun {
-  std::string name;      // "exc7", "exc7-no-pounding", "exc7-mu0", "exc5-k100"
-  int excitation = 7;    // the scene bridge-exc<n>.toml
-  bool pounding = true;  // false: gaps of 1 m that never close
-  bool mu0 = false;      // true: mu = 0
-  double factor = 0.0;   // > 0: the compliance method at c k with c = factor; 0: the scene's
-  integrators::DampingLaw law = integrators::DampingLaw::kHertzDamp;  // of eq. (9), if factor > 0
-  double tolerance = 0.0;  // > 0: the compliance method's tolerance; 0: the scene's
-};
+// The runs of the study at every point. The set is that of --quick's Fig. 6: runs 1, 3, 5, 7
+// with and without pounding, and runs 5 and 7 with mu = 0 (C1, C2, C3), C6 on run 5 with
+// pounding, and run 5 under the compliance method at the stiffness factors of C4's checks under
+// both compared laws (C4, C4'). C5's runs of the first pounding follow from each point's run 5
+// (uncertainty_compliance.cpp).
 const std::vector<ClaimRun>& claim_runs();
-// The runs of Fig. 6: each excitation of pga_runs with and without pounding ("exc<n>",
-// "exc<n>-no-pounding"), then each of mu0_runs with mu = 0 ("exc<n>-mu0").
-std::vector<ClaimRun> fig6_runs(const std::vector<int>& pga_runs, const std::vector<int>& mu0_runs);
-
-// What point_overrides needs from the scenes: each excitation's target PGAs as the scene
-// states them, and the longitudinal record's own PGA.
-struct SceneTargets {
-  std::map<int, double> transverse_pga, longitudinal_pga;  // [g] by excitation
-  std::string longitudinal_record;       // the base scene's longitudinal record file
-  double longitudinal_record_pga = 0.0;  // [g], the record as recorded (seat rotation's scale)
-};
-
-// The overrides of the base scene (bridge-exc7.toml) that give claim run `run` at the point
-// `values` (one per assumption, in assumptions() order). Throws std::invalid_argument for a
-// wrong number of values or an excitation missing from targets.
-std::vector<std::string> point_overrides(const std::vector<double>& values, const ClaimRun& run,
-                                         const SceneTargets& targets);
 
 // ---------------------------------------------------------------------------------------------
 // Pure logic: shares and flips.
@@ -155,20 +122,8 @@ struct UncertaintyResult {
 // uncertainty.json and uncertainty.md. Throws std::invalid_argument for bad options.
 UncertaintyResult run_uncertainty(const UncertaintyOptions& options);
 
-// Fig. 6's data as one sweep at the nominal point: the runs of fig6_runs(pga_runs, mu0_runs),
-// run through the sweep runner into dir (dir/results.csv; the runs' own outputs are removed).
-struct Fig6Sweep {
-  std::vector<Peaks> peaks;                   // one per excitation of pga_runs, in order
-  std::map<std::string, std::string> status;  // by run name: "completed", "diverged", ...
-  int runs = 0;                               // integrations
-  std::vector<std::string> failed;            // runs that did not complete
-};
-Fig6Sweep fig6_sweep(const std::filesystem::path& scenes, const std::filesystem::path& dir,
-                     const std::vector<int>& pga_runs, const std::vector<int>& mu0_runs,
-                     int workers);
-
 // uncertainty.json and uncertainty.md from a result.
 std::string uncertainty_json(const UncertaintyResult& r);
 std::string uncertainty_markdown(const UncertaintyResult& r, bool quick);
 
-}  // namespace nsb::paper_figures
+}  // namespace nsb::studies

@@ -1,6 +1,6 @@
 // The writing step of the uncertainty study: the rows of uncertainty.csv and
 // uncertainty-oat.csv, uncertainty.json and uncertainty.md.
-#include "paper-figures/uncertainty_steps.hpp"
+#include "studies/uncertainty_steps.hpp"
 
 #include <cmath>
 #include <iomanip>
@@ -9,7 +9,9 @@
 #include "io/csv.hpp"
 #include "sweep/csv.hpp"
 
-namespace nsb::paper_figures {
+namespace nsb::studies {
+
+using namespace paper_figures;  // the claims and the claim runs the study judges
 
 
 namespace uncertainty {
@@ -63,7 +65,6 @@ std::string csv_header(const std::vector<std::string>& lead,
 
 }  // namespace uncertainty
 
-using uncertainty::index_of;
 using uncertainty::kTornadoResponse;
 using uncertainty::kTornadoRun;
 
@@ -78,7 +79,9 @@ std::string short_number(double v) {
   return s.str();
 }
 
-const Assumption& assumption(const std::string& key) { return assumptions()[index_of(key)]; }
+const Assumption& assumption(const std::string& key) {
+  return assumptions()[assumption_index(key)];
+}
 
 // " (+12 %)": v relative to base, rounded to a percent; empty when either is missing.
 std::string percent(double v, double base) {
@@ -206,4 +209,4 @@ std::string uncertainty_markdown(const UncertaintyResult& r, bool quick) {
   return s.str();
 }
 
-}  // namespace nsb::paper_figures
+}  // namespace nsb::studies

@@ -1,13 +1,13 @@
-// The steps of the uncertainty study (paper-figures/uncertainty.hpp), one file each:
-//   design    the points and the sweep designs (uncertainty_design.cpp)
-//   runs      running a design and judging the claims at a point (uncertainty_runs.cpp)
+// The steps of the uncertainty study (studies/uncertainty.hpp), one file each:
+//   design    the study's runs and the points of its designs (uncertainty_design.cpp)
+//   runs      judging the claims at a point from its runs (uncertainty_runs.cpp)
 //   tornado   run 7's peak rotation at the ends of each range (uncertainty_tornado.cpp)
 //   flips     the verdicts at the one-at-a-time points (uncertainty_flips.cpp)
 //   shares    the verdicts over the Latin hypercube (uncertainty_shares.cpp)
 //   writing   the CSV rows, uncertainty.json and uncertainty.md (uncertainty_write.cpp)
 #pragma once
 
-#include "paper-figures/uncertainty.hpp"
+#include "studies/uncertainty.hpp"
 #include "sweep/design.hpp"
 
 #include <array>
@@ -20,14 +20,27 @@
 #include <utility>
 #include <vector>
 
-namespace nsb::paper_figures::uncertainty {
+namespace nsb::studies::uncertainty {
+
+using paper_figures::assumption_index;
+using paper_figures::InputPga;
+using paper_figures::input_pgas;
+using paper_figures::kBaseExcitation;
+using paper_figures::kExampleRun;
+using paper_figures::kStrongestRun;
+using paper_figures::make_design;
+using paper_figures::override_text;
+using paper_figures::peaks_of;
+using paper_figures::Point;
+using paper_figures::run_design;
+using paper_figures::RunRow;
+using paper_figures::Rows;
+using paper_figures::scene_targets;
 
 // The excitations of the study's claims: those of --quick's Fig. 6 (runs 6 and 7 have the same
 // input, so C2's fit has four distinct PGAs in either set).
 inline const std::vector<int> kStudyPgaRuns{1, 3, 5, 7};
 inline const std::vector<int> kStudyMu0Runs{kExampleRun, kStrongestRun};
-// The base scene of every run: the excitations differ only in their target PGAs.
-inline constexpr int kBaseExcitation = 7;
 // The claims judged at every point, and the runs each of C1, C2, C3, C6 uses (those of C4, C5
 // and their primed forms: compliance_claim_runs()).
 inline const std::vector<std::string> kStudyClaims{"C1", "C2", "C3", "C4",
@@ -47,62 +60,13 @@ inline const std::string kTornadoResponse = "peak_theta";
 // ---------------------------------------------------------------------------------------------
 // Design.
 
-// The column of Assumption values, by key; throws std::logic_error for an unknown key.
-std::size_t index_of(const std::string& key);
-// "key=value" with the value as the sweep writes numbers.
-std::string kv(const std::string& key, double v);
-
-SceneTargets scene_targets(const std::filesystem::path& scenes, const std::vector<ClaimRun>& runs);
-
-// A point of a design: its name (the "point" column) and one value per assumption; `labels`
-// gives the assumption columns (empty: the nominal value, as the sweep's oat mode writes it).
-struct Point {
-  std::string name;
-  std::vector<double> values;
-  std::vector<std::string> labels;
-  std::string assumption, end;  // one-at-a-time points
-};
 // The base point, then each assumption at each end of its range.
 std::vector<Point> oat_points();
 // The points of the Latin hypercube (the sweep's latin draws).
 std::vector<Point> latin_points(std::size_t samples, std::uint64_t seed);
 
-// The sweep design of a set of points: every point with the claim runs it needs. Factor
-// columns: point, claim_run, then one per assumption. The hash only names the design: the
-// figures rewrite their folder every time (restart).
-sweep::Design make_design(const std::string& name, const std::filesystem::path& base_scene,
-                          const std::vector<Point>& points, const SceneTargets& targets,
-                          double end_time, const std::vector<ClaimRun>& claim_set,
-                          const std::function<bool(const Point&, const ClaimRun&)>& wanted);
-
 // ---------------------------------------------------------------------------------------------
 // Runs.
-
-// The results of one design, by point and run: the row's fields, and the run's folder.
-struct RunRow {
-  std::string status;
-  double peak_theta = std::numeric_limits<double>::quiet_NaN();
-  std::size_t impacts = 0;
-  double end_time = 0.0;
-  std::filesystem::path dir;
-  bool ok() const;  // a completed status (integrators::succeeded)
-};
-using Rows = std::map<std::string, std::map<std::string, RunRow>>;  // point -> run -> row
-
-// Runs a design into dir (restarting it) and reads its results.csv back; failed runs are
-// added to `failed`, the runs made to `runs`.
-Rows run_design(const sweep::Design& d, const std::filesystem::path& dir, int workers, int& runs,
-                std::vector<std::string>& failed);
-
-// The input PGAs [g] of an excitation, transverse and longitudinal, as the nominal scene's
-// motions have them (Fig. 6's abscissa and C2's).
-using InputPga = std::map<int, std::array<double, 2>>;
-InputPga input_pgas(const std::filesystem::path& scenes, const std::vector<int>& excitations);
-
-// The peaks of Fig. 6 at one point, from the rows of its runs (runs that were not made leave
-// their numbers at the defaults; the claims then say which run is missing).
-std::vector<Peaks> peaks_of(const std::map<std::string, RunRow>& runs,
-                            const std::vector<int>& excitations, const InputPga& pga);
 
 // The claims at one point, from its runs. A claim whose runs did not all complete is not
 // evaluated.
@@ -171,4 +135,4 @@ std::string csv_row(const std::vector<std::string>& lead, const std::vector<doub
 std::string csv_header(const std::vector<std::string>& lead,
                        const std::vector<std::pair<std::string, std::string>>& cols);
 
-}  // namespace nsb::paper_figures::uncertainty
+}  // namespace nsb::studies::uncertainty

@@ -1,12 +1,14 @@
-#include "paper-figures/uncertainty.hpp"
+#include "studies/uncertainty.hpp"
 
 #include <chrono>
 #include <stdexcept>
 
-#include "paper-figures/uncertainty_steps.hpp"
+#include "studies/uncertainty_steps.hpp"
 #include "sweep/csv.hpp"
 
-namespace nsb::paper_figures {
+namespace nsb::studies {
+
+using namespace paper_figures;  // the claims and the claim runs the study judges
 
 namespace fs = std::filesystem;
 
@@ -54,8 +56,9 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
                   [&](const Point& p, const ClaimRun& r) {
                     if (r.name == kTornadoRun) return true;
                     if (quick) return false;
-                    return p.assumption.empty() ||
-                           p.values[index_of(p.assumption)] != as[index_of(p.assumption)].nominal;
+                    if (p.assumption.empty()) return true;
+                    const std::size_t k = assumption_index(p.assumption);
+                    return p.values[k] != as[k].nominal;
                   });
   Rows oat_rows = run_design(oat_design, work / "oat", options.workers, res.runs, res.failed);
   add_first_poundings("oat-first", base_scene, oat, targets, work / "oat-first", options.workers,
@@ -88,4 +91,4 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
   return res;
 }
 
-}  // namespace nsb::paper_figures
+}  // namespace nsb::studies
