@@ -1,13 +1,12 @@
 // Response spectra: the interval coefficients against Chopra's Table 5.2.1, hand-solved
-// responses, the period grid, scaling properties and the rejection of bad input.
+// responses, the period grid, scaling properties and the rejection of bad input. The g of a
+// .AT2 file read by the scene's record reader: scene/test/recorded_motions_test.cpp.
 #include "models/response_spectrum.hpp"
-#include "scene/records.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -148,17 +147,6 @@ TEST_CASE("response_spectrum: PSV, PSA and Sd are linked by w and scale with the
   }
   // A stiff oscillator follows the ground: PSA(T -> 0) -> PGA.
   CHECK(s.psa_g[1] == doctest::Approx(s.psa_g[0]).epsilon(0.05));
-}
-
-TEST_CASE("response_spectrum: PSA in g uses the g with which read_at2 reads .AT2 files") {
-  // A record of peak 0.5 g read with the reader's default g: PSA(T = 0) is 0.5 again only if
-  // kSpectrumGravity is that same g.
-  std::istringstream at2("PEER\nevent\nACCELERATION TIME SERIES IN UNITS OF G\n"
-                         "NPTS=    4, DT=   .0100 SEC\n0.1 -0.5 0.25 0.0\n");
-  const Record r = nsb::scene::read_at2(at2, "half-g.AT2");
-  SpectrumOptions o;
-  o.periods = {0.0};
-  CHECK(nsb::models::response_spectrum(r, o).psa_g[0] == doctest::Approx(0.5).epsilon(1e-15));
 }
 
 TEST_CASE("response_spectrum: the NGA-West2 grid and log-spaced periods") {
