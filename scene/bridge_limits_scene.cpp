@@ -13,7 +13,7 @@ using namespace models;  // the systems and parts a scene builds
 BridgeLimitKeys read_bridge_limits(const Section& m) {
   BridgeLimitKeys out;
   if (const auto* t = m.subtable("abutments")) {
-    // Its other keys are the connectors' (read_connectors checks the table's keys).
+    // Its other keys are the abutments' (scene/part_abutments.cpp checks the table's keys).
     Section s(m.context(), *t, m.key_path("abutments"));
     SeatLengthSettings seat;
     s.read_all(SeatLengthSettings::fields(), seat);

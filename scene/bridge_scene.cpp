@@ -7,8 +7,7 @@
 #include "models/bridge_parts.hpp"
 #include "models/excitation_scaling.hpp"
 #include "models/ground_motion.hpp"
-#include "models/shear_keys.hpp"
-#include "scene/connector_scene.hpp"
+#include "scene/bridge_part_kinds.hpp"
 #include "scene/records.hpp"
 #include "scene/scene_schema.hpp"
 
@@ -436,33 +435,30 @@ SegmentedDeck read_segments(const Section& m, BridgeDesign& p) {
   return d;
 }
 
-// What a bridge adds to the benchmark's parts: connectors, shear keys, limit states.
+// What a bridge adds to the benchmark's parts: the part kinds' parts, limit states.
 struct BridgeAdditions {
-  BridgeConnectors connectors;
-  std::optional<ShearKeyParameters> keys;
+  BridgePartSettings parts;
   BridgeLimitKeys limits;
-  bool any() const { return connectors.any() || keys.has_value() || limits.requested; }
 };
 
 // The bridge as an assembly of parts (models/bridge_parts.hpp), one deck (d == nullptr) or
-// segmented, with the additions: the connectors
-// (scene/connector_scene.hpp) and their ground motions g, then the shear keys on the deck's
-// bodies, then the limit states watched on its segments (docs/scenes.md: a bridge in segments
-// always watches its joints' closure; one deck only the limit states its scene asks for).
+// segmented, with the additions: the parts of every kind (scene/bridge_part_kinds.hpp) on the
+// ground motions g, then the limit states watched on its segments (docs/scenes.md: a bridge in
+// segments always watches its joints' closure; one deck only the limit states its scene asks
+// for).
 std::unique_ptr<integrators::System> assemble(const Section& m, const BridgeDesign& p,
                                               const SegmentedDeck* d, const BridgeAdditions& a,
                                               const std::array<parts::Motion, 2>& g) {
   try {
     Assembly::Parts parts = d != nullptr ? bridge_parts(p, *d) : bridge_parts(p);
     const std::size_t deck_bodies = parts.bodies.size();
-    if (a.connectors.any()) {
-      std::vector<double> gaps;
+    if (a.parts.any()) {
+      PartSite site{.design = p, .hinge_gaps = {}, .ground = g, .deck_bodies = deck_bodies};
       if (d != nullptr) {
-        for (const auto& h : d->hinges) gaps.push_back(h.gap);
+        for (const auto& h : d->hinges) site.hinge_gaps.push_back(h.gap);
       }
-      add_connectors(a.connectors, p, gaps, g, parts);
+      add_bridge_parts(a.parts, site, parts);
     }
-    if (a.keys) add_shear_keys(parts, *a.keys, deck_bodies);
     if (d != nullptr || a.limits.requested) {
       parts.limits = bridge_limit_spec(a.limits.limits, deck_bodies);
     }
@@ -489,8 +485,13 @@ std::unique_ptr<integrators::System> segmented_bridge(const Section& m, BridgeDe
 }  // namespace
 
 BridgeScene build_bridge(Section& m) {
-  m.only({"kind", "skew_deg", "deck", "segments", "hinges", "gaps", "damping", "bents", "seats",
-          "excitation", "shear_keys", "abutments", "bearings", "limit_states"});
+  std::vector<std::string_view> keys{"kind", "skew_deg", "deck",  "segments", "hinges",
+                                     "gaps", "damping",  "bents", "seats",    "excitation"};
+  for (const auto& kind : bridge_part_kinds()) {
+    if (!kind.key.empty()) keys.push_back(kind.key);
+  }
+  keys.push_back("limit_states");
+  m.only(keys);
   const bool segmented = m.has("segments");
   if (!segmented) {
     for (const char* key : {"skew_deg", "hinges"}) {
@@ -513,10 +514,7 @@ BridgeScene build_bridge(Section& m) {
   const BentsRead bents = read_bents(m, lengths, p, add.limits.limits.drift_ratio > 0);
   add.limits.limits.bent_heights = bents.heights;
   const SeatMotions seats = read_seats(m, p);
-  if (m.subtable("shear_keys") != nullptr) {
-    read_table(m, "shear_keys", shear_key_fields(), add.keys.emplace());
-  }
-  add.connectors = read_connectors(m, lengths, p.deck);
+  add.parts = read_bridge_parts(m, PartShape{lengths, p.deck});
   BridgeScene out;
   std::array<parts::Motion, 2> ground{};
   // The system for a set of support motions: one deck, segmented, with the additions.

@@ -3,9 +3,8 @@
 #include "integrators/run.hpp"
 #include "models/bridge_fields.hpp"
 #include "models/deck_chain.hpp"
-#include "models/shear_keys.hpp"
 #include "models/simple_systems.hpp"
-#include "scene/connector_scene.hpp"
+#include "scene/bridge_part_kinds.hpp"
 #include "scene/scene_schema.hpp"
 
 #include <map>
@@ -18,70 +17,9 @@ namespace nsb::scene {
 
 using namespace models;  // the systems and parts a scene builds
 
+using namespace doc_tables;  // the key tables' rows
+
 namespace {
-
-namespace c = config;
-
-// Keys whose default is not the member's value: required keys, values derived when absent.
-using DefaultNotes = std::map<std::string_view, std::string_view>;
-
-// Text for a markdown cell: a '|' would end the cell.
-std::string cell(std::string_view text) {
-  std::string out;
-  for (char ch : text) {
-    if (ch == '|') out += '\\';
-    out += ch;
-  }
-  return out;
-}
-
-// The allowed values of a field as the docs state them.
-template <class S>
-std::string allowed(const c::Field<S>& f) {
-  switch (f.kind) {
-    case c::Kind::kNumber: return f.range.describe() == "any" ? "finite" : f.range.describe();
-    case c::Kind::kInteger: return "integer " + f.range.describe();
-    case c::Kind::kBoolean: return "true, false";
-    case c::Kind::kChoice: {
-      std::string list;
-      for (const auto& name : f.choices) list += (list.empty() ? "`\"" : ", `\"") + std::string(name) + "\"`";
-      return list;
-    }
-    case c::Kind::kText: return "text";
-    case c::Kind::kVector3: return "3 finite numbers";
-  }
-  return {};
-}
-
-template <class S>
-std::string default_text(const c::Field<S>& f, const S& defaults, const DefaultNotes& notes) {
-  if (const auto it = notes.find(f.key); it != notes.end()) return std::string(it->second);
-  const c::Value v = f.get(defaults);
-  if (const auto* s = std::get_if<std::string>(&v); s != nullptr && s->empty()) return "none";
-  return "`" + c::format_value(v) + "`";
-}
-
-const std::string kHeader =
-    "| key | unit | default | allowed | meaning |\n|---|---|---|---|---|\n";
-
-template <class S>
-std::string rows(std::span<const c::Field<S>> fields, const S& defaults,
-                 const DefaultNotes& notes = {}) {
-  std::string out;
-  for (const auto& f : fields) {
-    const std::string unit = f.unit.empty() || f.unit == "-" ? "–" : std::string(f.unit);
-    out += "| `" + std::string(f.key) + "` | " + unit + " | " +
-           cell(default_text(f, defaults, notes)) + " | " + cell(allowed(f)) + " | " +
-           cell(f.meaning) + " |\n";
-  }
-  return out;
-}
-
-template <class S>
-DocTable table(std::string name, std::span<const c::Field<S>> fields, const S& defaults,
-               const DefaultNotes& notes = {}) {
-  return {std::move(name), kHeader + rows(fields, defaults, notes)};
-}
 
 // One [solver] table per registered method, with the method's own defaults.
 void add_method_tables(std::vector<DocTable>& out) {
@@ -95,7 +33,6 @@ void add_bridge_tables(std::vector<DocTable>& out) {
   out.push_back(table("model.deck", bridge_deck_fields(), bridge));
   out.push_back(table("model.gaps", bridge_gap_fields(), bridge));
   out.push_back(table("model.damping", bridge_damping_fields(), bridge));
-  out.push_back(table("model.shear_keys", shear_key_fields(), ShearKeyParameters{}));
   const DefaultNotes derived{{"position", "required"},
                              {"height", "none"},
                              {"stiffness_longitudinal", "derived"},
@@ -116,17 +53,12 @@ void add_bridge_tables(std::vector<DocTable>& out) {
                  kHeader + rows(joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}) +
                      rows(SeatLengthSettings::fields(), SeatLengthSettings{},
                           {{"seat_length", "none"}})});
-  // Connectors (scene/connector_scene.hpp); seat_length is a limit state's.
-  out.push_back(table("model.restrainer", RestrainerSettings::fields(), RestrainerSettings{},
-                      {{"stiffness", "required"}}));
-  out.push_back({"model.abutments",
-                 kHeader + rows(AbutmentSettings::fields(), AbutmentSettings{}) +
-                     rows(SeatLengthSettings::fields(), SeatLengthSettings{},
-                          {{"seat_length", "none"}})});
-  out.push_back(table("model.bearings", BearingSettings::fields(), BearingSettings{},
-                      {{"position", "required"}, {"stiffness", "required"}}));
   out.push_back(table("model.limit_states", LimitStateSettings::fields(), LimitStateSettings{},
                       {{"drift_ratio", "none"}, {"residual_rotation", "none"}}));
+  // The part kinds' tables (restrainers, abutments, bearings, shear keys).
+  for (const auto& kind : bridge_part_kinds()) {
+    if (kind.docs != nullptr) kind.docs(out);
+  }
 }
 
 // The marker comments around a generated table.

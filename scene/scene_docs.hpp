@@ -7,7 +7,13 @@
 // and the test models.scene_docs fails when they differ from the generated text.
 #pragma once
 
+#include "config/schema.hpp"
+
+#include <map>
+#include <span>
 #include <string>
+#include <string_view>
+#include <variant>
 #include <vector>
 
 namespace nsb::scene {
@@ -18,7 +24,77 @@ struct DocTable {
   std::string markdown;
 };
 
-// Every table of the schema, in the order of docs/scenes.md.
+// The rows of a key table from a struct's fields: key, unit, default, allowed values, meaning.
+namespace doc_tables {
+
+// Keys whose default is not the member's value: required keys, values derived when absent.
+using DefaultNotes = std::map<std::string_view, std::string_view>;
+
+// Text for a markdown cell: a '|' would end the cell.
+inline std::string cell(std::string_view text) {
+  std::string out;
+  for (char ch : text) {
+    if (ch == '|') out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
+// The allowed values of a field as the docs state them.
+template <class S>
+std::string allowed(const config::Field<S>& f) {
+  switch (f.kind) {
+    case config::Kind::kNumber: return f.range.describe() == "any" ? "finite" : f.range.describe();
+    case config::Kind::kInteger: return "integer " + f.range.describe();
+    case config::Kind::kBoolean: return "true, false";
+    case config::Kind::kChoice: {
+      std::string list;
+      for (const auto& name : f.choices) list += (list.empty() ? "`\"" : ", `\"") + std::string(name) + "\"`";
+      return list;
+    }
+    case config::Kind::kText: return "text";
+    case config::Kind::kVector3: return "3 finite numbers";
+  }
+  return {};
+}
+
+template <class S>
+std::string default_text(const config::Field<S>& f, const S& defaults, const DefaultNotes& notes) {
+  if (const auto it = notes.find(f.key); it != notes.end()) return std::string(it->second);
+  const config::Value v = f.get(defaults);
+  if (const auto* s = std::get_if<std::string>(&v); s != nullptr && s->empty()) return "none";
+  // Appended piecewise: GCC 12 reports a false -Wrestrict for "`" + std::string once inlined.
+  std::string out = "`";
+  out += config::format_value(v);
+  out += '`';
+  return out;
+}
+
+inline const std::string kHeader =
+    "| key | unit | default | allowed | meaning |\n|---|---|---|---|---|\n";
+
+template <class S>
+std::string rows(std::span<const config::Field<S>> fields, const S& defaults,
+                 const DefaultNotes& notes = {}) {
+  std::string out;
+  for (const auto& f : fields) {
+    const std::string unit = f.unit.empty() || f.unit == "-" ? "–" : std::string(f.unit);
+    out += "| `" + std::string(f.key) + "` | " + unit + " | " +
+           cell(default_text(f, defaults, notes)) + " | " + cell(allowed(f)) + " | " +
+           cell(f.meaning) + " |\n";
+  }
+  return out;
+}
+
+template <class S>
+DocTable table(std::string name, std::span<const config::Field<S>> fields, const S& defaults,
+               const DefaultNotes& notes = {}) {
+  return {std::move(name), kHeader + rows(fields, defaults, notes)};
+}
+
+}  // namespace doc_tables
+
+// Every table of the schema (the part kinds' with their kinds, scene/bridge_part_kinds.hpp).
 std::vector<DocTable> scene_doc_tables();
 
 // doc with the text between each pair of markers replaced by the generated table of that

@@ -1,5 +1,6 @@
-// Connector keys of a bridge scene (scene/connector_scene.hpp): which system a scene
-// builds, and bad input naming file:line:col and the key.
+// Connector keys of a bridge scene (scene/part_restrainers.cpp, part_bearings.cpp,
+// part_abutments.cpp): which system a scene builds, and bad input naming file:line:col and
+// the key.
 #include "scene/scene.hpp"
 #include "scene/test/scene_files.hpp"
 
