@@ -59,12 +59,20 @@ std::string read_text(const fs::path& file) {
   return s.str();
 }
 
-// A temporary file of io::write_file_atomically: ".<name>.tmp<pid>".
+// What io's atomic writes keep while they work, left behind by a process stopped meanwhile:
+// ".<name>.tmp<pid>" (io::write_file_atomically) and ".<name>.<tmp|old|probe>-<pid>-<n>"
+// (io::write_file_set, the folder of a run's outputs).
 bool is_temporary(const std::string& name) {
-  const auto at = name.rfind(".tmp");
-  return name.size() > 1 && name[0] == '.' && at != std::string::npos && at + 4 < name.size() &&
-         std::all_of(name.begin() + static_cast<std::ptrdiff_t>(at + 4), name.end(),
-                     [](unsigned char c) { return std::isdigit(c) != 0; });
+  if (name.size() < 2 || name[0] != '.') return false;
+  for (const std::string_view tag : {".tmp", ".old-", ".probe-"}) {
+    const auto at = name.rfind(tag);
+    if (at == std::string::npos || at == 0 || at + tag.size() == name.size()) continue;
+    if (std::all_of(name.begin() + static_cast<std::ptrdiff_t>(at + tag.size()), name.end(),
+                    [](unsigned char c) { return std::isdigit(c) != 0 || c == '-'; })) {
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -164,10 +172,12 @@ Plan prepare(const Design& d, const SweepOptions& options) {
     if (!plan.rows[i]) plan.pending.push_back(i);
   }
   // What a process that was stopped (a signal, a crash) left behind: the files of the runs it
-  // had not finished, and its temporary files (io::write_file_atomically's ".<name>.tmp<pid>").
+  // had not finished, and its temporary files and folders.
   for (const std::size_t i : plan.pending) fs::remove_all(options.out / "runs" / d.runs[i].id, ec);
-  for (const auto& e : fs::directory_iterator(options.out, ec)) {
-    if (is_temporary(e.path().filename().string())) fs::remove(e.path(), ec);
+  for (const fs::path& folder : {options.out, options.out / "runs"}) {
+    for (const auto& e : fs::directory_iterator(folder, ec)) {
+      if (is_temporary(e.path().filename().string())) fs::remove_all(e.path(), ec);
+    }
   }
   return plan;
 }

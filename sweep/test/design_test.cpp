@@ -40,8 +40,8 @@ std::string scene_line(const std::string& scene = "bouncing-ball") {
   return "scene = \"" + kScenes + "/" + scene + ".toml\"\n";
 }
 
-// Overrides as their texts "key=value" (scene::to_string: the value as TOML writes it, so a
-// double keeps its ".0" and a string its quotes).
+// Overrides as their texts "key=value" (scene::to_string: the value as toml++ writes it, so a
+// double keeps its ".0" and a string is a literal string in single quotes).
 std::vector<std::string> texts(const std::vector<nsb::scene::Override>& overrides) {
   std::vector<std::string> out;
   for (const auto& o : overrides) out.push_back(nsb::scene::to_string(o));
@@ -82,7 +82,7 @@ values = ["moreau", "event_driven"]
   // ("1" in `set` is an integer, a TOML float stays a double, a string a string).
   CHECK(texts(d.runs[1].overrides) == std::vector<std::string>{"solver.end_time=1",
                                                                "model.restitution=0.5",
-                                                               "solver.method=\"event_driven\""});
+                                                               "solver.method='event_driven'"});
   CHECK(std::get<std::int64_t>(d.runs[5].overrides[1].value) == 1);  // `1`: a TOML integer
   CHECK_NOTHROW(validate_design(d));
 }
@@ -259,9 +259,9 @@ records = [
   CHECK(sylmar.label == "sylmar");
   // a.AT2 exists beside the design: resolved there; b.AT2 does not: left to the scene's lookup.
   CHECK(texts(sylmar.overrides) ==
-        std::vector<std::string>{"model.excitation.transverse_record=\"" +
-                                     (file.parent_path() / "a.AT2").string() + "\"",
-                                 "model.excitation.longitudinal_record=\"b.AT2\""});
+        std::vector<std::string>{"model.excitation.transverse_record='" +
+                                     (file.parent_path() / "a.AT2").string() + "'",
+                                 "model.excitation.longitudinal_record='b.AT2'"});
   CHECK(d.factors[0].levels[1].label == "elCentro");  // the file's stem by default
 }
 

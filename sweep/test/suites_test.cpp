@@ -52,7 +52,7 @@ std::vector<std::string> texts(const std::vector<nsb::scene::Override>& override
 }
 
 std::string override_of(const std::string& key, const fs::path& file) {
-  return "model.excitation." + key + "_record=\"" + file.lexically_normal().string() + "\"";
+  return "model.excitation." + key + "_record='" + file.lexically_normal().string() + "'";
 }
 
 }  // namespace

@@ -57,7 +57,7 @@ same_sweep() {
     done
   done
   [ "$(ls "$1/runs" | wc -l)" = "$(ls "$2/runs" | wc -l)" ] || fail "$3: not the same runs"
-  leftover=$(find "$2" -name '.*.tmp*')
+  leftover=$(find "$2" -name '.*.tmp*' -o -name '.*.old-*')
   [ -z "$leftover" ] || fail "$3: temporary files left behind: $leftover"
 }
 
@@ -117,10 +117,15 @@ while [ $stopped -lt 6 ] && [ $round -lt 12 ]; do
 done
 set +m
 [ $stopped -ge 4 ] || fail "only $stopped rounds were stopped before the end: no test"
-# What a SIGKILL during a write leaves (io::write_file_atomically's ".<name>.tmp<pid>"), in
-# the sweep's folder and in a run that has no row.csv yet.
+# What a SIGKILL during a write leaves (io::write_file_atomically's ".<name>.tmp<pid>",
+# io::write_file_set's ".<id>.tmp-<pid>-<n>"), in the sweep's folder, in runs/ and in a run
+# that has no row.csv yet.
 mkdir -p killed
 echo partial > killed/.results.csv.tmp4242
+if [ -d killed/runs ]; then
+  mkdir killed/runs/.0001.tmp-4242-0
+  echo partial > killed/runs/.0001.tmp-4242-0/history.csv
+fi
 for run in $([ -d killed/runs ] && ls -d killed/runs/*/); do
   [ -f "$run/row.csv" ] || { echo partial > "$run/.history.csv.tmp4242"; break; }
 done
