@@ -39,8 +39,8 @@ void draw(const SweepArgs& args, const sweep::Results& results) {
 }
 
 // The fragility curves of a design with [fragility], fitted to the sweep's results.
-void fragility(const SweepArgs& args, const sweep::Results& results, bool plot) {
-  const sweep::Design d = sweep::load_design(args.design, args.options.set);
+void fragility(const SweepArgs& args, const sweep::Design& d, const sweep::Results& results,
+               bool plot) {
   const auto files = sweep::write_fragility(d, results, args.options.out,
                                             plot ? args.plots.gnuplot : std::string());
   for (const auto& f : files) std::cout << "fragility  " << f.string() << '\n';
@@ -53,7 +53,7 @@ void run(const SweepArgs& args) {
     const sweep::Results results =
         sweep::results_of(sweep::read_csv(args.options.out / "results.csv"));
     draw(args, results);
-    fragility(args, results, true);
+    fragility(args, sweep::load_design(args.design, args.options.set), results, true);
     return;
   }
   const sweep::SweepSummary s = sweep::run_sweep(args.design, args.options);
@@ -70,7 +70,7 @@ void run(const SweepArgs& args) {
             << " runs did not complete (their status is in results.csv)\n";
   std::cout << "results    " << s.results.string() << '\n';
   if (args.plot) draw(args, s.table);
-  fragility(args, s.table, args.plot);
+  fragility(args, s.design, s.table, args.plot);
   if (s.failed > 0) exit_code() = 1;
 }
 

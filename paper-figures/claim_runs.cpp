@@ -202,11 +202,14 @@ sweep::Design make_design(const std::string& name, const fs::path& base_scene,
       run.id = s.str();
       run.labels = {p.name, r.name};
       run.labels.insert(run.labels.end(), p.labels.begin(), p.labels.end());
-      run.overrides = point_overrides(p.values, r, targets);
-      if (end_time > 0) run.overrides.push_back(override_text("solver.end_time", end_time));
+      run.overrides = sweep::parse_overrides(point_overrides(p.values, r, targets));
+      if (end_time > 0)
+        run.overrides.push_back(
+            scene::parse_override(override_text("solver.end_time", end_time)));
       d.runs.push_back(std::move(run));
     }
   }
+  sweep::load_base_scene(d);
   d.hash = name + "-" + std::to_string(d.runs.size());
   return d;
 }

@@ -154,8 +154,9 @@ sweep::Design design_of(const fs::path& scene, const std::vector<const RunSpec*>
   for (std::size_t i = 0; i < specs.size(); ++i) {
     std::ostringstream id;
     id << std::setw(5) << std::setfill('0') << i;
-    d.runs.push_back({id.str(), {specs[i]->name}, specs[i]->overrides});
+    d.runs.push_back({id.str(), {specs[i]->name}, sweep::parse_overrides(specs[i]->overrides)});
   }
+  sweep::load_base_scene(d);
   d.hash = "figures-" + scene.stem().string() + "-" + std::to_string(specs.size());
   return d;
 }

@@ -131,8 +131,9 @@ void add_first_poundings(const std::string& name, const fs::path& base_scene,
       [&](const Point& p, const ClaimRun&) { return ends.count(p.name) > 0; });
   if (d.runs.empty()) return;
   for (auto& run : d.runs) {
-    run.overrides.push_back(override_text("solver.end_time", ends.at(run.labels[0])));
-    run.overrides.push_back("output.sample_dt=0");
+    run.overrides.push_back(
+        scene::parse_override(override_text("solver.end_time", ends.at(run.labels[0]))));
+    run.overrides.push_back(scene::parse_override("output.sample_dt=0"));
   }
   const Rows first = run_design(d, dir, workers, res.runs, res.failed);
   for (const auto& [point, runs] : first) {

@@ -13,12 +13,13 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
-#include <mutex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <variant>
 
 namespace nsb::sweep {
 
@@ -40,16 +41,6 @@ std::string_view to_string(Mode m) {
 
 namespace {
 
-// A TOML basic string holding s, so that a label with spaces or '=' reaches the scene intact.
-std::string toml_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + '"';
-}
-
 void check_keys(const scene::Source& c, const toml::table& t, const std::string& where,
                 const std::set<std::string>& allowed) {
   for (const auto& [k, v] : t) {
@@ -70,25 +61,25 @@ double number(const scene::Source& c, const toml::node& n, const std::string& ke
   c.fail(&n, key, "must be a number");
 }
 
-// The label and override text of a TOML value: numbers in their shortest round-trip form,
-// strings quoted for the scene reader, booleans as true/false.
+// The label and the override of a TOML value: the override holds the value itself, the label
+// its text (numbers in their shortest round-trip form, booleans as true/false).
 Level value_level(const scene::Source& c, const toml::node& n, const std::string& key,
                   const std::string& fkey) {
   if (n.is_integer()) {
-    const std::string s = std::to_string(*n.value<std::int64_t>());
-    return {s, {fkey + "=" + s}, ValueKind::kInteger};
+    const std::int64_t v = *n.value<std::int64_t>();
+    return {std::to_string(v), {{fkey, v}}, ValueKind::kInteger};
   }
   if (n.is_floating_point()) {
-    const std::string s = io::csv_number(number(c, n, key));
-    return {s, {fkey + "=" + s}, ValueKind::kReal};
+    const double v = number(c, n, key);
+    return {io::csv_number(v), {{fkey, v}}, ValueKind::kReal};
   }
   if (n.is_boolean()) {
-    const std::string s = *n.value<bool>() ? "true" : "false";
-    return {s, {fkey + "=" + s}, ValueKind::kBoolean};
+    const bool v = *n.value<bool>();
+    return {v ? "true" : "false", {{fkey, v}}, ValueKind::kBoolean};
   }
   if (n.is_string()) {
-    const std::string s = *n.value<std::string>();
-    return {s, {fkey + "=" + toml_string(s)}, ValueKind::kText};
+    const std::string v = *n.value<std::string>();
+    return {v, {{fkey, v}}, ValueKind::kText};
   }
   c.fail(&n, key, "must be a number, a string or a boolean");
 }
@@ -150,7 +141,7 @@ Level record_level(const scene::Source& c, const toml::node& r, const std::strin
     if (const auto* p = rt->get(component)) {
       if (!p->is_string()) c.fail(p, rw + "." + component, "must be a file name");
       const std::string file = *p->value<std::string>();
-      level.overrides.push_back(scene_key + "=" + toml_string(record_path(dir, file)));
+      level.overrides.push_back({scene_key, record_path(dir, file)});
       if (level.label.empty()) level.label = fs::path(file).stem().string();
     }
   }
@@ -196,7 +187,7 @@ std::vector<Level> suite_levels(const scene::Source& c, const toml::table& t, co
   for (const auto& r : records) {
     Level level{r.name, {}};
     for (std::size_t i = 0; i < r.files.size(); ++i) {
-      level.overrides.push_back(record_components()[i].second + "=" + toml_string(r.files[i]));
+      level.overrides.push_back({record_components()[i].second, r.files[i]});
     }
     levels.push_back(std::move(level));
   }
@@ -215,7 +206,11 @@ Level named_level(const scene::Source& c, const toml::node& l, const std::string
   Level level{*name->value<std::string>(), {}};
   for (const auto& s : array_of(c, *set, lw + ".set")) {
     if (!s.is_string()) c.fail(&s, lw + ".set", "must hold strings \"key=value\"");
-    level.overrides.push_back(*s.value<std::string>());
+    try {
+      level.overrides.push_back(scene::parse_override(*s.value<std::string>()));
+    } catch (const std::invalid_argument& e) {
+      c.fail(&s, lw + ".set", e.what());
+    }
   }
   return level;
 }
@@ -252,8 +247,7 @@ Factor read_factor(const scene::Source& c, const toml::table& t, const fs::path&
     const std::string name = geometric ? "logspace" : "linspace";
     if (const auto* n = t.get(name)) {
       for (const double v : spaced(c, *n, where + "." + name, geometric)) {
-        const std::string s = io::csv_number(v);
-        f.levels.push_back({s, {f.key + "=" + s}, ValueKind::kReal});
+        f.levels.push_back({io::csv_number(v), {{f.key, v}}, ValueKind::kReal});
       }
     }
   }
@@ -340,7 +334,12 @@ void expand_list(const scene::Source& c, const toml::node& runs_node, const fs::
         }
         run.overrides.insert(run.overrides.end(), level->overrides.begin(), level->overrides.end());
       } else {
-        const std::string o = f.key + "=" + cell;
+        scene::Override o;
+        try {
+          o = scene::parse_override(f.key + "=" + cell);
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(where + ": " + e.what());
+        }
         run.overrides.push_back(o);
         if (std::none_of(f.levels.begin(), f.levels.end(),
                          [&](const Level& l) { return l.label == cell; })) {
@@ -353,38 +352,18 @@ void expand_list(const scene::Source& c, const toml::node& runs_node, const fs::
   if (d.runs.empty()) c.fail(&runs_node, "runs", csv.string() + " holds no run");
 }
 
-// FNV-1a, 64 bit: a fingerprint of the expanded design, not a security measure.
-std::string fingerprint(const std::string& text) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (const unsigned char ch : text) {
-    h ^= ch;
-    h *= 0x100000001b3ULL;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Everything a run's result depends on that the design controls: the base scene's text and
-// every run's overrides, with the design's folder written as "." so that moving the whole
-// tree does not change the hash.
+// Everything a run's result depends on that the design controls: every run's labels and
+// overrides, and the content hash of every input, with the design's folder written as "." so
+// that moving the whole tree does not change the hash.
 std::string design_hash(const Design& d) {
   const std::string dir = d.file.parent_path().lexically_normal().string();
-  std::string text = read_file(d.scene);
-  text += '\x1e';
-  text += to_string(d.mode);
+  std::string text(to_string(d.mode));
   for (const auto& f : d.factors) text += '\x1f' + f.key;
   for (const auto& r : d.runs) {
     text += '\x1e';
     for (const auto& l : r.labels) text += l + '\x1f';
-    for (const auto& o : r.overrides) {
+    for (const auto& override : r.overrides) {
+      const std::string o = scene::to_string(override);
       std::size_t from = 0;
       for (auto p = dir.empty() ? std::string::npos : o.find(dir); p != std::string::npos;
            p = o.find(dir, from)) {
@@ -394,7 +373,83 @@ std::string design_hash(const Design& d) {
       text.append(o, from, std::string::npos).append("\x1f");
     }
   }
-  return fingerprint(text);
+  for (const auto& input : d.inputs) text += '\x1e' + input.name + '\x1f' + input.hash;
+  return content_hash(text);
+}
+
+// A file's bytes; std::invalid_argument naming it when it cannot be read.
+std::string read_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw std::invalid_argument(p.string() + ": cannot open");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The record files a scene table names: every string whose key contains "record"
+// (transverse_record, longitudinal_record, rotation_record_left, ...), by key path (array
+// elements by 0-based index, as overrides name them).
+void record_names(const toml::node& n, const std::string& path, std::string_view key,
+                  std::map<std::string, std::string>& out) {
+  if (const auto* t = n.as_table()) {
+    for (const auto& [k, v] : *t) {
+      const std::string name(k.str());
+      record_names(v, path.empty() ? name : path + "." + name, k.str(), out);
+    }
+  } else if (const auto* a = n.as_array()) {
+    for (std::size_t i = 0; i < a->size(); ++i)
+      record_names((*a)[i], path + "." + std::to_string(i), key, out);
+  } else if (n.is_string() && key.find("record") != std::string_view::npos) {
+    out[path] = *n.value<std::string>();
+  }
+}
+
+// Where a scene finds a record file (docs/scenes.md): absolute, next to the scene, in ../data/
+// beside it, or in ./data/. Empty when none is a regular file (the run is then rejected with
+// the scene's own message).
+fs::path find_record(const fs::path& folder, const std::string& name) {
+  const fs::path p(name);
+  std::vector<fs::path> tried;
+  if (p.is_absolute()) {
+    tried.push_back(p);
+  } else {
+    tried.push_back(folder / p);
+    tried.push_back(folder / ".." / "data" / p);
+    tried.push_back(fs::current_path() / "data" / p);
+  }
+  for (const auto& t : tried) {
+    std::error_code ec;
+    if (fs::is_regular_file(t, ec)) return t.lexically_normal();
+  }
+  return {};
+}
+
+// The record files the runs read: the base scene's, replaced by a run's overrides of the same
+// key, over every run.
+std::set<fs::path> record_files(const Design& d) {
+  std::map<std::string, std::string> base;
+  record_names(d.base.table, "", "", base);
+  std::set<std::string> names;
+  for (const auto& run : d.runs) {
+    std::map<std::string, std::string> named = base;
+    for (const auto& o : run.overrides) {
+      const auto* text = std::get_if<std::string>(&o.value);
+      const std::string last = o.key.substr(o.key.find_last_of('.') + 1);
+      if (text != nullptr && last.find("record") != std::string::npos) named[o.key] = *text;
+    }
+    for (const auto& [key, name] : named) names.insert(name);
+  }
+  std::set<fs::path> files;
+  for (const auto& name : names) {
+    if (fs::path f = find_record(d.base.origin.folder, name); !f.empty()) files.insert(f);
+  }
+  return files;
+}
+
+// A path relative to the design's folder, with '/' separators.
+std::string input_name(const Design& d, const fs::path& p) {
+  const fs::path absolute = fs::absolute(p).lexically_normal();
+  return absolute.lexically_proximate(d.file.parent_path()).generic_string();
 }
 
 }  // namespace
@@ -428,13 +483,21 @@ void read_scene(const scene::Source& c, const toml::table& root,
       if (!s.is_string() || s.value<std::string>()->find('=') == std::string::npos) {
         c.fail(&s, "set", "must hold strings \"key=value\"");
       }
-      d.set.push_back(*s.value<std::string>());
+      try {
+        d.set.push_back(scene::parse_override(*s.value<std::string>()));
+      } catch (const std::invalid_argument& e) {
+        c.fail(&s, "set", e.what());
+      }
     }
   }
   for (const auto& s : extra_set) {
     if (s.find('=') == std::string::npos)
       throw std::invalid_argument("--set " + s + ": must be key=value");
-    d.set.push_back(s);
+    try {
+      d.set.push_back(scene::parse_override(s));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("--set " + s + ": " + e.what());
+    }
   }
 }
 
@@ -533,17 +596,53 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
   read_mode(c, root, d);
   read_factors(c, root, d);
   expand(c, root, d);
+  load_base_scene(d);
   d.fragility = read_fragility(root, d, c.file);
-  d.hash = design_hash(d);
   return d;
 }
 
+void load_base_scene(Design& d) {
+  const std::string where = d.file.string() + ": scene: ";
+  std::string bytes;
+  try {
+    bytes = read_bytes(d.scene);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + e.what());
+  }
+  // The table scene::read_scene_table gives, parsed from the bytes that are hashed, so that the
+  // file is opened once.
+  d.base = scene::SceneTable{};
+  d.base.origin.name = d.scene.string();
+  d.base.origin.folder = d.scene.parent_path().empty() ? fs::path(".") : d.scene.parent_path();
+  try {
+    d.base.table = toml::parse(bytes, d.scene.string());
+  } catch (const toml::parse_error& e) {
+    std::ostringstream s;
+    s << where << d.scene.string() << ':' << e.source().begin.line << ':'
+      << e.source().begin.column << ": TOML syntax error: " << e.description();
+    throw std::invalid_argument(s.str());
+  }
+  try {
+    scene::SceneTable with_set = d.base;
+    scene::apply_overrides(with_set, d.set);
+    d.coordinates = scene::build_scene(with_set).system->coordinate_names();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + e.what());
+  }
+  d.inputs = {{input_name(d, d.scene), d.scene, content_hash(bytes)}};
+  for (const auto& file : record_files(d)) {
+    d.inputs.push_back({input_name(d, file), file, content_hash(read_bytes(file))});
+  }
+  d.hash = design_hash(d);
+}
+
 void validate_design(const Design& d) {
-  const auto attempt = [&](const std::vector<std::string>& extra, const std::string& where) {
-    std::vector<std::string> overrides = d.set;
-    overrides.insert(overrides.end(), extra.begin(), extra.end());
+  const auto attempt = [&](const std::vector<scene::Override>& extra, const std::string& where) {
     try {
-      (void)scene::load_scene(d.scene, overrides);
+      scene::SceneTable t = d.base;
+      scene::apply_overrides(t, d.set);
+      scene::apply_overrides(t, extra);
+      (void)scene::build_scene(t);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(d.file.string() + where + ": " + e.what());
     }
@@ -557,26 +656,31 @@ void validate_design(const Design& d) {
       attempt(l.overrides, at + ": factor " + f.key + " = " + l.label);
     if (f.range) {
       for (const double v : *f.range) {
-        attempt({f.key + "=" + io::csv_number(v)},
+        attempt({{f.key, v}},
                 at + ": factor " + f.key + " = " + io::csv_number(v));
       }
     }
   }
 }
 
-const std::vector<std::string>& base_coordinates(const Design& d) {
-  static std::mutex mutex;
-  static std::map<std::vector<std::string>, std::vector<std::string>> known;
-  std::vector<std::string> key = d.set;
-  key.push_back(d.scene.string());
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (const auto it = known.find(key); it != known.end()) return it->second;
-  try {
-    const scene::Scene scene = scene::load_scene(d.scene, d.set);
-    return known[key] = scene.system->coordinate_names();
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(d.file.string() + ": scene: " + e.what());
+const std::vector<std::string>& base_coordinates(const Design& d) { return d.coordinates; }
+
+std::vector<scene::Override> parse_overrides(const std::vector<std::string>& texts) {
+  std::vector<scene::Override> out;
+  out.reserve(texts.size());
+  for (const auto& t : texts) out.push_back(scene::parse_override(t));
+  return out;
+}
+
+std::string content_hash(std::string_view bytes) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const unsigned char ch : bytes) {
+    h ^= ch;
+    h *= 0x100000001b3ULL;
   }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
 }
 
 }  // namespace nsb::sweep

@@ -1,13 +1,15 @@
 // Sweep designs: a base scene, overrides applied to every run, and factors, read from a TOML
-// file (docs/sweep.md) and expanded into the list of runs. Each run is a list of scene
-// overrides ("key=value", as `nsbridge run --set` takes them).
+// file (docs/sweep.md) and expanded into the list of runs. Each run is a list of typed scene
+// overrides (scene::Override: a key and its value as the design holds it, a number stays a
+// double), applied to the base scene's table, which the design reads once.
 //
-//   Design d = load_design("scenes/sweeps/fig6.toml");   // parse and expand
+//   Design d = load_design("scenes/sweeps/fig6.toml");   // parse, expand, read the base scene
 //   validate_design(d);                                    // every key and value, before any run
 //
 // Errors throw std::invalid_argument with "<file>:<line>:<col>: <key>: <what is allowed>".
 #pragma once
 
+#include "scene/scene.hpp"
 #include "sweep/limit_states.hpp"
 
 #include <array>
@@ -33,8 +35,8 @@ enum class ValueKind { kReal, kInteger, kBoolean, kText };
 
 // One level of a factor: the text that names it in results.csv and the overrides it applies.
 struct Level {
-  std::string label;                   // e.g. "0.5", or a record's name
-  std::vector<std::string> overrides;  // e.g. {"model.seats.friction=0.5"}
+  std::string label;                      // e.g. "0.5", or a record's name
+  std::vector<scene::Override> overrides;  // e.g. {{"model.seats.friction", 0.5}}
   std::optional<ValueKind> kind{};     // a `values` entry's or a range's TOML type; none for
                                        //   a name (its label's text says: sweep/results.hpp)
 };
@@ -49,21 +51,35 @@ struct Factor {
 // One run: the label of every factor (empty when the factor keeps the base scene's value,
 // as in the base run of a one-factor-at-a-time design) and every override to apply.
 struct Run {
-  std::string id;                      // zero-padded index: the folder name under runs/
-  std::vector<std::string> labels;     // one per Design::factors entry
-  std::vector<std::string> overrides;  // Design::set, then the factors' overrides
+  std::string id;                          // zero-padded index: the folder name under runs/
+  std::vector<std::string> labels;         // one per Design::factors entry
+  std::vector<scene::Override> overrides;  // Design::set, then the factors' overrides
+};
+
+// A file the runs read (the base scene, a ground-motion record) and a hash of its bytes.
+struct Input {
+  std::string name;            // its path relative to the design's folder ('/' separators)
+  std::filesystem::path path;  // where the runs find it
+  std::string hash;            // content_hash of its bytes
 };
 
 struct Design {
   std::filesystem::path file;    // the design file
-  std::filesystem::path scene;   // the base scene, resolved against the design's folder
-  std::vector<std::string> set;  // overrides applied to every run
+  std::filesystem::path scene;       // the base scene, resolved against the design's folder
+  std::vector<scene::Override> set;  // overrides applied to every run
   Mode mode = Mode::kGrid;
   std::int64_t samples = 0;     // latin: number of runs, >= 1
   std::uint64_t seed = 0;       // latin: seed of the permutations
   std::vector<Factor> factors;  // in file order (list mode: one per CSV column)
   std::vector<Run> runs;        // the expanded runs, in id order
-  std::string hash;             // 16 hex digits; changes whenever a run would change
+  scene::SceneTable base;                // the base scene's table as its file holds it (no
+                                         //   override applied), read once: load_base_scene
+  std::vector<std::string> coordinates;  // the generalized coordinates of the base scene with
+                                         //   `set` ({"x", "y", "theta"} for the bridge)
+  std::vector<Input> inputs;             // the base scene, then every record file a run reads,
+                                         //   by name
+  std::string hash;  // 16 hex digits; changes whenever a run would change: the runs' labels
+                     //   and overrides and the content of every input
   std::optional<FragilitySpec> fragility;  // the [fragility] section, when the design has one;
                                            //   not part of the hash (it changes no run)
 };
@@ -75,17 +91,32 @@ struct Design {
 Design load_design(const std::filesystem::path& file,
                    const std::vector<std::string>& extra_set = {});
 
-// Loads the base scene once with the design's fixed overrides and once with each level of
-// each factor (for a latin range: both ends), so that an unknown key or a value the scene
-// rejects is reported before any run. Throws std::invalid_argument naming the design file,
-// the factor's line and key, and the scene's own message.
+// Reads the base scene file (design.scene) once into design.base and hashes its bytes, builds
+// it with `set` for design.coordinates, finds every record file the runs read
+// (design.inputs, each hashed) and sets design.hash. load_design calls it; a design built in
+// code calls it once its file, scene, set and runs are in place. Throws std::invalid_argument
+// "<design>: scene: <the scene's message>" for a base scene that cannot be read or built with
+// `set`.
+void load_base_scene(Design& design);
+
+// Builds the base scene's table (design.base, no file read) with `set` and once with each
+// level of each factor (for a latin range: both ends), so that an unknown key or a value the
+// scene rejects is reported before any run. Throws std::invalid_argument naming the design
+// file, the factor's line and key, and the scene's own message.
 void validate_design(const Design& design);
 
 // The generalized coordinates of the design's base scene (with its `set`), as its system names
-// them ({"x", "y", "theta"} for the bridge): results.csv has a peak column for each. The scene
-// is loaded once per scene and `set` in a process, whichever thread asks first. Throws
-// std::invalid_argument as validate_design does.
+// them: design.coordinates, one peak column of results.csv each.
 const std::vector<std::string>& base_coordinates(const Design& design);
+
+// Overrides from their texts "section.key=value" (scene::parse_override's rule). Throws
+// std::invalid_argument naming the text that is not one.
+std::vector<scene::Override> parse_overrides(const std::vector<std::string>& texts);
+
+// A hash of bytes: 64-bit FNV-1a (Fowler, Noll & Vo; offset basis 0xcbf29ce484222325, prime
+// 0x100000001b3), as 16 hex digits. A fingerprint that notices a changed input, not a security
+// measure.
+std::string content_hash(std::string_view bytes);
 
 // The unit draws of a Latin hypercube (McKay, Beckman & Conover 1979), as `mode = "latin"`
 // uses them: draw[k][i] in [0, 1) for factor k and sample i. Each factor's [0, 1) is cut into

@@ -84,9 +84,8 @@ void expand_latin(Design& d) {
       const Factor& f = d.factors[k];
       if (f.range) {
         const double v = (*f.range)[0] + draw[k][i] * ((*f.range)[1] - (*f.range)[0]);
-        const std::string s = io::csv_number(v);
-        run.labels.push_back(s);
-        run.overrides.push_back(f.key + "=" + s);
+        run.labels.push_back(io::csv_number(v));
+        run.overrides.push_back({f.key, v});
       } else {
         const auto m = f.levels.size();
         const Level& l = f.levels[std::min(

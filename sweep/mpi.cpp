@@ -237,6 +237,7 @@ SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& opti
   s.table = write_results(d, options, plan.rows);
   s.failed = count_failed(plan.rows);
   s.results = options.out / "results.csv";
+  s.design = std::move(d);
   return s;
 }
 

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -58,6 +59,22 @@ std::string read_text(const fs::path& file) {
   return s.str();
 }
 
+// What io's atomic writes keep while they work, left behind by a process stopped meanwhile:
+// ".<name>.tmp<pid>" (io::write_file_atomically) and ".<name>.<tmp|old|probe>-<pid>-<n>"
+// (io::write_file_set, the folder of a run's outputs).
+bool is_temporary(const std::string& name) {
+  if (name.size() < 2 || name[0] != '.') return false;
+  for (const std::string_view tag : {".tmp", ".old-", ".probe-"}) {
+    const auto at = name.rfind(tag);
+    if (at == std::string::npos || at == 0 || at + tag.size() == name.size()) continue;
+    if (std::all_of(name.begin() + static_cast<std::ptrdiff_t>(at + tag.size()), name.end(),
+                    [](unsigned char c) { return std::isdigit(c) != 0 || c == '-'; })) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out,
@@ -67,7 +84,10 @@ RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out,
   const double start = now_s();
   RunOutcome outcome;
   try {
-    const runs::RunRecord record = runs::execute({d.scene, run.overrides, {}, {}});
+    runs::RunRequest request;
+    request.scene = d.base;
+    request.typed_overrides = run.overrides;
+    const runs::RunRecord record = runs::execute(request);
     runs::write_record(dir, record);
     // An unseated run is a result (the bridge collapsed), not a failed run.
     outcome.succeeded = integrators::is_result(record.result.status);
@@ -90,11 +110,24 @@ Plan prepare(const Design& d, const SweepOptions& options) {
   std::error_code ec;
   if (fs::exists(manifest) || fs::exists(options.out / "runs")) {
     std::string hash, revision;
+    toml::table inputs;
     try {
       const toml::table m = toml::parse_file(manifest.string());
       hash = m["design_hash"].value_or(std::string());
       revision = m["revision"].value_or(std::string());
+      if (const auto* t = m["inputs"].as_table()) inputs = *t;
     } catch (const toml::parse_error&) {
+    }
+    // An input whose content changed under the same name makes the rows in DIR those of
+    // another input: refused, naming the file (docs/sweep.md, "Resume").
+    for (const Input& input : d.inputs) {
+      const auto before = inputs[input.name].value<std::string>();
+      if (before && *before != input.hash && !options.restart) {
+        throw std::invalid_argument(
+            input.path.string() + ": changed since the runs in " + options.out.string() +
+            " were made (content hash " + *before + ", now " + input.hash +
+            "); use --restart to redo every run, or another --out");
+      }
     }
     if (hash != d.hash && !options.restart) {
       throw std::invalid_argument(
@@ -118,7 +151,12 @@ Plan prepare(const Design& d, const SweepOptions& options) {
     << "design = " << toml::value<std::string>(d.file.string()) << '\n'
     << "design_hash = \"" << d.hash << "\"\n"
     << "revision = " << toml::value<std::string>(code_revision()) << '\n'
-    << "runs = " << d.runs.size() << '\n';
+    << "runs = " << d.runs.size() << '\n'
+    << "\n# The files the runs read, relative to the design's folder: content hash (64-bit\n"
+    << "# FNV-1a of the bytes). A resume refuses a folder whose inputs changed.\n"
+    << "[inputs]\n";
+  for (const Input& input : d.inputs)
+    m << toml::value<std::string>(input.name) << " = \"" << input.hash << "\"\n";
   try {
     write_file_atomically(manifest, m.str());
   } catch (const std::runtime_error& e) {
@@ -132,6 +170,14 @@ Plan prepare(const Design& d, const SweepOptions& options) {
     if (in && std::getline(in, line))
       plan.rows[i] = parse_row(d, i, line, read_text(dir / "limit_states.csv"));
     if (!plan.rows[i]) plan.pending.push_back(i);
+  }
+  // What a process that was stopped (a signal, a crash) left behind: the files of the runs it
+  // had not finished, and its temporary files and folders.
+  for (const std::size_t i : plan.pending) fs::remove_all(options.out / "runs" / d.runs[i].id, ec);
+  for (const fs::path& folder : {options.out, options.out / "runs"}) {
+    for (const auto& e : fs::directory_iterator(folder, ec)) {
+      if (is_temporary(e.path().filename().string())) fs::remove_all(e.path(), ec);
+    }
   }
   return plan;
 }
@@ -253,6 +299,7 @@ SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options)
   s.table = write_results(d, options, plan.rows);
   s.failed = count_failed(plan.rows);
   s.results = options.out / "results.csv";
+  s.design = std::move(d);
   return s;
 }
 

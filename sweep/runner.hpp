@@ -39,6 +39,7 @@ struct SweepSummary {
   std::vector<std::string> notes;  // things to tell the user (revision changed, MPI absent)
   std::filesystem::path results;   // DIR/results.csv
   Results table;                   // what results.csv holds (empty on ranks other than 0)
+  Design design;                   // the design as loaded, its base scene read once
 };
 
 // One run: runs::execute with the run's overrides, its outputs (runs::write_record, the same
@@ -62,10 +63,12 @@ struct Plan {
   std::vector<std::size_t> pending;      // indices still to run, ascending
   std::vector<std::string> notes;
 };
-// Prepares DIR for a design: records the design's hash and the code revision in
-// DIR/manifest.toml, and reads the rows of completed runs from their resume files (the only
-// files of a sweep it reads back). A DIR holding a different design is refused
-// (std::invalid_argument) unless options.restart, which removes its runs first.
+// Prepares DIR for a design: records the design's hash, the code revision and the content hash
+// of every input in DIR/manifest.toml, and reads the rows of completed runs from their resume
+// files (the only files of a sweep it reads back). A DIR holding a different design, or made
+// from an input whose content has changed since (the message names the file), is refused
+// (std::invalid_argument) before anything is written, unless options.restart, which removes
+// its runs first.
 Plan prepare(const Design& design, const SweepOptions& options);
 
 // Writes DIR/results.csv from every row (sorted by run id), via a temporary file and rename,

@@ -40,6 +40,14 @@ std::string scene_line(const std::string& scene = "bouncing-ball") {
   return "scene = \"" + kScenes + "/" + scene + ".toml\"\n";
 }
 
+// Overrides as their texts "key=value" (scene::to_string: the value as toml++ writes it, so a
+// double keeps its ".0" and a string is a literal string in single quotes).
+std::vector<std::string> texts(const std::vector<nsb::scene::Override>& overrides) {
+  std::vector<std::string> out;
+  for (const auto& o : overrides) out.push_back(nsb::scene::to_string(o));
+  return out;
+}
+
 // The message of the std::invalid_argument that f throws, or "" when it throws none.
 template <class F>
 std::string error_of(F f) {
@@ -70,11 +78,61 @@ values = ["moreau", "event_driven"]
                                                         {"0.9", "moreau"}, {"0.9", "event_driven"},
                                                         {"1", "moreau"},   {"1", "event_driven"}};
   for (std::size_t i = 0; i < 6; ++i) CHECK(d.runs[i].labels == labels[i]);
-  // The fixed overrides first, then one per factor; strings are quoted for the scene reader.
-  CHECK(d.runs[1].overrides == std::vector<std::string>{"solver.end_time=1",
-                                                        "model.restitution=0.5",
-                                                        "solver.method=\"event_driven\""});
+  // The fixed overrides first, then one per factor, each value of the type the design gives it
+  // ("1" in `set` is an integer, a TOML float stays a double, a string a string).
+  CHECK(texts(d.runs[1].overrides) == std::vector<std::string>{"solver.end_time=1",
+                                                               "model.restitution=0.5",
+                                                               "solver.method='event_driven'"});
+  CHECK(std::get<std::int64_t>(d.runs[5].overrides[1].value) == 1);  // `1`: a TOML integer
   CHECK_NOTHROW(validate_design(d));
+}
+
+TEST_CASE("a factor's value reaches the scene as the design's value, without a text between") {
+  // 0.1 + 0.2 = 0.30000000000000004 (the double nearest 0.3 is 0.29999999999999998890): its
+  // shortest text has 17 digits; the override holds the double itself, and its label is that
+  // shortest text, which reads back to the same double.
+  const Design d = load_design(write_design("typed", scene_line() + R"(
+[[factor]]
+key = "model.restitution"
+values = [0.30000000000000004, 1, true, "x"]
+)"));
+  REQUIRE(d.runs.size() == 4);
+  CHECK(std::get<double>(d.runs[0].overrides[0].value) == 0.1 + 0.2);
+  CHECK(d.runs[0].labels[0] == "0.30000000000000004");
+  CHECK(std::get<std::int64_t>(d.runs[1].overrides[0].value) == 1);
+  CHECK(std::get<bool>(d.runs[2].overrides[0].value));
+  CHECK(std::get<std::string>(d.runs[3].overrides[0].value) == "x");
+  // The base scene is read once, with no override: its table is the file's.
+  CHECK(d.base.overridden.empty());
+  CHECK(d.coordinates == std::vector<std::string>{"y"});  // the bouncing ball: one coordinate
+}
+
+TEST_CASE("the inputs: the base scene and every record file a run reads, by content") {
+  const fs::path file = write_design("inputs", scene_line("bridge-exc5") + R"(
+[[factor]]
+key = "record"
+records = [ { name = "one", transverse = "in-a.AT2" } ]
+)");
+  const fs::path record = file.parent_path() / "in-a.AT2";
+  fs::copy_file(kScenes + "/../data/ground-motions/RSN6_IMPVALL.I_I-ELC180.AT2", record,
+                fs::copy_options::overwrite_existing);
+  const Design a = load_design(file);
+  // bridge-exc5's own records are its transverse (replaced by the factor) and longitudinal one.
+  REQUIRE(a.inputs.size() == 3);
+  CHECK(a.inputs[0].path == fs::path(kScenes + "/bridge-exc5.toml").lexically_normal());
+  const auto named = [&](const Design& d) {
+    return std::find_if(d.inputs.begin(), d.inputs.end(),
+                        [&](const auto& i) { return i.path == record.lexically_normal(); });
+  };
+  REQUIRE(named(a) != a.inputs.end());
+  CHECK(named(a)->name == "in-a.AT2");
+  // FNV-1a of the empty string is its offset basis; of "a" the published test vector.
+  CHECK(nsb::sweep::content_hash("") == "cbf29ce484222325");
+  CHECK(nsb::sweep::content_hash("a") == "af63dc4c8601ec8c");
+  std::ofstream(record, std::ios::app) << "\n";  // one byte more: another content
+  const Design b = load_design(file);
+  CHECK(named(b)->hash != named(a)->hash);
+  CHECK(b.hash != a.hash);
 }
 
 TEST_CASE("linspace and logspace: closed forms, both ends exact") {
@@ -182,7 +240,7 @@ values = [2.0, 3.0, 4.0]
   CHECK(d.runs[0].overrides.empty());
   CHECK(d.runs[2].labels == std::vector<std::string>{"0.7", ""});
   CHECK(d.runs[5].labels == std::vector<std::string>{"", "4"});
-  CHECK(d.runs[5].overrides == std::vector<std::string>{"model.height=4"});
+  CHECK(texts(d.runs[5].overrides) == std::vector<std::string>{"model.height=4.0"});
 }
 
 TEST_CASE("records: one level per record, each component mapped to its scene key") {
@@ -200,10 +258,10 @@ records = [
   const auto& sylmar = d.factors[0].levels[0];
   CHECK(sylmar.label == "sylmar");
   // a.AT2 exists beside the design: resolved there; b.AT2 does not: left to the scene's lookup.
-  CHECK(sylmar.overrides ==
-        std::vector<std::string>{"model.excitation.transverse_record=\"" +
-                                     (file.parent_path() / "a.AT2").string() + "\"",
-                                 "model.excitation.longitudinal_record=\"b.AT2\""});
+  CHECK(texts(sylmar.overrides) ==
+        std::vector<std::string>{"model.excitation.transverse_record='" +
+                                     (file.parent_path() / "a.AT2").string() + "'",
+                                 "model.excitation.longitudinal_record='b.AT2'"});
   CHECK(d.factors[0].levels[1].label == "elCentro");  // the file's stem by default
 }
 
@@ -219,11 +277,11 @@ levels = [ { name = "low", set = ["model.height=0.5"] }, { name = "high", set = 
       << "# a comment\ndrop,model.restitution\nlow,0.5\nhigh,\"0.75\"\nhigh,\n";
   const Design d = load_design(file);
   REQUIRE(d.runs.size() == 3);
-  CHECK(d.runs[0].overrides ==
+  CHECK(texts(d.runs[0].overrides) ==
         std::vector<std::string>{"model.height=0.5", "model.restitution=0.5"});
-  CHECK(d.runs[1].overrides ==
+  CHECK(texts(d.runs[1].overrides) ==
         std::vector<std::string>{"model.height=2", "model.restitution=0.75"});
-  CHECK(d.runs[2].overrides == std::vector<std::string>{"model.height=2"});  // empty: base value
+  CHECK(texts(d.runs[2].overrides) == std::vector<std::string>{"model.height=2"});  // empty: base
   CHECK_NOTHROW(validate_design(d));
 }
 
