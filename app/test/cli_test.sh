@@ -227,7 +227,7 @@ expect 0 'status     completed' -- run "$root/scenes/bridge-exc5.toml" --set mod
 check "summary.json reports input.transverse.sa_g = 0.5" \
   grep -Eq '"input": \{"transverse": \{"pga_g": [0-9.e+-]+, "sa_g": 0\.5, "sa_period": 0\.354[0-9]*, "sa_damping": 0\.05, "scale_factor": [0-9.e+-]+\}, "longitudinal": \{"pga_g": 1, ' \
   "$tmp/sa/summary.json"
-expect 2 'bridge-exc5\.toml: model\.excitation\.target_sa \(override\): must be >= 0' -- run \
+expect 2 'bridge-exc5\.toml: model\.excitation\.target_sa \(override\): must be in \[0, 20\] \[g\] \(got -1\)' -- run \
   "$root/scenes/bridge-exc5.toml" --set model.excitation.scale_to=sa --set model.excitation.target_sa=-1
 
 # The suite's spectra scaled to one PSA: every record passes through it, the mean too.
@@ -237,6 +237,19 @@ check "suite-spectra.csv: at T = 0.5 s every record and the mean are 0.8 g" \
   awk -F, '$1 == "0.5" { for (k = 2; k <= 22; ++k) if ($k < 0.8 - 1e-12 || $k > 0.8 + 1e-12) exit 1; found = 1 } END { exit !found }' \
   "$tmp/suite/suite-spectra.csv"
 expect 2 'give either --scene' -- suite-spectra "$root/data/ground-motions/asce7-suite/records.csv" --out "$tmp/suite"
+
+# --- bounded messages and the scene file itself ---------------------------------------------
+expect 2 '^--jobs: Value -1 not in range 0 to 2147483647$' -- sweep "$root/scenes/sweeps/limit-states.toml" --out "$tmp/j" --jobs -1
+mkfifo "$tmp/scene.fifo"
+expect 2 'scene\.fifo: cannot open scene file \(not a regular file\)' -- run "$tmp/scene.fifo" --out "$tmp/x"
+expect 2 'cannot open scene file \(not a regular file\)' -- run "$tmp" --out "$tmp/x"
+# A run's work is bounded before it starts, at the key (docs/scenes.md, "The work of a run").
+expect 2 'bridge-exc7\.toml: solver\.end_time \(override\): end_time 1e\+99 s with output\.sample_dt 0\.005 s gives 2e\+101 history rows' \
+  -- run "$root/scenes/bridge-exc7.toml" --method event_driven --set solver.end_time=1e99 --out "$tmp/x"
+expect 2 'bridge-exc7\.toml: solver\.end_time \(override\): must be at most 1e\+100 in magnitude' \
+  -- run "$root/scenes/bridge-exc7.toml" --method event_driven --set solver.end_time=1e308 --out "$tmp/x"
+expect 2 'bridge-exc7\.toml: output\.sample_dt \(override\): is subnormal' \
+  -- run "$root/scenes/bridge-exc7.toml" --set output.sample_dt=1e-310 --out "$tmp/x"
 
 echo "cli: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]
