@@ -51,10 +51,7 @@ void run_criterion(const CriterionArgs& a) {
   // (--width 1e-300 --length 1e300) make eta infinite or NaN. Such a result is no answer, and
   // it is refused rather than printed. W/L must be a normal double so that L/W is finite too.
   const double ratio = a.width / a.length;
-  const bool finite = std::isnormal(ratio) && std::isfinite(c.eta_plus) &&
-                      std::isfinite(c.eta_minus) && std::isfinite(c.printed_eta_plus) &&
-                      std::isfinite(c.printed_eta_minus);
-  if (!finite) {
+  if (!models::analytic::finite_criterion(in, c)) {
     throw InputError("criterion: --width " + number(a.width) + " and --length " +
                      number(a.length) + " (W/L = " + number(ratio) +
                      ", mu = " + number(a.friction) +

@@ -15,6 +15,7 @@
 #include "sweep/runner.hpp"
 
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -86,7 +87,7 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--out", args->options.out, "Folder of the sweep: runs/<id>/, results.csv")
       ->required();
   cmd->add_option("--jobs", args->options.jobs, "Worker threads per process (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
   cmd->add_option("--set", args->options.set,
                   "Add an override to every run, e.g. --set solver.end_time=2 (repeatable)")
       ->allow_extra_args(false);

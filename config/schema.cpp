@@ -1,6 +1,7 @@
 #include "config/schema.hpp"
 
 #include <charconv>
+#include <cstdio>
 
 namespace nsb::config {
 
@@ -11,6 +12,13 @@ std::string shortest(double v) {
   char buffer[32];
   const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
   return std::string(buffer, end);
+}
+
+// v with at most 6 significant digits, as messages quote a value: 0.3, 1e+308.
+std::string six_digits(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", v);
+  return buffer;
 }
 
 std::string with_unit(std::string text, std::string_view unit) {
@@ -92,7 +100,7 @@ std::string misfit_value(Kind kind, std::string_view unit, const Range& range,
       if (!std::holds_alternative<double>(v)) return "expected a number";
       const double d = std::get<double>(v);
       if (!std::isfinite(d)) return "must be finite";
-      if (!range.contains(d)) return rule + " (got " + shortest(d) + ")";
+      if (!range.contains(d)) return rule + " (got " + six_digits(d) + ")";
       return {};
     }
     case Kind::kInteger: {

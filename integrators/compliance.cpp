@@ -1,6 +1,7 @@
 #include "integrators/compliance.hpp"
 
 #include "integrators/compliance_integrator.hpp"
+#include "integrators/work_bounds.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,7 @@ RunResult ComplianceRun::integrate() {
   start();
   double dt = std::min(options_.initial_step, options_.max_step);
   const double time_scale = std::max(1.0, std::abs(options_.end_time));
+  PaceWatch pace(t_, options_.end_time);
   while (t_ < options_.end_time) {
     if (stats.steps + stats.rejected_steps >= options_.max_steps) {
       stats.message = "max_steps reached";
@@ -56,6 +58,11 @@ RunResult ComplianceRun::integrate() {
       continue;
     }
     if (!accept_step(t_new, landed, closure.at_start)) break;
+    if (std::string why = pace.collapsed(stats.steps, t_); !why.empty()) {
+      stats.message = std::move(why);
+      book_.stall(t_);
+      break;
+    }
     book_.progress_at_interval(t_);
   }
   const bool completed = t_ >= options_.end_time;

@@ -1,6 +1,7 @@
 #include "integrators/event_driven.hpp"
 
 #include "integrators/event_integrator.hpp"
+#include "integrators/work_bounds.hpp"
 #include "io/csv.hpp"
 
 #include <algorithm>
@@ -85,10 +86,17 @@ EventDriven::EventDriven(System& system, const EventDrivenOptions& options, Reco
 RunResult EventDriven::run() {
   if (!start()) return finish(false);
   const double t_end = opt_.end_time;
+  PaceWatch pace(t_, t_end);
   while (t_ < t_end) {
     const StepEnd end = step();
     if (end == StepEnd::kStop) return finish(false);
     if (end == StepEnd::kEndTime) break;
+    if (std::string why = pace.collapsed(book_.result().steps, t_); !why.empty()) {
+      warn(t_, 0, why);
+      book_.result().message = std::move(why);
+      book_.stall(t_);
+      return finish(false);
+    }
   }
   t_ = std::min(t_, t_end);
   return finish(true);

@@ -2,6 +2,7 @@
 
 #include "integrators/contact_stage.hpp"
 #include "integrators/run_bookkeeping.hpp"
+#include "integrators/work_bounds.hpp"
 #include "io/csv.hpp"
 
 #include <Eigen/LU>
@@ -18,8 +19,6 @@ namespace {
 // Relative slack when comparing times, so that round-off in end_time / h neither adds a
 // spurious sliver of a step nor drops the last one.
 constexpr double kTimeSlack = 1e-9;
-// Largest number of steps a run may take: beyond it the step is certainly a unit mistake.
-constexpr double kMaxSteps = 1e10;
 // Unsolved contact problems reported one by one (events and RunResult::warnings); more are
 // only counted, so a persistently failing solver cannot flood the outputs.
 constexpr std::int64_t kMaxWarnings = 100;
@@ -190,9 +189,12 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
                                 ") must exceed the system's initial time (" +
                                 io::three_digits(t_) + ")");
   }
-  if ((options.end_time - t_) / options.step > kMaxSteps) {
-    throw std::invalid_argument("moreau_jean: step is too small for end_time (more than 1e10 "
-                                "steps)");
+  // The bound on the work of a run (integrators/work_bounds.hpp), for callers that bypass
+  // the scene's check: "step: ..." names the key.
+  if (!((options.end_time - t_) / options.step <= kMaxSteps)) {
+    throw std::invalid_argument("step: " + io::three_digits(options.step) + " s to end_time " +
+                                io::three_digits(options.end_time) + " s takes more than the " +
+                                io::three_digits(kMaxSteps) + " steps a run may take");
   }
   q_new_ = Vector::Zero(n_);
   u_new_ = Vector::Zero(n_);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace nsb::models {
@@ -30,9 +31,11 @@ void Assembly::build_limits() {
   if (watch_limits(start) == integrators::StepVerdict::kUnseated) {
     for (const auto& v : watch_.values()) {
       if (v.exceeded) {
+        char overlap[32];
+        std::snprintf(overlap, sizeof overlap, "%.6g", v.margin);
         throw std::invalid_argument("limits." + v.name + ": seat_length is shorter than the "
-                                    "joint's opening at t0 (overlap " +
-                                    config::format_value(v.margin) + " m); it must exceed it");
+                                    "joint's opening at t0 (overlap " + std::string(overlap) +
+                                    " m); it must exceed it");
       }
     }
   }

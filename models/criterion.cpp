@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -24,6 +25,25 @@ void CriterionInput::validate() const {
   require(std::isfinite(width) && width > 0.0, "width", "must be > 0 [m]");
   require(std::isfinite(length) && length > 0.0, "length", "must be > 0 [m]");
   require(std::isfinite(friction) && friction >= 0.0, "friction", "must be >= 0");
+}
+
+bool finite_criterion(const CriterionInput& in, const Criterion& c) {
+  return std::isnormal(in.width / in.length) && std::isfinite(c.eta_plus) &&
+         std::isfinite(c.eta_minus) && std::isfinite(c.printed_eta_plus) &&
+         std::isfinite(c.printed_eta_minus);
+}
+
+Criterion checked_rotation_criterion(const CriterionInput& in) {
+  const Criterion c = rotation_criterion(in);
+  if (!finite_criterion(in, c)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "W = %.6g m and L = %.6g m (W/L = %.6g, mu = %.6g) make eta non-finite; "
+                  "expected W/L, L/W and mu L/W within the range of a double",
+                  in.width, in.length, in.width / in.length, in.friction);
+    throw std::invalid_argument(std::string("width: ") + text);
+  }
+  return c;
 }
 
 double eta(const CriterionInput& in, double impulse_ratio) {

@@ -30,6 +30,14 @@ struct Criterion {
   bool printed_rotation = false;  // max(|printed_eta_plus|, |printed_eta_minus|) > 1
 };
 Criterion rotation_criterion(const CriterionInput& in);
+// Whether c, the criterion of in, is an answer: eta scales with L/W, so inputs within their
+// ranges whose ratio W/L underflows or overflows a double (W = 1e-300 m, L = 1e300 m) make
+// eta infinite or NaN. W/L must be a normal double (so that L/W is finite too) and every eta
+// finite.
+bool finite_criterion(const CriterionInput& in, const Criterion& c);
+// rotation_criterion(in), or std::invalid_argument "width: ..." naming W, L, W/L and mu when
+// it is not finite_criterion: the one check of `nsbridge criterion` and nsbridge.criterion.
+Criterion checked_rotation_criterion(const CriterionInput& in);
 // eta(k) for a given ratio k = total tangential / total normal impulse.
 double eta(const CriterionInput& in, double impulse_ratio);
 

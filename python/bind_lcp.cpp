@@ -68,8 +68,7 @@ py::tuple frictional_problem(const Eigen::MatrixXd& delassus, const Eigen::Vecto
 py::dict criterion(double skew_deg, double width, double length, double friction) {
   const models::analytic::CriterionInput in{
       .skew_deg = skew_deg, .width = width, .length = length, .friction = friction};
-  in.validate();
-  const auto c = models::analytic::rotation_criterion(in);
+  const auto c = models::analytic::checked_rotation_criterion(in);
   py::dict d;
   d["skew_deg"] = skew_deg;
   d["width"] = width;

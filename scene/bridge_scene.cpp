@@ -153,8 +153,64 @@ takeda::Parameters bent_spring(const Section& s, const BentSettings& b, const ch
                           : b.design.stiffness();
   const double ff = fy ? (longitudinal ? b.yield_force_longitudinal : b.yield_force_transverse)
                        : b.design.yield_force();
-  return takeda::Parameters::bilinear(ff, ff / kk, b.design.post_yield_ratio,
-                                      b.design.unloading_exponent);
+  const takeda::Parameters spring = takeda::Parameters::bilinear(
+      ff, ff / kk, b.design.post_yield_ratio, b.design.unloading_exponent);
+  // The spring's stiffness k, yield force f_y and yield displacement f_y / k, derived from
+  // the column design or given, obey the bound of a scene number (kMaxMagnitude): positive,
+  // within 1e-100 ... 1e100. A height of 1e-100 m gives k ~ 1e305 kN/m, whose natural
+  // frequencies no eigenproblem resolves; a diameter of 1e99 m an infinite k.
+  const double dy = ff / kk;
+  const auto normal = [](double x) {
+    return std::isfinite(x) && x >= 1.0 / kMaxMagnitude && x <= kMaxMagnitude;
+  };
+  bool takeda_ok = true;
+  try {
+    spring.validate();
+  } catch (const std::invalid_argument&) {
+    takeda_ok = false;
+  }
+  if (!(normal(kk) && normal(ff) && normal(dy) && takeda_ok)) {
+    const auto value = [](double x, const char* unit) {
+      return std::isfinite(x) ? six_digits(x) + " " + unit : derived(x);
+    };
+    const std::string what = std::string(direction) + " stiffness k = " + value(kk, "kN/m") +
+                             ", yield force f_y = " + value(ff, "kN") +
+                             " and yield displacement f_y / k = " + value(dy, "m");
+    if (stiff && fy) {
+      s.fail(sk, "with " + fk + ", gives a " + what +
+                     "; expected positive numbers within 1e-100 ... 1e+100");
+    }
+    // The design key furthest from its default (in orders of magnitude) is the likely cause.
+    const BentDesign defaults;
+    const std::array<std::pair<const char*, std::pair<double, double>>, 5> design{{
+        {"height", {b.design.height, 5.0}},
+        {"column_diameter", {b.design.column_diameter, defaults.column_diameter}},
+        {"elastic_modulus", {b.design.elastic_modulus, defaults.elastic_modulus}},
+        {"cracked_ratio", {b.design.cracked_ratio, defaults.cracked_ratio}},
+        {"yield_strain", {b.design.yield_strain, defaults.yield_strain}},
+    }};
+    const char* cause = "height";
+    double furthest = -1.0;
+    std::string inputs;
+    for (const auto& [key, v] : design) {
+      if (!s.has(key)) continue;
+      inputs += (inputs.empty() ? "" : ", ") + std::string(key) + " = " + six_digits(v.first) +
+                (std::string_view(key) == "elastic_modulus" ? " kPa"
+                 : std::string_view(key) == "height" || std::string_view(key) == "column_diameter"
+                     ? " m"
+                     : "");
+      const double distance = std::abs(std::log10(v.first / v.second));
+      if (!(distance <= furthest)) {
+        furthest = distance;
+        cause = key;
+      }
+    }
+    inputs += ", columns = " + std::to_string(b.design.columns);
+    s.fail(cause, "the column design (" + inputs + ") gives a " + what +
+                      " (k = 12 n E I_eff / H^3, f_y = k 2.25 eps_y H^2 / (6 d)); expected "
+                      "positive numbers within 1e-100 ... 1e+100");
+  }
+  return spring;
 }
 
 // [[model.bents]]: the bents, the segment each carries and their wave-passage delays [s].
@@ -435,6 +491,43 @@ SegmentedDeck read_segments(const Section& m, BridgeDesign& p) {
   return d;
 }
 
+// A seat shorter than its joint's opening at t0 (models/assembly_limits.cpp): reported at the
+// seat's key (seat_length of [model.abutments] or of the hinge) with the gap that conflicts
+// with it, and the likely unit when the gap is longer than the seat but not in mm.
+[[noreturn]] void seat_error(const Section& m, const std::string& joint, const BridgeDesign& p,
+                             const SegmentedDeck* d, const BridgeLimits& limits,
+                             const std::string& detail) {
+  double seat = limits.abutment_seat;
+  double gap = joint == "left" ? p.deck.gap_left : p.deck.gap_right;
+  std::string gap_key = std::string("[model.gaps] ") + (joint == "left" ? "left" : "right");
+  std::optional<Section> at;
+  if (joint.rfind("hinge_", 0) == 0) {
+    const std::size_t k = std::stoul(joint.substr(6)) - 1;
+    const auto* hinges = m.array_of_tables("hinges");
+    if (hinges != nullptr && k < hinges->size() && d != nullptr && k < d->hinges.size()) {
+      at.emplace(m.context(), *(*hinges)[k].as_table(),
+                 m.key_path("hinges") + "[" + std::to_string(k) + "]");
+      gap = d->hinges[k].gap;
+      gap_key = "gap";
+      seat = k < limits.hinge_seats.size() ? limits.hinge_seats[k] : seat;
+    }
+  } else if (const auto* t = m.subtable("abutments")) {
+    at.emplace(m.context(), *t, m.key_path("abutments"));
+  }
+  if (!at) m.fail_table("seat_length: " + detail);
+  // detail: "seat_length is shorter than the joint's opening at t0 (overlap -0.01 m); ..."
+  const auto open = detail.find("(overlap ");
+  const std::string overlap =
+      open == std::string::npos ? "" : " " + detail.substr(open, detail.find(')', open) - open + 1);
+  std::string what = "seat_length " + six_digits(seat) + " m is shorter than the " + joint +
+                     " joint's opening at t0" + overlap + ", set by " + gap_key + " = " +
+                     six_digits(gap) + " m and the deck's initial position; it must exceed it";
+  if (gap > seat && gap / 1000.0 < seat) {
+    what += "; a gap in mm? " + six_digits(gap) + " mm is " + six_digits(gap / 1000.0) + " m";
+  }
+  at->fail("seat_length", what);
+}
+
 // What a bridge adds to the benchmark's parts: the part kinds' parts, limit states.
 struct BridgeAdditions {
   BridgePartSettings parts;
@@ -464,6 +557,13 @@ std::unique_ptr<integrators::System> assemble(const Section& m, const BridgeDesi
     }
     return std::make_unique<Assembly>(std::move(parts));
   } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    const std::string unseating = "limits.unseating_";
+    if (what.rfind(unseating, 0) == 0) {
+      const std::string joint = what.substr(unseating.size(), what.find(':') - unseating.size());
+      seat_error(m, joint, p, d, a.limits.limits, what.substr(what.find(": ") + 2));
+    }
+    if (d != nullptr) rethrow_penetration(m, "segments", "hinges", e);
     m.rethrow(e);
   }
 }
@@ -504,6 +604,7 @@ BridgeScene build_bridge(Section& m) {
   if (segmented) segments = read_segments(m, p);
   const std::optional<Section> deck =
       segmented ? std::nullopt : read_table(m, "deck", bridge_deck_fields(), p);
+  if (deck) check_body(*deck, p.mass, p.inertia, p.deck.length, p.deck.width);
   std::vector<double> lengths;
   for (const auto& b : segments.segments) lengths.push_back(b.length);
   if (!segmented) lengths.push_back(p.deck.length);

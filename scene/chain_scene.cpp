@@ -8,6 +8,8 @@
 #include "models/deck_chain.hpp"
 #include "scene/scene_schema.hpp"
 
+#include <optional>
+
 namespace nsb::scene {
 
 using namespace models;  // the systems and parts a scene builds
@@ -42,6 +44,7 @@ std::vector<parts::RigidBody> read_bodies(const Section& m, std::string_view key
     for (const char* required : {"mass", "inertia", "length", "width"}) {
       if (!s.has(required)) s.fail_table(std::string("missing key ") + required);
     }
+    check_body(s, b.mass, b.inertia, b.length, b.width);
     if (i > 0 && b.width != out[0].width) {
       s.fail("width", "must equal the width of element 0 (" + config::format_value(out[0].width) +
                           " m): a joint's two corners lie on the other body's end face");
@@ -98,8 +101,33 @@ std::unique_ptr<integrators::System> build_deck_chain(Section& m) {
     }
     return std::make_unique<Assembly>(std::move(parts));
   } catch (const std::invalid_argument& e) {
+    rethrow_penetration(m, "decks", "joints", e);
     m.rethrow(e);
   }
+}
+
+void rethrow_penetration(const Section& m, std::string_view bodies, std::string_view joints,
+                         const std::invalid_argument& e) {
+  const std::string what = e.what();
+  if (what.find("initial penetration") == std::string::npos) return;
+  // The inputs that set the initial gaps: the bodies' initial positions and the joints' gaps
+  // given in the scene; the message is reported at the first initial position given.
+  std::optional<Section> first;
+  std::string inputs;
+  const auto collect = [&](std::string_view list, std::string_view key, bool report) {
+    const toml::array* a = m.array_of_tables(list);
+    for (std::size_t i = 0; a != nullptr && i < a->size(); ++i) {
+      const toml::table* t = (*a)[i].as_table();
+      if (t == nullptr || t->get(key) == nullptr) continue;
+      Section s(m.context(), *t, m.key_path(list) + "[" + std::to_string(i) + "]");
+      inputs += (inputs.empty() ? "" : ", ") + s.key_path(key);
+      if (report && !first) first.emplace(s);
+    }
+  };
+  collect(bodies, "initial_position", true);
+  collect(joints, "gap", false);
+  if (!first) return;
+  first->fail("initial_position", what + " (set by " + inputs + ")");
 }
 
 }  // namespace nsb::scene

@@ -148,7 +148,8 @@ void abutment_docs(std::vector<DocTable>& out) {
   out.push_back({"model.abutments",
                  kHeader + rows(AbutmentSettings::fields(), AbutmentSettings{}) +
                      rows(SeatLengthSettings::fields(), SeatLengthSettings{},
-                          {{"seat_length", "none"}})});
+                          {{"seat_length", "none"}}),
+                 joined(keys(AbutmentSettings::fields()), keys(SeatLengthSettings::fields()))});
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 
 #include <toml++/toml.h>
 
+#include <cerrno>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,11 +21,26 @@ namespace fs = std::filesystem;
 // The parsed TOML of a scene file; a syntax error names its line and column.
 toml::table parse_scene_file(const fs::path& file, const Source& ctx) {
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) {
+  const fs::file_status status = fs::status(file, ec);
+  if (!fs::exists(status)) {
     throw std::invalid_argument(ctx.file + ": cannot open scene file (not found)");
   }
+  if (!fs::is_regular_file(status)) {
+    // A FIFO or a device could block or never end; a directory holds no text.
+    throw std::invalid_argument(ctx.file + ": cannot open scene file (not a regular file)");
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in.is_open()) {
+    throw std::invalid_argument(ctx.file + ": cannot read scene file (" +
+                                std::generic_category().message(errno) + ")");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) {
+    throw std::invalid_argument(ctx.file + ": cannot read scene file (a read error)");
+  }
   try {
-    return toml::parse_file(file.string());
+    return toml::parse(text.str(), file.string());
   } catch (const toml::parse_error& e) {
     std::ostringstream s;
     s << ctx.file << ':' << e.source().begin.line << ':' << e.source().begin.column
@@ -113,6 +130,7 @@ Scene build_scene(const SceneTable& source) {
     scene.system = build_simple_system(scene.kind, m);
   }
   check_solver(solver, scene.run);
+  check_work(solver, output, scene.run, scene.system->initial_time(), scene.output.sample_dt);
   scene.table = source;
   return scene;
 }

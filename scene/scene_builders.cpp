@@ -43,8 +43,9 @@ std::unique_ptr<integrators::System> build(Section& m, std::span<const config::F
 void check_oscillator(const Section& m, const ImpactOscillator::Parameters& p) {
   if (p.initial_position > p.gap) {
     m.fail(m.has("initial_position") ? "initial_position" : "gap",
-           "initial penetration: initial_position (" + config::format_value(p.initial_position) +
-               " m) must be <= gap (" + config::format_value(p.gap) + " m)");
+           "initial penetration: " + m.key_path("initial_position") + " (" +
+               six_digits(p.initial_position) + " m) must be <= " + m.key_path("gap") + " (" +
+               six_digits(p.gap) + " m)");
   }
 }
 
@@ -58,6 +59,36 @@ std::unique_ptr<integrators::System> build_simple_system(const std::string& kind
   return build<SlidingBlock>(m, sliding_block_fields());
 }
 
+void check_body(const Section& s, double mass, double inertia, double length, double width) {
+  const double area = length * width;
+  const double density = mass / area;
+  const std::string plan = six_digits(length) + " m x " + six_digits(width) + " m";
+  if (!(density >= 1e-6 && density <= 100.0)) {
+    const std::string key = s.has("mass") || !s.has("length") ? "mass" : "length";
+    std::string what = "mass " + six_digits(mass) + " t over a plan of " + plan + " is " +
+                       derived(density) +
+                       " t/m^2; expected 1e-06 to 100 t/m^2 (a concrete deck weighs 1 to 2 "
+                       "t/m^2)";
+    if (density > 100.0 && density / 1000.0 <= 100.0) {
+      what += "; a mass in kg? " + six_digits(mass) + " kg is " + six_digits(mass / 1000.0) + " t";
+    }
+    s.fail(key, what);
+  }
+  const double uniform = mass * (length * length + width * width) / 12.0;
+  const double ratio = inertia / uniform;
+  if (!(ratio >= 1e-6 && ratio <= 100.0)) {
+    std::string what = "inertia " + six_digits(inertia) + " t m^2 is " + derived(ratio) +
+                       " times that of the mass " + six_digits(mass) + " t spread over " + plan +
+                       " (m (L^2 + W^2) / 12 = " + derived(uniform) +
+                       " t m^2); expected 1e-06 to 100 times";
+    if (ratio > 100.0 && ratio / 1000.0 <= 100.0) {
+      what += "; an inertia in kg m^2? " + six_digits(inertia) + " kg m^2 is " +
+              six_digits(inertia / 1000.0) + " t m^2";
+    }
+    s.fail(s.has("inertia") ? "inertia" : "mass", what);
+  }
+}
+
 BridgeScene build_rigid_deck(Section& m) {
   m.only(model_keys(rigid_deck_fields()));
   BridgeDesign p = BridgeDesign::free_deck();
@@ -66,6 +97,7 @@ BridgeScene build_rigid_deck(Section& m) {
   for (const char* k : {"mass", "inertia", "length", "width"}) {
     if (!m.has(k)) m.fail_table(std::string("missing key ") + k + " (required for rigid_deck)");
   }
+  check_body(m, p.mass, p.inertia, p.deck.length, p.deck.width);
   BridgeScene out;
   try {
     out.system = std::make_unique<Assembly>(bridge_parts(p));

@@ -29,6 +29,19 @@ integrators::RunConfig read_solver(Section& s);
 // the [solver] key they name.
 void check_solver(const Section& s, const integrators::RunConfig& config);
 
+// A rigid deck body's mass [t] and inertia [t m^2] against its plan L x W [m], refused at the
+// key most likely wrong when off by a unit factor (docs/scenes.md, "Plausible values"): the
+// mass per area within [1e-6, 100] t/m^2 (a concrete deck weighs 1 to 2 t/m^2, a mass in kg
+// a thousand times that), the inertia within [1e-6, 100] times that of the mass spread
+// uniformly, m (L^2 + W^2) / 12 (all of it at the ends is 3 times).
+void check_body(const Section& s, double mass, double inertia, double length, double width);
+
+// The bound on the work of a run (integrators/work_bounds.hpp): the steps and history rows of
+// config over [t0, end_time] with the history sampled every sample_dt, refused at the key of
+// [solver] or [output] that makes them too many.
+void check_work(const Section& solver, const Section& output,
+                const integrators::RunConfig& config, double t0, double sample_dt);
+
 // bouncing_ball, impact_oscillator or sliding_block from the [model] table.
 std::unique_ptr<integrators::System> build_simple_system(const std::string& kind, Section& m);
 
@@ -52,6 +65,12 @@ BridgeScene build_rigid_deck(Section& m);
 // The deck bodies of [[model.<key>]] (models/bridge_fields.hpp, segment_fields): at least one,
 // mass, inertia, length and width required, every width equal to the first.
 std::vector<models::parts::RigidBody> read_bodies(const Section& m, std::string_view key);
+
+// A model's "initial penetration" error of a deck in bodies (the arrays of tables `bodies` and
+// `joints` of m) rethrown at the first body's initial_position given, naming every initial
+// position and gap given; returns for another error or when no initial position is given.
+void rethrow_penetration(const Section& m, std::string_view bodies, std::string_view joints,
+                         const std::invalid_argument& e);
 // Exactly `count` [[model.<key>]] joints (joint_fields; gap required); `rule` says why.
 // `extra`: further keys an element may hold, read by the caller (seat_length, restrainer).
 std::vector<models::DeckChain::Joint> read_joints(const Section& m, std::string_view key,

@@ -7,6 +7,7 @@
 #include "scene/bridge_part_kinds.hpp"
 #include "scene/scene_schema.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -40,8 +41,10 @@ void add_bridge_tables(std::vector<DocTable>& out) {
                              {"stiffness_transverse", "derived"},
                              {"yield_force_transverse", "derived"}};
   out.push_back(table("model.bents", BentSettings::fields(), BentSettings{}, derived));
-  out.push_back({"model.seats", kHeader + rows(bridge_seat_fields(), bridge) +
-                                    rows(SeatMotionSettings::fields(), SeatMotionSettings{})});
+  out.push_back({"model.seats",
+                 kHeader + rows(bridge_seat_fields(), bridge) +
+                     rows(SeatMotionSettings::fields(), SeatMotionSettings{}),
+                 joined(keys(bridge_seat_fields()), keys(SeatMotionSettings::fields()))});
   out.push_back(table("model.excitation", ExcitationSettings::fields(), ExcitationSettings{}));
   // A deck in several bodies: the bridge's [[model.segments]] and [[model.hinges]], the deck
   // chain's [[model.decks]] and [[model.joints]] (the same keys).
@@ -52,7 +55,8 @@ void add_bridge_tables(std::vector<DocTable>& out) {
   out.push_back({"model.hinges",
                  kHeader + rows(joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}) +
                      rows(SeatLengthSettings::fields(), SeatLengthSettings{},
-                          {{"seat_length", "none"}})});
+                           {{"seat_length", "none"}}),
+                 joined(keys(joint_fields()), keys(SeatLengthSettings::fields()))});
   out.push_back(table("model.limit_states", LimitStateSettings::fields(), LimitStateSettings{},
                       {{"drift_ratio", "none"}, {"residual_rotation", "none"}}));
   // The part kinds' tables (restrainers, abutments, bearings, shear keys).
@@ -82,6 +86,63 @@ std::vector<DocTable> scene_doc_tables() {
   out.push_back(
       table("model.rigid_deck", rigid_deck_fields(), BridgeDesign::free_deck(), required));
   add_bridge_tables(out);
+  return out;
+}
+
+namespace {
+
+// A table's marker name as a scene file writes it.
+std::string written(const std::string& name) {
+  static const std::set<std::string> arrays{"model.bents", "model.segments", "model.hinges",
+                                            "model.bearings"};
+  static const std::set<std::string> kinds{"model.bouncing_ball", "model.impact_oscillator",
+                                           "model.sliding_block", "model.rigid_deck"};
+  if (name == "top") return "the top level";
+  if (name.rfind("solver.", 0) == 0) {
+    return "[solver] with method = \"" + name.substr(7) + "\"";
+  }
+  if (kinds.count(name) != 0) return "[model] with kind = \"" + name.substr(6) + "\"";
+  if (name == "model.restrainer") return "restrainer of [[model.hinges]] or [model.abutments]";
+  if (name == "model.layout") return "[model] of a bridge in [[model.segments]]";
+  if (arrays.count(name) != 0) return "[[" + name + "]]";
+  return "[" + name + "]";
+}
+
+// Whether table `name` is the table at key path `path` ("model.bents[0]" is model.bents).
+bool is_table_at(const std::string& name, std::string_view path) {
+  std::string p;  // path without its indices: model.hinges[0].restrainer -> model.hinges.restrainer
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path[i] == '[') {
+      i = path.find(']', i);
+      if (i == std::string_view::npos) break;
+      continue;
+    }
+    p += path[i];
+  }
+  if (p.empty()) p = "top";
+  if (p.size() > 11 && p.ends_with(".restrainer")) p = "model.restrainer";
+  // A deck chain's bodies and joints hold the keys of a bridge's segments and hinges.
+  if (p == "model.decks") p = "model.segments";
+  if (p == "model.joints") p = "model.hinges";
+  if (name == p) return true;
+  // The method and kind tables are [solver] and [model] themselves.
+  return name.rfind(p + ".", 0) == 0 && (p == "solver" || name == "model.layout" ||
+                                         written(name).rfind("[model] with kind", 0) == 0);
+}
+
+}  // namespace
+
+std::vector<std::string> tables_holding(std::string_view key, std::string_view path) {
+  static const std::vector<DocTable> tables = scene_doc_tables();
+  std::vector<std::string> out;
+  for (const auto& t : tables) {
+    if (is_table_at(t.name, path)) continue;
+    for (const auto& k : t.keys) {
+      if (k.key != key) continue;
+      const std::string w = written(t.name);
+      if (std::find(out.begin(), out.end(), w) == out.end()) out.push_back(w);
+    }
+  }
   return out;
 }
 

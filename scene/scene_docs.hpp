@@ -18,10 +18,19 @@
 
 namespace nsb::scene {
 
-// One generated table: its marker name ("solver.moreau", "model.deck", ...) and its markdown.
+// One key of a table: its name and kind ("number", "integer", "boolean", "choice", "text",
+// "vector3").
+struct DocKey {
+  std::string key;
+  std::string kind;
+};
+
+// One generated table: its marker name ("solver.moreau", "model.deck", ...), its markdown and
+// its keys in their order of declaration.
 struct DocTable {
   std::string name;
   std::string markdown;
+  std::vector<DocKey> keys;
 };
 
 // The rows of a key table from a struct's fields: key, unit, default, allowed values, meaning.
@@ -86,16 +95,47 @@ std::string rows(std::span<const config::Field<S>> fields, const S& defaults,
   return out;
 }
 
+inline std::string kind_name(config::Kind k) {
+  switch (k) {
+    case config::Kind::kNumber: return "number";
+    case config::Kind::kInteger: return "integer";
+    case config::Kind::kBoolean: return "boolean";
+    case config::Kind::kChoice: return "choice";
+    case config::Kind::kText: return "text";
+    case config::Kind::kVector3: return "vector3";
+  }
+  return {};
+}
+
+// The keys of fields, in their order of declaration.
+template <class S>
+std::vector<DocKey> keys(std::span<const config::Field<S>> fields) {
+  std::vector<DocKey> out;
+  for (const auto& f : fields) out.push_back({std::string(f.key), kind_name(f.kind)});
+  return out;
+}
+
+inline std::vector<DocKey> joined(std::vector<DocKey> a, const std::vector<DocKey>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
 template <class S>
 DocTable table(std::string name, std::span<const config::Field<S>> fields, const S& defaults,
                const DefaultNotes& notes = {}) {
-  return {std::move(name), kHeader + rows(fields, defaults, notes)};
+  return {std::move(name), kHeader + rows(fields, defaults, notes), keys(fields)};
 }
 
 }  // namespace doc_tables
 
 // Every table of the schema (the part kinds' with their kinds, scene/bridge_part_kinds.hpp).
 std::vector<DocTable> scene_doc_tables();
+
+// Where key is declared in a scene, for the hint of an unknown key: the tables other than
+// `path` (a key path such as "model.seats") that hold it, as a scene file writes them
+// ("[model.abutments]", "[[model.bents]]", "[solver] with method = \"compliance\""); empty
+// when none does.
+std::vector<std::string> tables_holding(std::string_view key, std::string_view path);
 
 // doc with the text between each pair of markers replaced by the generated table of that
 // name. Throws std::invalid_argument naming a marker whose name the schema does not know, an

@@ -1,6 +1,10 @@
 #include "scene/scene_reader.hpp"
 
+#include "scene/scene_docs.hpp"
+
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace nsb::scene {
@@ -19,6 +23,37 @@ void Source::fail(const toml::node* n, const std::string& key, const std::string
   // The top-level table has no key: its messages go straight after the file's position.
   s << ": " << what;
   throw std::invalid_argument(s.str());
+}
+
+std::string six_digits(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
+
+std::string derived(double x) {
+  if (std::isnan(x)) return "undefined";
+  if (std::isinf(x)) return "beyond the range of a double";
+  return six_digits(x);
+}
+
+std::string implausible_number(const config::Value& v) {
+  std::vector<double> x;
+  if (const auto* d = std::get_if<double>(&v)) x = {*d};
+  if (const auto* a = std::get_if<std::vector<double>>(&v)) x = *a;
+  const auto subnormal = [](double y) { return std::fpclassify(y) == FP_SUBNORMAL; };
+  const auto huge = [](double y) { return std::abs(y) > kMaxMagnitude; };
+  if (std::any_of(x.begin(), x.end(), subnormal)) {
+    return "is subnormal (" + config::format_value(v) +
+           "; below 2.2e-308, the smallest normal double), no physical value: its reciprocal "
+           "overflows; give 0 or a normal number";
+  }
+  if (std::any_of(x.begin(), x.end(), huge)) {
+    return "must be at most 1e+100 in magnitude (got " + config::format_value(v) +
+           "): the model's quantities are products of up to three values (1/2 m v^2, k x^2), "
+           "which must stay below the largest double, 1.8e+308";
+  }
+  return {};
 }
 
 std::string type_name(const toml::node& n) {
@@ -44,13 +79,57 @@ void Section::fail(std::string_view key, const std::string& what) const {
 
 void Section::fail_table(const std::string& what) const { c_.fail(&t_, path_, what); }
 
+namespace {
+
+// The Levenshtein distance of a and b (insertions, deletions and substitutions).
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// The hint of an unknown key: the known key of this table spelled closest to it (at most a
+// third of its letters differ), else the other tables that declare it.
+std::string unknown_key_hint(std::string_view key, const std::vector<std::string_view>& known,
+                             std::string_view path) {
+  std::string_view best;
+  std::size_t best_distance = std::max<std::size_t>(1, key.size() / 3) + 1;
+  for (const auto& k : known) {
+    const std::size_t d = edit_distance(key, k);
+    if (d < best_distance) {
+      best = k;
+      best_distance = d;
+    }
+  }
+  if (!best.empty()) return "; did you mean `" + std::string(best) + "`?";
+  const std::vector<std::string> elsewhere = tables_holding(key, path);
+  if (elsewhere.empty()) return {};
+  std::string list;
+  for (std::size_t i = 0; i < elsewhere.size(); ++i) {
+    list += (i == 0 ? "" : i + 1 == elsewhere.size() ? " or " : ", ") + ("`" + elsewhere[i] + "`");
+  }
+  return "; did you mean " + list + "? (" + std::string(key) + " is a key there)";
+}
+
+}  // namespace
+
 void Section::only(const std::vector<std::string_view>& known) {
   known_ = known;
   for (auto&& [k, v] : t_) {
     if (std::find(known.begin(), known.end(), k.str()) != known.end()) continue;
     std::string list;
     for (const auto& u : known) list.append(list.empty() ? "" : ", ").append(u);
-    c_.fail(&v, key_path(k.str()), "unknown key; allowed here: " + list);
+    c_.fail(&v, key_path(k.str()),
+            "unknown key" + unknown_key_hint(k.str(), known, path_) + "; allowed here: " + list);
   }
 }
 

@@ -36,6 +36,24 @@ struct Source {
                          const std::string& what) const;
 };
 
+// The largest magnitude of a scene number: the model's quantities are products of up to
+// three values (1/2 m v^2, m g h, k x^2), so values within 1e100 keep them below the largest
+// double (1.8e308); a physical value in kN, t, m, s is nowhere near it.
+inline constexpr double kMaxMagnitude = 1e100;
+
+// Why a number (or an element of a three-vector) of v is refused although it lies in its
+// field's range, "" when it is not: a subnormal value (0 < |x| < 2.2e-308, the smallest
+// normal double) has lost precision and its reciprocal overflows, so every quantity derived
+// from it (a frequency from a mass, a rate from a step) is infinite; a value beyond
+// kMaxMagnitude overflows the products it enters.
+std::string implausible_number(const config::Value& v);
+
+// x with at most 6 significant digits (%.6g), as messages print a number derived from inputs.
+std::string six_digits(double x);
+// A quantity derived from several keys, for messages: six_digits(x) when finite, else "beyond
+// the range of a double" (an overflow) or "undefined" (NaN), never inf or nan.
+std::string derived(double x);
+
 // "a table", "a string", ...: the TOML type of n, for messages.
 std::string type_name(const toml::node& n);
 
@@ -77,6 +95,7 @@ class Section {
     const auto v = value(f.key, f.kind);
     if (!v) return false;
     if (const std::string why = config::misfit(f, *v); !why.empty()) fail(f.key, why);
+    if (const std::string why = implausible_number(*v); !why.empty()) fail(f.key, why);
     f.set(out, *v);
     return true;
   }

@@ -12,6 +12,14 @@ namespace c = config;
 
 namespace {
 
+// Bounds of the excitation's scaling keys (docs/scenes.md, "Plausible values"): a target
+// acceleration beyond 20 g is five times the largest recorded (about 4 g), and a factor or
+// unit beyond 1000 (or a time scale below 1/1000) takes a record's amplitude or duration
+// past any motion a bridge meets; past them the scaled record overflows or its duration
+// exceeds the work a run may take.
+constexpr double kMaxTarget = 20.0;    // [g]
+constexpr double kMaxFactor = 1000.0;  // [-]
+
 // A choice among names known at run time (a std::string member), for lists that are not enums.
 template <class S>
 c::Field<S> name_choice(std::string_view key, const std::vector<std::string_view>& names,
@@ -125,9 +133,10 @@ std::span<const c::Field<SeatMotionSettings>> SeatMotionSettings::fields() {
                                 "wave-passage delay of the left seat"),
       c::number<&S::delay_right>("delay_right", "s", c::non_negative(),
                                  "wave-passage delay of the right seat"),
-      c::number<&S::rotation_scale>("rotation_scale", "-", c::any(),
+      c::number<&S::rotation_scale>("rotation_scale", "-", c::closed(-kMaxFactor, kMaxFactor),
                                     "factor on the rotation records"),
-      c::number<&S::rotation_unit>("rotation_unit", "rad/s^2 per file unit", c::positive(),
+      c::number<&S::rotation_unit>("rotation_unit", "rad/s^2 per file unit",
+                                   c::open_closed(0, kMaxFactor),
                                    "unit of the rotation records' values"),
       c::text<&S::rotation_record_left>("rotation_record_left",
                                         "record file of the left seat's angular acceleration "
@@ -144,29 +153,31 @@ std::span<const c::Field<ExcitationSettings>> ExcitationSettings::fields() {
   static const c::Field<S> f[] = {
       c::text<&S::longitudinal_record>("longitudinal_record", "record file of the x component"),
       c::text<&S::transverse_record>("transverse_record", "record file of the y component"),
-      c::number<&S::record_unit>("record_unit", "m/s^2 per file unit", c::positive(),
+      c::number<&S::record_unit>("record_unit", "m/s^2 per file unit",
+                                 c::open_closed(0, kMaxFactor),
                                  "unit of two-column and CSV records (.AT2 files are in g)"),
-      c::number<&S::target_pga>("target_pga", "g", c::non_negative(),
+      c::number<&S::target_pga>("target_pga", "g", c::closed(0, kMaxTarget),
                                 "PGA of the transverse record (or of the longitudinal one when "
                                 "it is alone); without longitudinal_pga the other component "
                                 "takes the same factor; 0 keeps the recorded amplitude"),
-      c::number<&S::longitudinal_pga>("longitudinal_pga", "g", c::non_negative(),
+      c::number<&S::longitudinal_pga>("longitudinal_pga", "g", c::closed(0, kMaxTarget),
                                       "PGA of the longitudinal record on its own (needs "
                                       "longitudinal_record); 0: the factor of target_pga"),
-      c::number<&S::scale>("scale", "-", c::any(), "an extra factor on both components"),
-      c::number<&S::time_scale>("time_scale", "-", c::positive(),
+      c::number<&S::scale>("scale", "-", c::closed(-kMaxFactor, kMaxFactor),
+                           "an extra factor on both components"),
+      c::number<&S::time_scale>("time_scale", "-", c::closed(1.0 / kMaxFactor, kMaxFactor),
                                 "t → time_scale · t (0.5 for the 1/4-scale similitude)"),
       c::boolean<&S::baseline_correction>("baseline_correction",
                                           "remove the drift of velocity and displacement"),
       c::choice<&kScaleToNames, &S::scale_to>(
           "scale_to", "what target_pga / target_sa set: \"pga\" the peak ground acceleration, "
                       "\"sa\" the pseudo-spectral acceleration PSA(sa_period, sa_damping)"),
-      c::number<&S::target_sa>("target_sa", "g", c::non_negative(),
+      c::number<&S::target_sa>("target_sa", "g", c::closed(0, kMaxTarget),
                                "scale_to = \"sa\": PSA of the transverse record (or of the "
                                "longitudinal one when it is alone); without longitudinal_pga "
                                "or longitudinal_sa the other component takes the same factor; "
                                "0 keeps the recorded amplitude"),
-      c::number<&S::longitudinal_sa>("longitudinal_sa", "g", c::non_negative(),
+      c::number<&S::longitudinal_sa>("longitudinal_sa", "g", c::closed(0, kMaxTarget),
                                      "scale_to = \"sa\": PSA of the longitudinal record on its "
                                      "own (needs longitudinal_record); 0: the common factor"),
       c::number<&S::sa_period>("sa_period", "s", c::positive(),

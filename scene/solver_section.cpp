@@ -3,6 +3,8 @@
 #include "scene/scene_builders.hpp"
 #include "scene/scene_schema.hpp"
 
+#include "integrators/work_bounds.hpp"
+
 #include <algorithm>
 #include <type_traits>
 #include <variant>
@@ -69,6 +71,20 @@ RunConfig read_solver(Section& s) {
       },
       config);
   return config;
+}
+
+void check_work(const Section& solver, const Section& output, const RunConfig& config,
+                double t0, double sample_dt) {
+  const std::string_view step_key =
+      std::holds_alternative<integrators::MoreauJeanOptions>(config) ? "step" : "max_step";
+  const std::string why = integrators::work_misfit(config, t0, sample_dt, solver.has(step_key),
+                                                   output.has("sample_dt"));
+  if (why.empty()) return;
+  const auto colon = why.find(": ");
+  const std::string key = why.substr(0, colon);
+  const std::string what = why.substr(colon + 2);
+  if (key == "sample_dt") output.fail(key, what);
+  solver.fail(key, what);
 }
 
 void check_solver(const Section& s, const RunConfig& config) {

@@ -159,11 +159,14 @@ expect 0 'warnings   0$' -- run "${sylmar7[@]}" --set solver.step=0.002 \
 expect 0 'status     completed_with_fallbacks' -- run "$root/scenes/bridge-exc7.toml" \
   --set model.gaps.left=0 --set model.gaps.right=0 --set solver.end_time=2 --out "$tmp/x"
 expect 1 'status     stalled at t = 0 s' -- run "$root/scenes/bouncing-ball.toml" \
-  --set model.gravity=1e308 --method event_driven --out "$tmp/x"
-expect 1 'status     diverged at t = ' -- run "$root/scenes/bouncing-ball.toml" \
-  --set model.gravity=1e308 --method moreau --out "$tmp/x"
-check "a diverged run prints no nan" bash -c \
-  "! '$nsb' run '$root/scenes/bouncing-ball.toml' --set model.gravity=1e308 --method moreau --out '$tmp/x' 2>&1 | grep -qi nan"
+  --set model.gravity=1e40 --method event_driven --out "$tmp/x"
+expect 1 'status     stalled at t = 0 s' -- run "$root/scenes/bouncing-ball.toml" \
+  --set model.gravity=1e100 --method compliance --out "$tmp/x"
+check "a stalled run prints no nan" bash -c \
+  "! '$nsb' run '$root/scenes/bouncing-ball.toml' --set model.gravity=1e100 --method compliance --out '$tmp/x' 2>&1 | grep -qi nan"
+# g = 1e308 is no scene value: a number is at most 1e100 in magnitude (docs/scenes.md).
+expect 2 'bouncing-ball\.toml: model\.gravity \(override\): must be at most 1e\+100 in magnitude' \
+  -- run "$root/scenes/bouncing-ball.toml" --set model.gravity=1e308 --out "$tmp/x"
 # Shortest period of the impact oscillator (m = 1 t, k = 1 kN/m): T = 2 pi sqrt(m/k) = 6.28 s,
 # so 20 steps per period need h <= 0.314 s.
 expect 0 'step_period: solver\.step = 0\.5 s resolves the shortest natural period 6\.28 s with 12\.6 steps; the method needs >= 20 \(solver\.step <= 0\.314 s\)' \
@@ -174,8 +177,9 @@ check "h = 0.3 s resolves T = 6.28 s by 20.9 steps: no step_period warning" bash
 for s in bouncing-ball impact-oscillator sliding-block rigid-deck-skew rigid-deck-straight bridge-exc7; do
   expect 0 'warnings   0$' -- run "$root/scenes/$s.toml" --out "$tmp/x" --strict
 done
-# Values that overflow the computation are bad input (it used to "complete" with null energies).
-expect 2 'bouncing-ball\.toml: the initial velocity \(1e\+160 in magnitude\) makes the kinetic energy' \
+# Values that overflow the computation are bad input (it used to "complete" with null energies):
+# beyond 1e100 a scene number is refused at its key.
+expect 2 'bouncing-ball\.toml: model\.velocity \(override\): must be at most 1e\+100 in magnitude' \
   -- run "$root/scenes/bouncing-ball.toml" --set model.velocity=1e160 --out "$tmp/x"
 # Record files: only regular files, every bad number named with its file and line.
 mkdir -p "$tmp/rec/ground-motions"
@@ -227,7 +231,7 @@ expect 0 'status     completed' -- run "$root/scenes/bridge-exc5.toml" --set mod
 check "summary.json reports input.transverse.sa_g = 0.5" \
   grep -Eq '"input": \{"transverse": \{"pga_g": [0-9.e+-]+, "sa_g": 0\.5, "sa_period": 0\.354[0-9]*, "sa_damping": 0\.05, "scale_factor": [0-9.e+-]+\}, "longitudinal": \{"pga_g": 1, ' \
   "$tmp/sa/summary.json"
-expect 2 'bridge-exc5\.toml: model\.excitation\.target_sa \(override\): must be >= 0' -- run \
+expect 2 'bridge-exc5\.toml: model\.excitation\.target_sa \(override\): must be in \[0, 20\] \[g\] \(got -1\)' -- run \
   "$root/scenes/bridge-exc5.toml" --set model.excitation.scale_to=sa --set model.excitation.target_sa=-1
 
 # The suite's spectra scaled to one PSA: every record passes through it, the mean too.
@@ -237,6 +241,18 @@ check "suite-spectra.csv: at T = 0.5 s every record and the mean are 0.8 g" \
   awk -F, '$1 == "0.5" { for (k = 2; k <= 22; ++k) if ($k < 0.8 - 1e-12 || $k > 0.8 + 1e-12) exit 1; found = 1 } END { exit !found }' \
   "$tmp/suite/suite-spectra.csv"
 expect 2 'give either --scene' -- suite-spectra "$root/data/ground-motions/asce7-suite/records.csv" --out "$tmp/suite"
+
+# --- bounded messages and the scene file itself ---------------------------------------------
+expect 2 '^--jobs: Value -1 not in range 0 to 2147483647$' -- sweep "$root/scenes/sweeps/limit-states.toml" --out "$tmp/j" --jobs -1
+mkfifo "$tmp/scene.fifo"
+expect 2 'scene\.fifo: cannot open scene file \(not a regular file\)' -- run "$tmp/scene.fifo" --out "$tmp/x"
+# A run's work is bounded before it starts, at the key (docs/scenes.md, "The work of a run").
+expect 2 'bridge-exc7\.toml: solver\.end_time \(override\): end_time 1e\+99 s with output\.sample_dt 0\.005 s gives 2e\+101 history rows' \
+  -- run "$root/scenes/bridge-exc7.toml" --method event_driven --set solver.end_time=1e99 --out "$tmp/x"
+expect 2 'bridge-exc7\.toml: solver\.end_time \(override\): must be at most 1e\+100 in magnitude' \
+  -- run "$root/scenes/bridge-exc7.toml" --method event_driven --set solver.end_time=1e308 --out "$tmp/x"
+expect 2 'bridge-exc7\.toml: output\.sample_dt \(override\): is subnormal' \
+  -- run "$root/scenes/bridge-exc7.toml" --set output.sample_dt=1e-310 --out "$tmp/x"
 
 echo "cli: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 namespace {
 
@@ -480,4 +481,23 @@ TEST_CASE("rotation criterion against the two-corner impact solved by cases") {
   MESSAGE(checked << " impacts checked, " << rotating << " rotating");
   CHECK(rotating > 50);
   CHECK(checked - rotating > 50);
+}
+
+TEST_CASE("the criterion refuses inputs whose eta is not a finite number") {
+  // W/L = 1e-300 / 1e300 underflows to 0: eta = sin(2a) / (2 W/L) is inf, mu cos^2(a) / (W/L)
+  // inf, their difference NaN. Each input lies in its range, so validate() accepts them.
+  const an::CriterionInput in{.skew_deg = 30.0, .width = 1e-300, .length = 1e300, .friction = 0.2};
+  CHECK_NOTHROW(in.validate());
+  CHECK_FALSE(an::finite_criterion(in, an::rotation_criterion(in)));
+  try {
+    an::checked_rotation_criterion(in);
+    FAIL("accepted");
+  } catch (const std::invalid_argument& e) {
+    CHECK(std::string(e.what()) ==
+          "width: W = 1e-300 m and L = 1e+300 m (W/L = 0, mu = 0.2) make eta non-finite; "
+          "expected W/L, L/W and mu L/W within the range of a double");
+  }
+  // W/L = 2.44 / 33.35 is normal: the straight deck's eta = +-mu L/W = +-6.834 (mu = 0.5).
+  const an::CriterionInput ok{.skew_deg = 0.0, .width = 2.44, .length = 33.35, .friction = 0.5};
+  CHECK(an::checked_rotation_criterion(ok).eta_plus == doctest::Approx(0.5 * 33.35 / 2.44));
 }

@@ -78,3 +78,15 @@ def test_criterion_equals_the_command_line(nsbridge_exe):
     assert nsbridge.criterion(30.0, 10.0, 30.0, 0.2) == json.loads(cli.stdout)
     with pytest.raises(nsbridge.InputError, match="width"):
         nsbridge.criterion(30.0, -1.0, 30.0, 0.2)
+
+
+def test_criterion_refuses_a_non_finite_result_as_the_command_line_does(nsbridge_exe):
+    # W/L = 1e-300 / 1e300 underflows to 0, so eta = sin(2a) / (2 W/L) is infinite: no answer.
+    cli = subprocess.run([str(nsbridge_exe), "criterion", "--skew", "30", "--width", "1e-300",
+                          "--length", "1e300", "--friction", "0.2"], capture_output=True, text=True)
+    assert cli.returncode == 2 and "make eta non-finite" in cli.stderr
+    with pytest.raises(nsbridge.InputError, match=r"width: W = 1e-300 m and L = 1e\+300 m "
+                                                  r"\(W/L = 0, mu = 0.2\) make eta non-finite"):
+        nsbridge.criterion(30.0, 1e-300, 1e300, 0.2)
+    with pytest.raises(nsbridge.InputError, match="make eta non-finite"):
+        nsbridge.criterion(0.0, 4.9e-324, 1.0, 0.5)

@@ -172,7 +172,7 @@ TEST_CASE("scale_to = \"sa\": errors name the file, the line and the key") {
       {bridge_scene(record) + sa + "sa_period = 0\n", ":18:", "model.excitation.sa_period", "> 0"},
       {bridge_scene(record) + sa + "sa_period = -1\n", ":18:", "model.excitation.sa_period", "> 0"},
       {bridge_scene(record) + "scale_to = \"sa\"\ntarget_sa = -0.5\n", ":17:",
-       "model.excitation.target_sa", ">= 0"},
+       "model.excitation.target_sa", "must be in [0, 20] [g]"},
       {bridge_scene(record) + "target_sa = 0.5\n", ":16:", "model.excitation.target_sa",
        "needs scale_to = \"sa\""},
       {bridge_scene(record) + "scale_to = \"spectral\"\n", ":16:", "model.excitation.scale_to",
@@ -496,7 +496,8 @@ TEST_CASE("a [solver] value is checked against its method's range, naming file a
 
 TEST_CASE("an unknown [solver] key names every key the methods declare") {
   const auto e = error_of("unknown.toml", kBall + "[solver]\nstepp = 1e-5\n");
-  CHECK(contains(e, "unknown.toml:7:9: solver.stepp: unknown key; allowed here: method, "
+  CHECK(contains(e, "unknown.toml:7:9: solver.stepp: unknown key; did you mean `step`?; "
+                    "allowed here: method, "
                     "end_time, step, theta, lcp_solver, lcp_tolerance, lcp_fallback, "
                     "event_velocity_tolerance, tolerance, event_time_tolerance"));
   CHECK(contains(e, "contact_stiffness, stiffness_factor, damping_law"));

@@ -3,6 +3,8 @@
 //   scene_docs                 prints every table between its markers
 //   scene_docs --write FILE    replaces the tables of FILE with the generated ones
 //   scene_docs --check FILE    exits 1 when FILE's tables differ from the generated ones
+//   scene_docs --keys          prints every key as "<table> <key> <kind>", one a line (the
+//                              fault-injection tests enumerate the schema's keys with it)
 #include "scene/scene_docs.hpp"
 
 #include <fstream>
@@ -30,8 +32,14 @@ int run(int argc, char** argv) {
     }
     return 0;
   }
+  if (argc == 2 && mode == "--keys") {
+    for (const auto& t : nsb::scene::scene_doc_tables()) {
+      for (const auto& k : t.keys) std::cout << t.name << ' ' << k.key << ' ' << k.kind << '\n';
+    }
+    return 0;
+  }
   if (argc != 3 || (mode != "--write" && mode != "--check")) {
-    std::cerr << "usage: scene_docs [--write FILE | --check FILE]\n";
+    std::cerr << "usage: scene_docs [--write FILE | --check FILE | --keys]\n";
     return 2;
   }
   const std::string path = argv[2];
