@@ -254,8 +254,8 @@ struct Columns {
   std::optional<FileUnit> unit;
 };
 
-// "a [g]" or "a (g)": the name and the unit between brackets ("" none); unit_error is set
-// when a bracket is not closed.
+// "a [g]" or "a (g)": the name and the unit between brackets (bracket false: none). A bracket
+// that is not closed leaves a unit no table knows, so that it is refused by name.
 struct HeaderField {
   std::string name, unit;
   bool bracket = false;
