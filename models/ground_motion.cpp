@@ -2,6 +2,8 @@
 // amplitude scaling (the record readers are records.cpp). Method: docs/ground-motions.md.
 #include "models/ground_motion.hpp"
 
+#include "io/csv.hpp"
+
 #include <gsl/gsl_spline.h>
 
 #include <Eigen/Dense>
@@ -229,7 +231,7 @@ void check_finite(const GroundMotion::Data& d, const Record& r) {
   if (!(finite(d.c0) && finite(d.c1) && finite(d.c2) && finite(d.c3) &&
         finite(d.v_knot) && finite(d.d_knot) && baseline_finite && std::isfinite(d.pga))) {
     throw std::invalid_argument("record '" + r.source + "': its velocity or displacement "
-                                "overflows (time span " + std::to_string(d.t1 - d.t0) +
+                                "overflows (time span " + io::three_digits(d.t1 - d.t0) +
                                 " s); expected times and accelerations of a ground motion");
   }
 }

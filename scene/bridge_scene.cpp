@@ -3,6 +3,7 @@
 // bents, the seats, the excitation, and the support motions made from the records.
 #include "scene/scene_builders.hpp"
 
+#include "io/csv.hpp"
 #include "models/bridge_fields.hpp"
 #include "models/bridge_parts.hpp"
 #include "models/excitation_scaling.hpp"
@@ -50,21 +51,38 @@ fs::path find_record(const Section& s, const std::string& key, const std::string
   s.fail(key, "record file \"" + name + "\" not found (looked for " + list + ")");
 }
 
+// What table s says of its records: the unit of their values (unit_key, given or its
+// default), the step of a file of values only (dt_key), and whether they are angular.
+RecordKeys record_keys(const Section& s, const char* unit_key, double unit, const char* dt_key,
+                       double dt, bool angular) {
+  RecordKeys k;
+  k.unit = unit;
+  if (s.has(unit_key)) k.unit_key = s.key_path(unit_key);
+  k.dt = dt;
+  k.dt_key = s.key_path(dt_key);
+  k.angular = angular;
+  return k;
+}
+
 Record read_record(const Section& s, const std::string& key, const std::string& name,
-                   double unit) {
+                   const RecordKeys& keys) {
   const Source& c = s.context();
   const fs::path path = find_record(s, key, name);
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  if (ext == ".at2" && keys.angular) {
+    s.fail(key, "record \"" + path.string() + "\" is an .AT2 file of ground accelerations in "
+                "g; a rotation record is a text or CSV file in rad/s^2");
+  }
   Record r;
   try {
     if (ext == ".at2") {
-      r = read_at2(path, kStandardGravity);
+      r = read_at2(path, kStandardGravity, keys);
     } else if (ext == ".csv") {
-      r = read_csv(path, unit);
+      r = read_csv(path, keys);
     } else {
-      r = read_two_column(path, unit);
+      r = read_two_column(path, keys);
     }
   } catch (const std::exception& e) {
     s.fail(key, "cannot read record \"" + path.string() + "\": " + e.what());
@@ -296,7 +314,9 @@ SeatMotions read_seats(const Section& m, BridgeDesign& p) {
        {"rotation_record_right", &seats.rotation_record_right}}};
   for (std::size_t a = 0; a < 2; ++a) {
     if (records[a].second->empty()) continue;
-    out.rotation[a] = read_record(s, records[a].first, *records[a].second, seats.rotation_unit);
+    out.rotation[a] = read_record(s, records[a].first, *records[a].second,
+                                  record_keys(s, "rotation_unit", seats.rotation_unit,
+                                              "rotation_dt", seats.rotation_dt, true));
   }
   return out;
 }
@@ -410,18 +430,40 @@ InputMotion describe_excitation(const ExcitationRecords& e, integrators::System&
   return in;
 }
 
+// time_scale keeps the sample times of record r finite and strictly increasing (a huge or
+// tiny factor can make them overflow or round onto each other).
+void check_time_scale(const Section& s, const Record& r, double time_scale) {
+  for (std::size_t i = 0; i < r.t.size(); ++i) {
+    const double t = time_scale * r.t[i];
+    const double before = i > 0 ? time_scale * r.t[i - 1] : 0.0;
+    if (!std::isfinite(t) || (i > 0 && !(t > before))) {
+      s.fail("time_scale", "= " + io::three_digits(time_scale) + " makes the sample times of "
+                           "record \"" + r.source + "\" " +
+                           (std::isfinite(t) ? "coincide (samples " + std::to_string(i) + " and " +
+                                                   std::to_string(i + 1) + ")"
+                                             : "infinite (sample " + std::to_string(i + 1) + ")"));
+    }
+  }
+}
+
 ExcitationRecords read_excitation(const Section& m, const FirstPeriod& first_period,
-                                  double& time_scale) {
+                                  const SeatMotions& seats, double& time_scale) {
   ExcitationRecords out;
   ExcitationSettings e;
   const auto s = read_table(m, "excitation", ExcitationSettings::fields(), e);
   time_scale = e.time_scale;
   if (!s) return out;
+  const RecordKeys keys =
+      record_keys(*s, "record_unit", e.record_unit, "record_dt", e.record_dt, false);
   if (!e.longitudinal_record.empty()) {
-    out.longitudinal = read_record(*s, "longitudinal_record", e.longitudinal_record, e.record_unit);
+    out.longitudinal = read_record(*s, "longitudinal_record", e.longitudinal_record, keys);
   }
   if (!e.transverse_record.empty()) {
-    out.transverse = read_record(*s, "transverse_record", e.transverse_record, e.record_unit);
+    out.transverse = read_record(*s, "transverse_record", e.transverse_record, keys);
+  }
+  for (const std::optional<Record>* r : std::array<const std::optional<Record>*, 4>{
+           &out.longitudinal, &out.transverse, &seats.rotation[0], &seats.rotation[1]}) {
+    if (*r) check_time_scale(*s, **r, e.time_scale);
   }
   out.options.time_scale = e.time_scale;
   out.options.baseline_correction = e.baseline_correction;
@@ -434,6 +476,15 @@ ExcitationRecords read_excitation(const Section& m, const FirstPeriod& first_per
       s->fail(s->has("target_sa") ? "target_sa" : "longitudinal_sa", "needs scale_to = \"sa\"");
     }
     if (s->has("sa_period")) out.sa_period = e.sa_period;
+    if (!out.longitudinal && !out.transverse) {
+      // An amplitude with nothing to scale would run the scene without ground motion.
+      for (const char* key : {"target_pga", "longitudinal_pga", "scale"}) {
+        if (s->has(key)) {
+          s->fail(key, "needs a record to scale: give longitudinal_record or transverse_record "
+                       "in [model.excitation], or remove " + std::string(key));
+        }
+      }
+    }
     scale_to_targets(*s, e, out);
   }
   out.options.target_pga = 0.0;
@@ -636,8 +687,16 @@ BridgeScene build_bridge(Section& m) {
     const std::vector<double> periods = integrators::natural_periods(*make({}));
     return periods.empty() ? NAN : periods.front();
   };
-  const ExcitationRecords excitation = read_excitation(m, first_period, out.time_scale);
-  out.system = make(support_motions(excitation, seats, bents.delays, out.motion_end, ground));
+  const ExcitationRecords excitation = read_excitation(m, first_period, seats, out.time_scale);
+  // A record whose motion cannot be built (its velocity or displacement overflows) is
+  // reported at [model.excitation], the table that names the records and their time scale.
+  BridgeDesign::Excitation motions;
+  try {
+    motions = support_motions(excitation, seats, bents.delays, out.motion_end, ground);
+  } catch (const std::invalid_argument& e) {
+    m.fail(m.has("excitation") ? "excitation" : "seats", e.what());
+  }
+  out.system = make(std::move(motions));
   out.input = describe_excitation(excitation, *out.system);
   if (!segmented) out.design = p;
   return out;

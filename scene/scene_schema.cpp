@@ -138,6 +138,9 @@ std::span<const c::Field<SeatMotionSettings>> SeatMotionSettings::fields() {
       c::number<&S::rotation_unit>("rotation_unit", "rad/s^2 per file unit",
                                    c::open_closed(0, kMaxFactor),
                                    "unit of the rotation records' values"),
+      c::number<&S::rotation_dt>("rotation_dt", "s", c::positive(),
+                                 "sample step of a rotation record file that holds values "
+                                 "only (no time column); absent: the file gives its times"),
       c::text<&S::rotation_record_left>("rotation_record_left",
                                         "record file of the left seat's angular acceleration "
                                         "(rad/s² × rotation_unit, two-column or CSV); the seat "
@@ -155,7 +158,13 @@ std::span<const c::Field<ExcitationSettings>> ExcitationSettings::fields() {
       c::text<&S::transverse_record>("transverse_record", "record file of the y component"),
       c::number<&S::record_unit>("record_unit", "m/s^2 per file unit",
                                  c::open_closed(0, kMaxFactor),
-                                 "unit of two-column and CSV records (.AT2 files are in g)"),
+                                 "unit of the values of text and CSV records whose file names "
+                                 "no unit; given, it must agree with a unit the file names "
+                                 "(.AT2 files are in g)"),
+      c::number<&S::record_dt>("record_dt", "s", c::positive(),
+                               "sample step of a record file that holds acceleration values "
+                               "only (one or several per line, no time column); absent: the "
+                               "file gives its times (docs/ground-motions.md)"),
       c::number<&S::target_pga>("target_pga", "g", c::closed(0, kMaxTarget),
                                 "PGA of the transverse record (or of the longitudinal one when "
                                 "it is alone); without longitudinal_pga the other component "

@@ -60,6 +60,7 @@ struct SeatMotionSettings {
   std::string rotation_record_left;   // angular acceleration record of each seat ("" none)
   std::string rotation_record_right;
   double rotation_unit = 1.0;         // [rad/s^2 per file unit]
+  double rotation_dt = 0.0;           // [s] step of a rotation file of values only; 0: none
   double rotation_scale = 1.0;        // factor on the rotation records
   static std::span<const config::Field<SeatMotionSettings>> fields();
 };
@@ -76,6 +77,7 @@ struct ExcitationSettings {
   std::string longitudinal_record;  // record file of the x component ("" none)
   std::string transverse_record;    // record file of the y component ("" none)
   double record_unit = 1.0;         // [m/s^2 per file unit]
+  double record_dt = 0.0;           // [s] step of a record file of values only; 0: none
   double target_pga = 0.0;          // [g], 0: as recorded
   double longitudinal_pga = 0.0;    // [g], 0: the factor of target_pga
   double scale = 1.0;

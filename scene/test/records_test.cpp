@@ -197,3 +197,183 @@ TEST_CASE("ground motion: two-column and CSV readers") {
   CHECK(rc.t[2] == doctest::Approx(0.2));
   CHECK(rc.a[2] == doctest::Approx(-1.0));
 }
+
+namespace {
+
+using nsb::scene::RecordKeys;
+
+// Standard gravity and the inch, exact by definition (NIST SP 811, 2008, B.8).
+constexpr double kGn = 9.80665;
+constexpr double kInch = 0.0254;
+
+RecordKeys keys(double unit, std::string unit_key, double dt = 0.0, bool angular = false) {
+  RecordKeys k;
+  k.unit = unit;
+  k.unit_key = std::move(unit_key);
+  k.dt = dt;
+  k.dt_key = "record_dt";
+  k.angular = angular;
+  return k;
+}
+
+}  // namespace
+
+TEST_CASE("CSV headers give the units of the time and acceleration columns") {
+  TempDir dir;
+  // 0.5 g = 0.5 * 9.80665 m/s^2; the default unit 1 (not given) gives way to the header's.
+  {
+    const auto p = dir.write("g.csv", "t [s],a [g]\n0,0\n0.01,0.5\n0.02,-0.25\n");
+    const Record r = nsb::scene::read_csv(p);
+    REQUIRE(r.a.size() == 3);
+    CHECK(r.a[1] == doctest::Approx(0.5 * kGn).epsilon(1e-15));
+    CHECK(r.a[2] == doctest::Approx(-0.25 * kGn).epsilon(1e-15));
+  }
+  // Milliseconds and gal: t = 10 ms = 0.01 s; 50 gal = 0.5 m/s^2.
+  {
+    const auto p = dir.write("gal.csv", "time [ms],acceleration [gal]\n0,0\n10,50\n20,-100\n");
+    const Record r = nsb::scene::read_csv(p);
+    CHECK(r.t[1] == doctest::Approx(0.01).epsilon(1e-15));
+    CHECK(r.a[1] == doctest::Approx(0.5).epsilon(1e-15));
+    CHECK(r.a[2] == doctest::Approx(-1.0).epsilon(1e-15));
+  }
+  // Round brackets, spaces, "²", in/s^2: 10 in/s^2 = 0.254 m/s^2.
+  for (const char* head : {"t (s), a (in/s^2)", "t [ s ], a [in/s²]", "t,a [IN/S2]"}) {
+    const auto p = dir.write("in.csv", std::string(head) + "\n0,0\n0.01,10\n0.02,0\n");
+    const Record r = nsb::scene::read_csv(p);
+    CAPTURE(head);
+    CHECK(r.a[1] == doctest::Approx(10 * kInch).epsilon(1e-15));
+  }
+  CHECK(nsb::scene::acceleration_unit("cm/s^2") == 0.01);
+  CHECK(nsb::scene::acceleration_unit("ft/s^2") == doctest::Approx(12 * kInch).epsilon(1e-15));
+  CHECK(nsb::scene::acceleration_unit("furlong") == 0.0);
+  // A unit the scene gives must agree with the header's; 9.81 agrees with g (3.4e-4 apart)
+  // and is then used as given.
+  {
+    const auto p = dir.write("agree.csv", "t [s],a [g]\n0,0\n0.01,1\n0.02,0\n");
+    CHECK(nsb::scene::read_csv(p, keys(9.81, "model.excitation.record_unit")).a[1] == 9.81);
+    expect_error([&] { nsb::scene::read_csv(p, keys(1.0, "model.excitation.record_unit")); },
+                 {"agree.csv:1:", "[g]", "conflicts with model.excitation.record_unit = 1"});
+  }
+  // Unknown units, of either column, name the file, the line and the unit.
+  {
+    const auto p = dir.write("unknown.csv", "# comment\nt [s],a [furlong/s^2]\n0,0\n0.01,1\n0.02,0\n");
+    expect_error([&] { nsb::scene::read_csv(p); }, {"unknown.csv:2:", "[furlong/s^2]", "known: g"});
+    const auto q = dir.write("unknown_t.csv", "t [min],a [g]\n0,0\n0.01,1\n0.02,0\n");
+    expect_error([&] { nsb::scene::read_csv(q); }, {"unknown_t.csv:1:", "time unit [min]"});
+  }
+  // A rotation record takes rad/s^2 and refuses a linear unit; a ground record the reverse.
+  {
+    const auto p = dir.write("rot.csv", "t [s],a [rad/s^2]\n0,0\n0.01,1\n0.02,0\n");
+    CHECK(nsb::scene::read_csv(p, keys(1.0, "", 0.0, true)).a[1] == 1.0);
+    expect_error([&] { nsb::scene::read_csv(p); }, {"rot.csv:1:", "angular"});
+    const auto q = dir.write("lin.csv", "t [s],a [g]\n0,0\n0.01,1\n0.02,0\n");
+    expect_error([&] { nsb::scene::read_csv(q, keys(1.0, "", 0.0, true)); }, {"lin.csv:1:", "linear"});
+  }
+}
+
+TEST_CASE("a CSV file whose first line is numbers has no header: that line is a sample") {
+  TempDir dir;
+  const auto p = dir.write("nohead.csv", "0,0.125\n0.01,0.25\n0.02,-0.5\n");
+  const Record r = nsb::scene::read_csv(p);
+  REQUIRE(r.t.size() == 3);
+  CHECK(r.t[0] == 0.0);
+  CHECK(r.a[0] == 0.125);
+  // A first line with a number among words is a bad cell, not a header.
+  const auto q = dir.write("mixed.csv", "0,abc\n0.01,0.25\n0.02,-0.5\n");
+  expect_error([&] { nsb::scene::read_csv(q); }, {"mixed.csv:1:", "non-numeric", "abc"});
+  // More than two columns without a header cannot be told apart.
+  const auto w = dir.write("wide.csv", "0,1,2\n0.01,1,2\n0.02,1,2\n");
+  expect_error([&] { nsb::scene::read_csv(w); }, {"wide.csv:1:", "no header"});
+}
+
+TEST_CASE("a file of acceleration values only takes its step from dt") {
+  TempDir dir;
+  // One value per line, or several (the OpenSees Path -dt habit): t_i = i dt.
+  const auto p = dir.write("values.txt", "0.1\n0.2\n0.3\n");
+  const Record r = nsb::scene::read_two_column(p, keys(kG, "", 0.02));
+  REQUIRE(r.t.size() == 3);
+  CHECK(r.t[2] == doctest::Approx(0.04).epsilon(1e-15));
+  CHECK(r.a[2] == doctest::Approx(0.3 * kG).epsilon(1e-15));
+  const auto q = dir.write("rows.txt", "0.1 0.2 0.3\n-0.4\n0.5 0.6\n");
+  const Record rq = nsb::scene::read_two_column(q, keys(1.0, "", 0.01));
+  REQUIRE(rq.a.size() == 6);
+  CHECK(rq.a[3] == -0.4);
+  CHECK(rq.t[5] == doctest::Approx(0.05).epsilon(1e-15));
+  // The same as CSV, with or without a header naming the unit.
+  const auto c = dir.write("values.csv", "a [g]\n0.1\n0.2\n0.3\n");
+  CHECK(nsb::scene::read_csv(c, keys(1.0, "", 0.01)).a[0] == doctest::Approx(0.1 * kGn).epsilon(1e-15));
+  const auto c2 = dir.write("values2.csv", "0.1\n0.2\n0.3\n");
+  CHECK(nsb::scene::read_csv(c2, keys(1.0, "", 0.01)).t[2] == doctest::Approx(0.02).epsilon(1e-15));
+  // Without dt, a single column is refused naming the key to add.
+  expect_error([&] { nsb::scene::read_two_column(p, keys(1.0, "")); },
+               {"values.txt:1:", "record_dt"});
+  expect_error([&] { nsb::scene::read_csv(c2, keys(1.0, "")); }, {"values2.csv:1:", "record_dt"});
+  expect_error([&] { nsb::scene::read_csv(c, keys(1.0, "")); }, {"values.csv:1:", "record_dt"});
+  // A "t a" file read with dt is refused: its first column increases strictly.
+  const auto ta = dir.write("ta.txt", "0 0.1\n0.01 -0.2\n0.02 0.3\n0.03 0\n");
+  expect_error([&] { nsb::scene::read_two_column(ta, keys(1.0, "", 0.01)); },
+               {"ta.txt:1:", "'t a'", "remove record_dt"});
+  // A file with a time column keeps it; a dt that disagrees with its step is refused.
+  const auto tc = dir.write("tc.csv", "t,a\n0,0.1\n0.01,0.2\n0.03,0.3\n");
+  expect_error([&] { nsb::scene::read_csv(tc, keys(1.0, "", 0.01)); },
+               {"tc.csv:4:", "time step 0.02 s differs from record_dt = 0.01 s"});
+}
+
+TEST_CASE("PEER .AT2: the older header form, the unit on line 3, and printable messages") {
+  // Both forms as PEER describes its files: three text lines (database, event and station,
+  // "... IN UNITS OF G"), then NPTS and DT, then the values in g, several per line. The NGA
+  // form writes "NPTS=   5, DT=   .0100 SEC"; the older database wrote the numbers first,
+  // "   5   .0100   NPTS, DT".
+  const std::string head =
+      "PEER STRONG MOTION DATABASE RECORD\nSYNTHETIC 1/1/2000, STATION, 090\n"
+      "ACCELERATION TIME HISTORY IN UNITS OF G\n";
+  const std::string values = "  .1000E+00  -.2000E+00   .3000E+00\n  -.4000E+00   .5000E+00\n";
+  for (const char* line4 : {"NPTS=      5, DT=   .0100 SEC\n", "    5    .0100    NPTS, DT\n",
+                            "5 0.0100 NPTS, DT\n", "  5,  .0100  NPTS, DT, SEC\n"}) {
+    std::istringstream in(head + line4 + values);
+    const Record r = nsb::scene::read_at2(in, "form.AT2", kG);
+    CAPTURE(line4);
+    REQUIRE(r.a.size() == 5);
+    CHECK(r.t[4] == doctest::Approx(0.04).epsilon(1e-15));
+    CHECK(r.a[1] == doctest::Approx(-0.2 * kG).epsilon(1e-15));
+  }
+  {
+    std::istringstream in("A\nB\nACCELERATION IN UNITS OF CM/SEC/SEC\nNPTS= 5, DT= .01\n" + values);
+    expect_error([&] { nsb::scene::read_at2(in, "cm.AT2", kG); }, {"cm.AT2:3:", "CM/SEC/SEC", "in g"});
+  }
+  {
+    std::istringstream in(head + "NPTS= 5, DT= .01\n" + values);
+    expect_error([&] { nsb::scene::read_at2(in, "unit.AT2", kG, keys(1.0, "model.excitation.record_unit")); },
+                 {"unit.AT2:3:", "in g", "conflicts with model.excitation.record_unit = 1"});
+  }
+  {
+    std::istringstream in(head + "NPTS= 5, DT= .01\n" + values);
+    expect_error([&] { nsb::scene::read_at2(in, "dt.AT2", kG, keys(1.0, "", 0.02)); },
+                 {"dt.AT2:4:", "DT = 0.01 s differs from record_dt = 0.02 s"});
+  }
+  // Binary bytes are escaped, never echoed raw.
+  {
+    std::istringstream in(head + std::string("NPTS\x00\x01\xff", 7) + "\n" + values);
+    try {
+      nsb::scene::read_at2(in, "bin.AT2", kG);
+      FAIL("expected std::invalid_argument");
+    } catch (const std::invalid_argument& e) {
+      const std::string msg = e.what();
+      CHECK(msg.find("bin.AT2:4:") != std::string::npos);
+      CHECK(msg.find("\\x00\\x01\\xff") != std::string::npos);
+      for (const char ch : msg) CHECK((static_cast<unsigned char>(ch) >= 0x20 && ch != 0x7f));
+    }
+  }
+  // A huge DT is written with a few digits, not 300.
+  {
+    std::istringstream in(head + "NPTS= 5, DT= -1e300\n" + values);
+    try {
+      nsb::scene::read_at2(in, "huge.AT2", kG);
+      FAIL("expected std::invalid_argument");
+    } catch (const std::invalid_argument& e) {
+      const std::string msg = e.what();
+      CHECK(msg.find("-1e+300") != std::string::npos);
+      CHECK(msg.size() < 120);
+    }
+  }
+}
