@@ -36,6 +36,7 @@ EventDriven::EventDriven(System& system, const EventDrivenOptions& options, Reco
       rec_(recorder),
       book_(EventDrivenOptions::kMethod, progress, kProgressInterval),
       roots_(options.event_time_tolerance) {
+  book_.watch(hooks.stop);
   n_ = sys_.dofs();
   m_ = sys_.contacts();
   const double tol = opt_.tolerance;
@@ -87,7 +88,7 @@ RunResult EventDriven::run() {
   const double t_end = opt_.end_time;
   while (t_ < t_end) {
     const StepEnd end = step();
-    if (end == StepEnd::kStop) return finish(false);
+    if (end == StepEnd::kStop || book_.interrupted()) return finish(false);
     if (end == StepEnd::kEndTime) break;
   }
   t_ = std::min(t_, t_end);
