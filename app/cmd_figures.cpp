@@ -2,19 +2,29 @@
 //
 // Regenerates the paper's figures (PNG and SVG, each with its CSV) and writes claims.json and
 // claims.md (paper-figures/, docs/paper-figures.md). Exit code 1 when a run or a plot failed
-// (the claims that used a failed run say "not evaluated"); 2 for bad input.
+// (the claims that used a failed run say "not evaluated"); 2 for bad input, and for an --out
+// that cannot be written (a full disk: every file written is complete, none is partial).
 #include <iostream>
 #include <memory>
 
 #include "app/commands.hpp"
+#include "io/files.hpp"
 #include "paper-figures/figures.hpp"
 
 namespace nsb::app {
 
 namespace {
 
+paper_figures::FigureResult make(const paper_figures::FigureOptions& o) {
+  try {
+    return paper_figures::make_figures(o);
+  } catch (const io::WriteError& e) {
+    throw InputError("--out " + o.out.string() + ": " + e.what());
+  }
+}
+
 void run_figures(const paper_figures::FigureOptions& o) {
-  const auto res = paper_figures::make_figures(o);
+  const auto res = make(o);
   std::cout << "figures    " << res.figures.size() << " in " << o.out.string() << " (" << res.runs
             << " runs, " << res.wall_time << " s)\n";
   for (const auto& c : res.claims) {
