@@ -3,12 +3,14 @@
 // Regenerates the paper's figures (PNG and SVG, each with its CSV) and writes claims.json and
 // claims.md (paper-figures/, docs/paper-figures.md), then the uncertainty study of the claims'
 // verdicts beside them (studies/). Exit code 1 when a run or a plot failed (the claims that
-// used a failed run say "not evaluated"); 2 for bad input.
+// used a failed run say "not evaluated"); 2 for bad input, and for an --out that cannot be
+// written (a full disk: every file written is complete, none is partial).
 #include <chrono>
 #include <iostream>
 #include <memory>
 
 #include "app/commands.hpp"
+#include "io/files.hpp"
 #include "paper-figures/figures.hpp"
 #include "studies/uncertainty.hpp"
 
@@ -16,9 +18,25 @@ namespace nsb::app {
 
 namespace {
 
+paper_figures::FigureResult make(const paper_figures::FigureOptions& o) {
+  try {
+    return paper_figures::make_figures(o);
+  } catch (const io::WriteError& e) {
+    throw InputError("--out " + o.out.string() + ": " + e.what());
+  }
+}
+
+studies::UncertaintyResult study(const studies::UncertaintyOptions& o) {
+  try {
+    return studies::run_uncertainty(o);
+  } catch (const io::WriteError& e) {
+    throw InputError("--out " + o.out.string() + ": " + e.what());
+  }
+}
+
 void run_figures(const paper_figures::FigureOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  auto res = paper_figures::make_figures(o);
+  auto res = make(o);
   // The uncertainty of the verdicts over the assumed values' ranges, beside the figures. Its
   // failed runs are outcomes at points of the plausible space (the claims there are not
   // evaluated), not failed runs of the figures.
@@ -27,7 +45,7 @@ void run_figures(const paper_figures::FigureOptions& o) {
   uo.scenes = res.scenes;
   uo.quick = o.quick;
   uo.workers = o.workers;
-  const studies::UncertaintyResult u = studies::run_uncertainty(uo);
+  const studies::UncertaintyResult u = study(uo);
   res.runs += u.runs;
   res.plot_errors.insert(res.plot_errors.end(), u.plot_errors.begin(), u.plot_errors.end());
   const double wall_time =

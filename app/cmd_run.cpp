@@ -2,14 +2,17 @@
 //                         [--set key=value ...] [--quiet] [--strict] [--dump-lcp DIR]
 //
 // Loads a scene (with overrides) and checks its initial state (runs::prepare), checks the
-// output directory, then integrates the scene with the chosen method (runs::run), and writes
-// history.csv, events.csv and summary.json (docs/outputs.md) into DIR, by default
-// out/<scene name>/, as one set (runs::write_record). Exit code 1 when the run stopped early
-// or a contact problem stayed unsolved (the files are still written, and say so), or with
-// --strict when a warning says the run is not to be trusted (docs/cli.md). --dump-lcp DIR
-// writes every contact problem of the run to DIR in Siconos's .dat format, with
+// output directory (creating nothing), then integrates the scene with the chosen method
+// (runs::run), and writes history.csv, events.csv and summary.json (docs/outputs.md) into DIR,
+// by default out/<scene name>/, as one set (runs::write_record). Exit code 1 when the run
+// stopped early or a contact problem stayed unsolved (the files are still written, and say
+// so), or with --strict when a warning says the run is not to be trusted (docs/cli.md).
+// --dump-lcp DIR writes every contact problem of the run to DIR in Siconos's .dat format, with
 // DIR/manifest.csv (runs/lcp_dump.hpp); a DIR that cannot be created is refused before the run.
+// A place that cannot be written, before the run or while writing (a full disk), is bad input:
+// exit 2 naming the option. Ctrl-C interrupts the run: nothing is written, exit 130.
 #include "app/commands.hpp"
+#include "app/interrupt.hpp"
 
 #include "integrators/run.hpp"
 #include "io/csv.hpp"
@@ -169,9 +172,18 @@ void run(const RunArgs& args) {
   // Everything a user can get wrong is found before the integration starts.
   if (args.dump_lcp_given && args.dump_lcp.empty())
     throw InputError("--dump-lcp: empty path; expected a directory for the contact problems");
+  if (!args.dump_lcp.empty()) {
+    try {
+      io::check_output_dir(args.dump_lcp);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("--dump-lcp " + args.dump_lcp + ": " + e.what());
+    }
+  }
+  runs::RunRequest request{args.scene, args.overrides, args.method, {}, args.dump_lcp};
+  request.stop = &stop_on_interrupt();
   runs::PreparedRun prepared;
   try {
-    prepared = runs::prepare({args.scene, args.overrides, args.method, {}, args.dump_lcp});
+    prepared = runs::prepare(request);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -181,29 +193,38 @@ void run(const RunArgs& args) {
                                                    : std::filesystem::path("out") /
                                                          prepared.scene.name;
   try {
-    io::prepare_output_dir(out);
+    io::check_output_dir(out);
   } catch (const std::invalid_argument& e) {
     throw InputError("--out " + out.string() + ": " + e.what());
   }
 
-  ProgressBar bar(prepared.scene.system->initial_time(),
-                  integrators::end_time(prepared.scene.run), !args.quiet);
+  const double end_time = integrators::end_time(prepared.scene.run);
+  ProgressBar bar(prepared.scene.system->initial_time(), end_time, !args.quiet);
   const runs::RunRecord record = [&] {
     try {
       return runs::run(std::move(prepared), [&bar](double t) { bar.update(t); });
-    } catch (const std::runtime_error& e) {
+    } catch (const io::WriteError& e) {
       // Only the dump writes during a run: its folder became unwritable, as for --out.
-      throw InputError(std::string("--dump-lcp: ") + e.what());
+      throw InputError("--dump-lcp " + args.dump_lcp + ": " + e.what());
     }
   }();
   bar.finish();
+  const integrators::RunResult& stats = record.result;
+  if (stats.status == integrators::RunStatus::kInterrupted) {
+    // Ctrl-C: the run is not a result, and nothing of it is written.
+    std::cerr << "nsbridge: interrupted at t = " << six_digits(stats.end_time) << " s of "
+              << six_digits(end_time) << " s; nothing written to " << out.string() << '\n';
+    exit_code() = kInterruptedExit;
+    return;
+  }
   try {
     runs::write_record(out, record);
-  } catch (const std::runtime_error& e) {
-    throw InputError(std::string("--out: ") + e.what());  // an unwritable place is bad input
+  } catch (const io::WriteError& e) {
+    // A place that became unwritable (a full disk, a quota, a lost permission) is bad input,
+    // as one found before the run.
+    throw InputError("--out " + out.string() + ": " + e.what());
   }
   print_summary(record, out);
-  const integrators::RunResult& stats = record.result;
   // The trust checks' warnings; the integrator's own are in summary.json and events.csv.
   const auto& warnings = record.digest.warnings;
   for (std::size_t i = record.digest.integrator_warnings; i < warnings.size(); ++i)

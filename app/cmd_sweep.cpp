@@ -7,8 +7,12 @@
 // row per run to DIR/results.csv. A rerun over the same DIR resumes. A design with a
 // [fragility] section also gets DIR/fragility.json (and, with --plot, DIR/fragility.png):
 // docs/fragility.md. Exit code 1 when some run did not complete (the rows say which); 2 for a
-// bad design, before any run.
+// bad design, before any run, or for a DIR that cannot be written, before or during the runs
+// (a full disk: the runs complete so far stay, and a rerun resumes). Ctrl-C stops the runs
+// under way, which write nothing, and exits 130; a rerun resumes.
 #include "app/commands.hpp"
+#include "app/interrupt.hpp"
+#include "io/files.hpp"
 
 #include "sweep/fragility_sweep.hpp"
 #include "sweep/plots.hpp"
@@ -47,7 +51,7 @@ void fragility(const SweepArgs& args, const sweep::Design& d, const sweep::Resul
   for (const auto& f : files) std::cout << "fragility  " << f.string() << '\n';
 }
 
-void run(const SweepArgs& args) {
+void sweep_and_report(SweepArgs& args) {
   args.plots.validate();
   if (args.plot_only) {
     // The results of an earlier process: read back from the results.csv it wrote.
@@ -57,8 +61,16 @@ void run(const SweepArgs& args) {
     fragility(args, sweep::load_design(args.design, args.options.set), results, true);
     return;
   }
+  args.options.stop = &stop_on_interrupt();
   const sweep::SweepSummary s = sweep::run_sweep(args.design, args.options);
   if (!s.primary) return;
+  if (s.interrupted) {
+    std::cerr << "nsbridge sweep: interrupted: " << s.complete << " of " << s.runs
+              << " runs complete in " << args.options.out.string()
+              << "; the same command resumes the sweep\n";
+    exit_code() = kInterruptedExit;
+    return;
+  }
   for (const auto& note : s.notes) std::cerr << "nsbridge sweep: " << note << '\n';
   std::cout << "runs       " << s.runs << " in the design; " << s.already_done
             << " already done (skipped), " << s.ran << " run now\n";
@@ -73,6 +85,16 @@ void run(const SweepArgs& args) {
   if (args.plot) draw(args, s.table);
   fragility(args, s.design, s.table, args.plot);
   if (s.failed > 0) exit_code() = 1;
+}
+
+void run(SweepArgs& args) {
+  try {
+    sweep_and_report(args);
+  } catch (const io::WriteError& e) {
+    // A full disk, a quota or a lost permission while the sweep wrote: as an --out that could
+    // not be written at all. The runs written completely are kept; a rerun resumes.
+    throw InputError("--out " + args.options.out.string() + ": " + e.what());
+  }
 }
 
 }  // namespace

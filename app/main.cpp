@@ -1,5 +1,6 @@
 // nsbridge: nonsmooth seismic response of bridges with deck-abutment pounding.
 #include "app/commands.hpp"
+#include "io/files.hpp"
 
 #include <cstdio>
 #include <exception>
@@ -33,6 +34,10 @@ int main(int argc, char** argv) {
     std::cerr << "nsbridge: " << e.what() << '\n';
     return 2;
   } catch (const std::invalid_argument& e) {
+    std::cerr << "nsbridge: " << e.what() << '\n';
+    return 2;
+  } catch (const nsb::io::WriteError& e) {
+    // An output that could not be written (a full disk) is met as an unwritable place.
     std::cerr << "nsbridge: " << e.what() << '\n';
     return 2;
   } catch (const std::exception& e) {

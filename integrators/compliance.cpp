@@ -64,6 +64,7 @@ RunResult ComplianceRun::integrate() {
       break;
     }
     book_.progress_at_interval(t_);
+    if (book_.interrupted()) break;
   }
   const bool completed = t_ >= options_.end_time;
   recorder_.sample_now(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_,
@@ -119,12 +120,13 @@ void ComplianceRun::start() {
 namespace nsb::integrators {
 
 RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder,
-                     const Progress& progress) {
+                     const Progress& progress, const std::atomic<bool>* stop) {
   options.validate();
   if (!(options.end_time > system.initial_time())) {
     throw std::invalid_argument("compliance options: end_time: must be > the initial time");
   }
   compliance_detail::ComplianceRun run(system, options, recorder, progress);
+  run.watch(stop);
   return run.integrate();
 }
 

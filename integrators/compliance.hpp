@@ -29,6 +29,7 @@
 #include "integrators/system.hpp"
 
 #include <array>
+#include <atomic>
 #include <span>
 
 #include <string>
@@ -127,15 +128,16 @@ struct ComplianceOptions {
 // "compliance": steps, rejected_steps, factorizations (one LU per attempted step).
 // Throws std::invalid_argument for bad options; a step size that underflows or a
 // non-finite state ends the run with completed = false and a message.
-// progress is called every few thousand steps with the time reached; it may be empty.
+// progress is called every few thousand steps with the time reached; it may be empty. stop
+// (RunHooks::stop) is read after each call; once true, the run ends as kInterrupted.
 RunResult compliance(System& system, const ComplianceOptions& options, Recorder& recorder,
-                     const Progress& progress = {});
+                     const Progress& progress = {}, const std::atomic<bool>* stop = nullptr);
 // The run API's entry for this method (integrators/run.hpp). Compliance solves no contact
 // problem, so hooks.contact_observer sees nothing; a restart in hooks is a bad call.
 inline RunResult run_method(System& system, const ComplianceOptions& options, Recorder& recorder,
                             const Progress& progress, const RunHooks& hooks) {
   require_no_restart(hooks, ComplianceOptions::kMethod);
-  return compliance(system, options, recorder, progress);
+  return compliance(system, options, recorder, progress, hooks.stop);
 }
 
 }  // namespace nsb::integrators

@@ -37,6 +37,7 @@ EventDriven::EventDriven(System& system, const EventDrivenOptions& options, Reco
       rec_(recorder),
       book_(EventDrivenOptions::kMethod, progress, kProgressInterval),
       roots_(options.event_time_tolerance) {
+  book_.watch(hooks.stop);
   n_ = sys_.dofs();
   m_ = sys_.contacts();
   const double tol = opt_.tolerance;
@@ -89,7 +90,7 @@ RunResult EventDriven::run() {
   PaceWatch pace(t_, t_end);
   while (t_ < t_end) {
     const StepEnd end = step();
-    if (end == StepEnd::kStop) return finish(false);
+    if (end == StepEnd::kStop || book_.interrupted()) return finish(false);
     if (end == StepEnd::kEndTime) break;
     if (std::string why = pace.collapsed(book_.result().steps, t_); !why.empty()) {
       warn(t_, 0, why);

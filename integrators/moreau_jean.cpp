@@ -178,6 +178,7 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
       theta_(options.theta),
       book_(MoreauJeanOptions::kMethod, progress, kProgressInterval) {
   options.validate();
+  book_.watch(hooks.stop);
   checked_inverse_mass(system, "moreau_jean");
   t_ = system.initial_time();
   q_ = system.initial_position();
@@ -319,6 +320,10 @@ RunResult MoreauJean::run() {
     }
     sample(last);
     book_.progress_at_interval(t_);
+    if (book_.interrupted()) {
+      completed = false;
+      break;
+    }
   }
   if (completed) {
     book_.result().message = "reached end_time";

@@ -41,9 +41,11 @@ void record_removed_contacts(const System& system, double t, Recorder& recorder)
 
 bool is_result(RunStatus s) { return succeeded(s) || s == RunStatus::kUnseated; }
 
-void finish_status(RunResult& r, bool diverged, bool stalled, bool unseated) {
+void finish_status(RunResult& r, bool diverged, bool stalled, bool unseated, bool interrupted) {
   if (diverged) {
     r.status = RunStatus::kDiverged;
+  } else if (interrupted) {
+    r.status = RunStatus::kInterrupted;
   } else if (stalled) {
     r.status = RunStatus::kStalled;
   } else if (r.lcp_unsolved > 0) {

@@ -81,16 +81,20 @@ enum class RunStatus {
   kUnseated,                // the system said a deck end lost its seat (StepVerdict::
                             //   kUnseated): the run stopped there, at failure_time. A result
                             //   (the collapse of the structure), not a numerical failure.
+  kInterrupted,             // a stop was requested (RunHooks::stop: Ctrl-C): the run ended
+                            //   at failure_time, short of end_time. Not a result: callers
+                            //   write nothing of it.
 };
 // The one list of status names (summary.json "status", results.csv "status").
-inline constexpr std::array<config::Name<RunStatus>, 7> kRunStatusNames{
+inline constexpr std::array<config::Name<RunStatus>, 8> kRunStatusNames{
     {{"not_run", RunStatus::kNotRun},
      {"completed", RunStatus::kCompleted},
      {"completed_with_fallbacks", RunStatus::kCompletedWithFallbacks},
      {"contact_unsolved", RunStatus::kContactUnsolved},
      {"diverged", RunStatus::kDiverged},
      {"stalled", RunStatus::kStalled},
-     {"unseated", RunStatus::kUnseated}}};
+     {"unseated", RunStatus::kUnseated},
+     {"interrupted", RunStatus::kInterrupted}}};
 std::string_view to_string(RunStatus s);
 // The status of a name of kRunStatusNames; std::nullopt for anything else.
 std::optional<RunStatus> parse_run_status(std::string_view name);
@@ -125,13 +129,15 @@ struct RunResult {
 };
 
 // Sets r.status from what the run met, in order of severity: a non-finite state or energy
-// (kDiverged), an adaptive method that could not advance (kStalled), a contact problem no
+// (kDiverged), a stop request (kInterrupted), an adaptive method that could not advance
+// (kStalled), a contact problem no
 // solver of the chain solved (kContactUnsolved), one solved by a fallback
 // (kCompletedWithFallbacks), else kCompleted; a run the system stopped as unseated is
 // kUnseated unless it diverged, stalled or left a contact problem unsolved before. Each
 // integrator calls it once, at its end, with what it recorded itself; failure_time is the
 // integrator's.
-void finish_status(RunResult& r, bool diverged, bool stalled, bool unseated = false);
+void finish_status(RunResult& r, bool diverged, bool stalled, bool unseated = false,
+                   bool interrupted = false);
 
 // Called now and then with the simulated time reached [s], for a progress display. It must
 // not throw; it may be empty. Every integrator takes one.

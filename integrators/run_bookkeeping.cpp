@@ -45,11 +45,12 @@ RunResult RunBookkeeping::finish(double end_time, bool completed, const EnergyBa
   // A run that stopped short without diverging and without an unsolved contact problem could
   // not advance (a step size underflow, max_steps): stalled.
   const bool stopped_short =
-      !completed && !diverged_ && !unseated_ && result_.lcp_unsolved == 0;
-  finish_status(result_, diverged_, stalled_ || stopped_short, unseated_);
+      !completed && !diverged_ && !unseated_ && !interrupted_ && result_.lcp_unsolved == 0;
+  finish_status(result_, diverged_, stalled_ || stopped_short, unseated_, interrupted_);
+  if (result_.status == RunStatus::kInterrupted) result_.message = "interrupted";
   if (!succeeded(result_.status)) {
-    const double failure =
-        result_.status == RunStatus::kContactUnsolved ? first_unsolved_ : stop_time_;
+    const double failure = result_.status == RunStatus::kContactUnsolved ? first_unsolved_
+                                                                          : stop_time_;
     result_.failure_time = std::isnan(failure) ? end_time : failure;
   }
   result_.wall_time =

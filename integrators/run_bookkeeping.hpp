@@ -10,6 +10,7 @@
 #include "integrators/contact_stage.hpp"
 #include "integrators/recorder.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -33,11 +34,21 @@ class RunBookkeeping {
 
   // One accepted step.
   void count_step() { ++result_.steps; }
-  // Calls progress with the time reached when the accepted steps are a multiple of the
-  // interval.
-  void progress_at_interval(double t) const {
-    if (progress_ && (result_.steps & interval_mask_) == 0) progress_(t);
+  // Reads stop (RunHooks::stop; may be nullptr) at every progress report.
+  void watch(const std::atomic<bool>* stop) { stop_ = stop; }
+  // When the accepted steps are a multiple of the interval: calls progress with the time
+  // reached, then reads the stop request, which ends the run at t (interrupted()).
+  void progress_at_interval(double t) {
+    if ((result_.steps & interval_mask_) != 0) return;
+    if (progress_) progress_(t);
+    if (stop_ != nullptr && stop_->load(std::memory_order_relaxed)) interrupt(t);
   }
+  // A stop was requested at t (RunStatus::kInterrupted): the integrator ends the run.
+  void interrupt(double t) {
+    interrupted_ = true;
+    if (std::isnan(stop_time_)) stop_time_ = t;
+  }
+  bool interrupted() const { return interrupted_; }
 
   // A non-finite state, force or energy stopped the run at time t (RunStatus::kDiverged).
   void diverge(double t) {
@@ -65,8 +76,8 @@ class RunBookkeeping {
   // Ends the run at end_time [s]: completed says whether end_time of the options was reached.
   // Copies the energy balance (divergence when its error is not finite) and the contact
   // stage's counts (nullptr: no contact problems), sets the status by finish_status (a run
-  // that stopped short without diverging, unseating or an unsolved contact problem has
-  // stalled),
+  // that stopped short without diverging, unseating, an interruption or an unsolved contact
+  // problem has stalled),
   // failure_time (the first unsolved problem for kContactUnsolved, else where the run
   // stopped) and the wall time, and calls progress once more.
   RunResult finish(double end_time, bool completed, const EnergyBalance& energy,
@@ -80,6 +91,8 @@ class RunBookkeeping {
   bool diverged_ = false;
   bool stalled_ = false;
   bool unseated_ = false;
+  bool interrupted_ = false;
+  const std::atomic<bool>* stop_ = nullptr;
   double stop_time_ = std::numeric_limits<double>::quiet_NaN();       // [s]
   double first_unsolved_ = std::numeric_limits<double>::quiet_NaN();  // [s]
 };

@@ -4,6 +4,7 @@
 // passed next to them (integrate, run_method, moreau_jean, event_driven, compliance).
 #pragma once
 
+#include <atomic>
 #include <string_view>
 
 namespace nsb::integrators {
@@ -21,6 +22,10 @@ struct RunHooks {
   // at the end of a run that reached end_time.
   const MoreauJeanCheckpoint* resume = nullptr;
   MoreauJeanCheckpoint* checkpoint = nullptr;
+  // A stop request (Ctrl-C in `nsbridge run` or in Python): read each time the run reports
+  // its progress (every few thousand steps), after the progress callback; once true, the run
+  // ends there with RunStatus::kInterrupted. Not owned; nullptr: never stopped.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // Throws std::invalid_argument when hooks ask `method` (one that cannot restart) for a

@@ -1,5 +1,7 @@
 #include "paper-figures/figures.hpp"
 
+#include "io/files.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -73,11 +75,12 @@ void make_figure_runs(Study& s, const FigureOptions& options, FigureResult& res)
 }
 
 void write_claims(const fs::path& dir, const std::vector<Claim>& claims) {
-  std::ofstream(dir / "claims.json") << claims_json(claims);
-  std::ofstream(dir / "claims.md")
-      << claims_markdown(claims)
-      << "\nHow far the verdicts depend on the assumed values: uncertainty.md (shares over a "
-         "Latin hypercube, verdicts that one assumption flips, tornado chart of run 7).\n";
+  io::write_file_atomically(dir / "claims.json", claims_json(claims));
+  io::write_file_atomically(
+      dir / "claims.md",
+      claims_markdown(claims) +
+          "\nHow far the verdicts depend on the assumed values: uncertainty.md (shares over a "
+         "Latin hypercube, verdicts that one assumption flips, tornado chart of run 7).\n");
 }
 
 }  // namespace

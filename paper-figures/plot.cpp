@@ -1,10 +1,11 @@
 #include "paper-figures/plot.hpp"
 
+#include "io/files.hpp"
 #include "io/gnuplot.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 namespace nsb::paper_figures {
@@ -18,8 +19,7 @@ void Table::add(std::vector<double> row) {
 }
 
 void Table::write(const std::filesystem::path& file) const {
-  std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  std::ostringstream out;
   for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
   out << '\n' << std::setprecision(10);
   for (const auto& r : rows) {
@@ -29,19 +29,19 @@ void Table::write(const std::filesystem::path& file) const {
     }
     out << '\n';
   }
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  io::write_file_atomically(file, out.str());
 }
 
 std::string plot(const std::string& gnuplot, const std::filesystem::path& dir,
                  const std::string& stem, const std::string& body, PlotSize size) {
   const auto script = dir / (stem + ".gp");
   {
-    std::ofstream gp(script);
+    std::ostringstream gp;
     gp << "# Draws " << stem << ".png / .svg from " << stem << ".csv (nsbridge figures).\n"
        << "data = '" << stem << ".csv'\n"
        << "set datafile separator ','\nset datafile columnheaders\nset grid\n"
        << body << '\n';
-    if (!gp) return "cannot write " + script.string();
+    io::write_file_atomically(script, gp.str());
   }
   return io::render_gnuplot(gnuplot, dir, stem, {size.width, size.height, ",10"});
 }

@@ -14,7 +14,7 @@ struct Table {
   std::vector<std::string> columns;
   std::vector<std::vector<double>> rows;
   void add(std::vector<double> row);  // throws std::logic_error on a wrong row size
-  void write(const std::filesystem::path& file) const;  // throws std::runtime_error
+  void write(const std::filesystem::path& file) const;  // atomically; throws io::WriteError
 };
 
 struct PlotSize {
@@ -23,7 +23,8 @@ struct PlotSize {
 
 // Writes <dir>/<stem>.gp from `body` (gnuplot commands that read '<stem>.csv' through the
 // variable `data`) and runs gnuplot in dir for <stem>.png and <stem>.svg. Returns an empty
-// string on success, else what went wrong.
+// string on success, else what went wrong with gnuplot; a script that cannot be written
+// throws io::WriteError.
 std::string plot(const std::string& gnuplot, const std::filesystem::path& dir,
                  const std::string& stem, const std::string& body, PlotSize size = {});
 

@@ -288,7 +288,7 @@ class Result {
   void write(const std::filesystem::path& dir) const {
     py::gil_scoped_release release;
     try {
-      io::prepare_output_dir(dir);
+      io::check_output_dir(dir);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("Result.write: ") + e.what());
     }
@@ -316,6 +316,7 @@ Result run(const py::object& scene, const std::optional<std::string>& method,
   request.typed_overrides = to_overrides(overrides);
   request.method = method.value_or("");
   ProgressReport report(progress);
+  request.stop = report.stop();
   std::optional<runs::RunRecord> record;
   {
     py::gil_scoped_release release;
@@ -323,7 +324,7 @@ Result run(const py::object& scene, const std::optional<std::string>& method,
     report.start(integrators::end_time(prepared.scene.run));
     record.emplace(runs::run(std::move(prepared), report.callback()));
   }
-  report.finish();  // raises what a Python progress callable raised, if anything
+  report.finish();  // raises KeyboardInterrupt, or what a progress callable raised
   return Result(std::move(*record));
 }
 

@@ -2,14 +2,19 @@
 // runs it, and what the module was built from (io/build_info.hpp).
 #include "io/build_info.hpp"
 #include "python/bindings.hpp"
+#include "python/progress.hpp"
 #include "sweep/runner.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <atomic>
 #include <cstdint>
+#include <exception>
 #include <filesystem>
+#include <future>
+#include <thread>
 #include <limits>
 #include <optional>
 #include <string>
@@ -79,7 +84,10 @@ py::tuple column(const sweep::Results& results, std::size_t c) {
 
 // Runs a sweep as `nsbridge sweep design --out out --jobs jobs --set ... [--restart]` does (no
 // progress bar, no plot), the GIL released, and returns its typed columns (column()), in the
-// order of results.csv.
+// order of results.csv. The sweep runs on a thread of its own while this one, every
+// kSignalPoll, lets Python handle its signals: a KeyboardInterrupt sets the sweep's stop
+// request (the runs under way end as interrupted and write nothing), and is raised once the
+// sweep has stopped; a rerun resumes it.
 py::list run_sweep(const std::filesystem::path& design, const std::filesystem::path& out,
                    const std::optional<int>& jobs, const std::vector<std::string>& overrides,
                    bool restart) {
@@ -89,11 +97,35 @@ py::list run_sweep(const std::filesystem::path& design, const std::filesystem::p
   options.restart = restart;
   options.progress = false;
   options.set = overrides;
+  std::atomic<bool> stop{false};
+  options.stop = &stop;
   sweep::Results results;
+  std::exception_ptr failure;
+  std::optional<py::error_already_set> interrupt;
   {
     py::gil_scoped_release release;
-    results = sweep::run_sweep(design, options).table;
+    std::promise<void> done;
+    std::future<void> finished = done.get_future();
+    std::thread worker([&] {
+      try {
+        results = sweep::run_sweep(design, options).table;
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      done.set_value();
+    });
+    while (finished.wait_for(kSignalPoll) != std::future_status::ready) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) {
+        interrupt.emplace();  // the KeyboardInterrupt the SIGINT handler raised
+        stop.store(true);
+        break;
+      }
+    }
+    worker.join();
   }
+  if (interrupt) throw std::move(*interrupt);
+  if (failure) std::rethrow_exception(failure);
   py::list columns;
   for (std::size_t c = 0; c < results.columns.size(); ++c) columns.append(column(results, c));
   return columns;

@@ -2,6 +2,8 @@
 // forwards; every computation is the C++ one (docs/python.md).
 //   InputError        std::invalid_argument (bad input: a file, line, key or argument), a
 //                     ValueError; numerical outcomes are statuses, never exceptions.
+//   OSError           io::WriteError (an output that could not be written: a full disk).
+#include "io/files.hpp"
 #include "python/bindings.hpp"
 
 #include <pybind11/pybind11.h>
@@ -19,6 +21,8 @@ PYBIND11_MODULE(_nsbridge, m) {
       if (p) std::rethrow_exception(p);
     } catch (const std::invalid_argument& e) {
       input_error(e.what());  // sets the Python error (pybind11 2.10, Debian 12)
+    } catch (const nsb::io::WriteError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
     }
   });
   nsb::python::bind_lcp(m);

@@ -7,7 +7,7 @@
 
 #include <array>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 #include <utility>
@@ -43,7 +43,7 @@ std::string comment(const integrators::SolvedProblem& s, std::int64_t index,
 
 }  // namespace
 
-LcpDump::LcpDump(std::filesystem::path dir) : dir_(std::move(dir)) {
+LcpDump::LcpDump(std::filesystem::path dir) : files_(std::move(dir)) {
   manifest_ = std::string(kManifestHeader) + '\n';
 }
 
@@ -58,14 +58,14 @@ void LcpDump::solved(const integrators::SolvedProblem& s) {
   const std::string_view stage = config::name_of(integrators::kContactStatusNames, s.status);
   const auto size = finite ? lcp::eq6_size(fp) : Eigen::Index{0};
   if (finite && failure_.empty()) {
-    const std::filesystem::path path = dir_ / file;
     try {
-      std::ofstream out(path);
-      write_siconos_lcp(out, lcp::build_eq6(fp), comment(s, problems_, solver));
-      out.close();
-      if (!out) failure_ = path.string() + ": cannot write the contact problem";
+      std::ostringstream text;
+      write_siconos_lcp(text, lcp::build_eq6(fp), comment(s, problems_, solver));
+      files_.add(file, text.str());
+    } catch (const io::WriteError& e) {
+      failure_ = e.what();
     } catch (const std::exception& e) {
-      failure_ = path.string() + ": " + e.what();
+      failure_ = (files_.target() / file).string() + ": " + e.what();
     }
   }
   std::string& m = manifest_;
@@ -83,9 +83,10 @@ void LcpDump::solved(const integrators::SolvedProblem& s) {
   m += '\n';
 }
 
-void LcpDump::write_manifest() const {
-  if (!failure_.empty()) throw std::runtime_error(failure_);
-  io::write_file_atomically(dir_ / "manifest.csv", manifest_);
+void LcpDump::write_manifest() {
+  if (!failure_.empty()) throw io::WriteError(failure_);
+  files_.add("manifest.csv", manifest_);
+  files_.commit();
 }
 
 }  // namespace nsb::runs

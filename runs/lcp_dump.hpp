@@ -18,10 +18,13 @@
 //   residual      the frictional residual of the answer (lcp::frictional_residual)
 //
 // Each .dat file is written when its problem is solved, so a run holds at most one problem in
-// memory; the manifest (a short row per problem) is written at the end, atomically.
+// memory, into a staging folder beside DIR (io::FileSet); the manifest (a short row per
+// problem) is written at the end, and the files with it move into DIR as one set. A run that
+// fails to write, or is interrupted, leaves nothing: no partial .dat file, no partial set.
 #pragma once
 
 #include "integrators/contact_stage.hpp"
+#include "io/files.hpp"
 #include "lcp/lcp.hpp"
 
 #include <cstdint>
@@ -32,24 +35,26 @@ namespace nsb::runs {
 
 class LcpDump final : public integrators::ContactObserver {
  public:
-  // dir must exist and be writable (io::prepare_output_dir); files of an earlier dump in it
-  // are overwritten, and manifest.csv lists exactly the files of this run.
+  // dir is checked by io::check_output_dir before; nothing is created before the first
+  // problem. An earlier dump in dir is replaced as a set, and manifest.csv lists exactly the
+  // files of this run.
   explicit LcpDump(std::filesystem::path dir);
 
   // Writes the problem's file and notes its manifest row. Never throws: the first I/O
   // failure is kept and reported by write_manifest(), and nothing more is written.
   void solved(const integrators::SolvedProblem& problem) override;
 
-  // Writes dir/manifest.csv atomically (io::write_file_atomically). Throws std::runtime_error
-  // naming the file when a problem's file or the manifest could not be written.
-  void write_manifest() const;
+  // Writes manifest.csv and moves the set into dir (io::FileSet::commit). Throws
+  // io::WriteError naming the file when a problem's file or the manifest could not be
+  // written; the staged files are then removed.
+  void write_manifest();
 
   std::int64_t problems() const { return problems_; }  // problems seen so far
   static constexpr const char* kManifestHeader =
       "file,t,step,kind,contacts,size,solver,status,stage_status,residual";
 
  private:
-  std::filesystem::path dir_;
+  io::FileSet files_;
   std::string manifest_;  // the rows so far (about 80 bytes each)
   std::string failure_;   // the first I/O failure, empty if none
   std::int64_t problems_ = 0;

@@ -41,12 +41,13 @@ PreparedRun prepare(const RunRequest& request) {
   p.warnings = step_warnings(*p.scene.system, p.scene.run, p.scene.record_step);
   if (!request.dump_lcp.empty()) {
     try {
-      io::prepare_output_dir(request.dump_lcp);
+      io::check_output_dir(request.dump_lcp);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("dump_lcp " + request.dump_lcp.string() + ": " + e.what());
     }
     p.dump_lcp = request.dump_lcp;
   }
+  p.stop = request.stop;
   return p;
 }
 
@@ -57,9 +58,11 @@ RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
   if (!prepared.dump_lcp.empty()) dump.emplace(prepared.dump_lcp);
   integrators::RunHooks hooks;
   if (dump) hooks.contact_observer = &*dump;
+  hooks.stop = prepared.stop;
   integrators::RunResult result =
       integrators::integrate(*scene.system, scene.run, history, progress, hooks);
-  if (dump) dump->write_manifest();
+  // An interrupted run writes nothing: its dump is dropped with `dump`.
+  if (dump && result.status != integrators::RunStatus::kInterrupted) dump->write_manifest();
   Digest digest = make_digest(history, result, scene.system->limit_states());
   digest.input = scene.input;
   std::vector<std::string> warnings = std::move(prepared.warnings);

@@ -18,6 +18,7 @@
 #include "runs/digest.hpp"
 #include "scene/scene.hpp"
 
+#include <atomic>
 #include <filesystem>
 #include <string>
 #include <variant>
@@ -37,6 +38,9 @@ struct RunRequest {
                                        //   run and manifest.csv (runs/lcp_dump.hpp); empty:
                                        //   none
   std::vector<scene::Override> typed_overrides{};  // applied after `overrides`, in order
+  const std::atomic<bool>* stop = nullptr;  // a stop request (integrators::RunHooks::stop):
+                                            //   once true, the run ends as interrupted;
+                                            //   not owned; nullptr: never stopped
 };
 
 struct RunRecord {
@@ -50,13 +54,15 @@ struct RunRecord {
 struct PreparedRun {
   scene::Scene scene;
   std::vector<std::string> warnings;  // step warnings (runs/trust.hpp), found before the run
-  std::filesystem::path dump_lcp{};    // RunRequest::dump_lcp, created and checked writable
+  std::filesystem::path dump_lcp{};    // RunRequest::dump_lcp, checked writable (not created)
+  const std::atomic<bool>* stop = nullptr;  // RunRequest::stop
 };
 
 // Reads the scene file (or copies the scene value), applies the overrides, then the typed
 // overrides (and "solver.method=<method>" last when a method is given), builds and checks the
 // scene (scene::build_scene), checks its initial state and finds the step warnings, and
-// creates the dump_lcp folder when one is asked for. A scene value gives the scene its file
+// checks that the dump_lcp folder, when one is asked for, can be written (io::check_output_dir;
+// nothing is created before the run). A scene value gives the scene its file
 // gives, bit for bit. Throws std::invalid_argument for bad input, naming the file (a value's
 // origin name) and key ("<file>:<line>:<col>: <key>: ...") or the folder, before any
 // integration.
@@ -64,9 +70,11 @@ PreparedRun prepare(const RunRequest& request);
 
 // Integrates a prepared scene and digests the run: the trust checks' warnings follow the
 // integrator's own in result.warnings and digest.warnings. A numerical failure is the
-// record's result.status, never an exception. With prepared.dump_lcp, every contact problem
-// is written there as it is solved and manifest.csv at the end; throws std::runtime_error
-// naming the file when they cannot be written.
+// record's result.status, never an exception; a stop request (prepared.stop) ends it as
+// RunStatus::kInterrupted. With prepared.dump_lcp, every contact problem is written beside
+// that folder as it is solved, and the problems with manifest.csv move into it as one set
+// (io::FileSet) when the run was not interrupted; throws io::WriteError naming the file when
+// they cannot be written, and leaves nothing of them.
 RunRecord run(PreparedRun prepared, const integrators::Progress& progress = {});
 
 // prepare(request), then run(..., request.progress).

@@ -78,7 +78,7 @@ bool is_temporary(const std::string& name) {
 }  // namespace
 
 RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out,
-                   const RecordSink& on_record) {
+                   const RecordSink& on_record, const std::atomic<bool>* stop) {
   const Run& run = d.runs.at(index);
   const fs::path dir = out / "runs" / run.id;
   const double start = now_s();
@@ -87,7 +87,12 @@ RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out,
     runs::RunRequest request;
     request.scene = d.base;
     request.typed_overrides = run.overrides;
+    request.stop = stop;
     const runs::RunRecord record = runs::execute(request);
+    if (record.result.status == integrators::RunStatus::kInterrupted) {
+      outcome.interrupted = true;
+      return outcome;
+    }
     runs::write_record(dir, record);
     // An unseated run is a result (the bridge collapsed), not a failed run.
     outcome.succeeded = integrators::is_result(record.result.status);
@@ -160,7 +165,7 @@ Plan prepare(const Design& d, const SweepOptions& options) {
   try {
     write_file_atomically(manifest, m.str());
   } catch (const std::runtime_error& e) {
-    throw std::invalid_argument(std::string("--out: ") + e.what());
+    throw std::invalid_argument("--out " + options.out.string() + ": " + e.what());
   }
   plan.rows.resize(d.runs.size());
   for (std::size_t i = 0; i < d.runs.size(); ++i) {
@@ -195,7 +200,8 @@ std::size_t run_threaded(const Design& d, const SweepOptions& options, Plan& pla
   const std::size_t before = total - plan.pending.size();
   std::atomic<std::size_t> next{0}, done{0}, failed{0}, ticks{0};
   std::atomic<int> exited{0};
-  std::atomic<bool> stop{false};
+  std::atomic<bool> own_stop{false};
+  std::atomic<bool>& stop = options.stop != nullptr ? *options.stop : own_stop;
   std::mutex error_mutex;
   std::exception_ptr error;
   const int workers = std::max(1, std::min<int>(threads, static_cast<int>(plan.pending.size())));
@@ -207,7 +213,8 @@ std::size_t run_threaded(const Design& d, const SweepOptions& options, Plan& pla
           const std::size_t k = next.fetch_add(1);
           if (k >= plan.pending.size()) break;
           try {
-            RunOutcome o = run_one(d, plan.pending[k], options.out, on_record);
+            RunOutcome o = run_one(d, plan.pending[k], options.out, on_record, &stop);
+            if (o.interrupted) break;
             plan.rows[plan.pending[k]] = std::move(o.row);
             if (!o.succeeded) failed.fetch_add(1);
           } catch (...) {
@@ -295,6 +302,12 @@ SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options)
       };
     }
     run_threaded(d, options, plan, s.workers, progress);
+  }
+  s.complete = static_cast<std::size_t>(
+      std::count_if(plan.rows.begin(), plan.rows.end(), [](const auto& r) { return r.has_value(); }));
+  if (options.stop != nullptr && options.stop->load()) {
+    s.interrupted = true;
+    return s;
   }
   s.table = write_results(d, options, plan.rows);
   s.failed = count_failed(plan.rows);

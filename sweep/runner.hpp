@@ -7,6 +7,7 @@
 #include "sweep/design.hpp"
 #include "sweep/results.hpp"
 
+#include <atomic>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -23,6 +24,11 @@ struct SweepOptions {
   bool restart = false;          // discard the runs of an earlier, different design in DIR
   bool progress = true;          // draw a progress bar on stderr when it is a terminal
   std::vector<std::string> set;  // overrides added to the design's `set` for every run
+  std::atomic<bool>* stop = nullptr;  // a stop request (Ctrl-C), read by every run
+                                      //   (runs::RunRequest::stop); the runs then under way
+                                      //   end as interrupted and write nothing, no new run
+                                      //   starts. The sweep sets it itself when a run cannot
+                                      //   write its outputs. Not owned; nullptr: none
   void validate() const;         // throws std::invalid_argument naming the field
 };
 
@@ -38,6 +44,9 @@ struct SweepSummary {
   bool primary = true;             // false on MPI ranks other than 0: they print nothing
   std::vector<std::string> notes;  // things to tell the user (revision changed, MPI absent)
   std::filesystem::path results;   // DIR/results.csv
+  bool interrupted = false;        // a stop request ended the sweep: results.csv was not
+                                   //   written, a rerun resumes
+  std::size_t complete = 0;        // runs complete in DIR (those of earlier sweeps included)
   Results table;                   // what results.csv holds (empty on ranks other than 0)
   Design design;                   // the design as loaded, its base scene read once
 };
@@ -47,15 +56,17 @@ struct SweepSummary {
 // files row.csv and limit_states.csv (sweep/results.hpp) go beside them (each atomically). A
 // numerical failure is a row with its status; a scene that rejects the run's combination of
 // values is a row with status "rejected". Throws std::runtime_error only when the outputs
-// cannot be written. on_record, when given, sees the run's record (not for a rejected run)
-// before it is dropped, from the worker thread that made it.
+// cannot be written (io::WriteError). on_record, when given, sees the run's record (not for a
+// rejected run) before it is dropped, from the worker thread that made it. A run that stop
+// (RunRequest::stop) interrupted writes nothing and has no row: `interrupted`.
 using RecordSink = std::function<void(std::size_t index, const runs::RunRecord& record)>;
 struct RunOutcome {
   Row row;
   bool succeeded = false;  // a completed or unseated status (integrators::is_result)
+  bool interrupted = false;  // stopped by a stop request: no row, nothing written
 };
 RunOutcome run_one(const Design& design, std::size_t index, const std::filesystem::path& out,
-                   const RecordSink& on_record = {});
+                   const RecordSink& on_record = {}, const std::atomic<bool>* stop = nullptr);
 
 // The state of DIR before the runs: which are already complete (their rows), which remain.
 struct Plan {
@@ -82,7 +93,8 @@ using SweepProgress = std::function<void(std::size_t done, std::size_t failed, s
 
 // Runs the pending runs of plan on `threads` workers that take the next index from one
 // atomic counter, filling plan.rows (on_record: as run_one). Returns the number of failed
-// runs among them.
+// runs among them. options.stop ends it early (an interrupted run leaves its row empty); the
+// first exception of a run (io::WriteError) stops the others the same way and is rethrown.
 std::size_t run_threaded(const Design& design, const SweepOptions& options, Plan& plan, int threads,
                          const SweepProgress& progress, const RecordSink& on_record = {});
 

@@ -104,7 +104,7 @@ limit=5
 expect 2 "^nsbridge: --out $tmp/a-file/sub: cannot create the directory '$tmp/a-file/sub': Not a directory" \
   -- run "$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/a-file/sub"
 # --dump-lcp: a folder that cannot be made is refused before the run, as --out is; "" too.
-expect 2 "^nsbridge: dump_lcp $tmp/a-file/sub: cannot create the directory" \
+expect 2 "^nsbridge: --dump-lcp $tmp/a-file/sub: cannot create the directory '$tmp/a-file/sub': Not a directory" \
   -- run "$root/scenes/bridge-exc7.toml" --set solver.step=1e-5 --out "$tmp/d" --dump-lcp "$tmp/a-file/sub"
 expect 2 '^nsbridge: --dump-lcp: empty path' -- run "$root/scenes/bouncing-ball.toml" --out "$tmp/d" --dump-lcp ""
 # One .dat file per contact problem, listed in manifest.csv; `nsbridge lcp` reads each.

@@ -15,6 +15,9 @@
 
 #include <unistd.h>
 
+#include <atomic>
+#include <cstdint>
+#include <utility>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -111,6 +114,48 @@ TEST_CASE("event-driven runs dump impact and continuous problems; the run is unc
   }
   CHECK(differences == 0);
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("an interrupted run is a status of its own and leaves no dump") {
+  // The stop request comes from the progress callback once the run is past excitation 7's
+  // first contacts (3.96 s), so problems were written beside the folder when it is read.
+  const auto dir = temp_dir("stopped");
+  std::atomic<bool> stop{false};
+  RunRequest request{kScenes + "/bridge-exc7.toml", {"solver.end_time=8.3"}, "moreau",
+                     [&stop](double t) { stop.store(stop.load() || t > 4.5); }, dir};
+  request.stop = &stop;
+  const RunRecord r = execute(request);
+  CHECK(r.result.status == integrators::RunStatus::kInterrupted);
+  CHECK(r.result.message == "interrupted");
+  CHECK(r.result.lcp_solves > 0);
+  // Read at the progress report that set it (every 4096 steps of 1e-4 s: 0.41 s apart).
+  CHECK(r.result.end_time > 4.5);
+  CHECK(r.result.end_time < 4.5 + 4096 * 1e-4 + 1e-9);
+  CHECK(r.result.failure_time == r.result.end_time);
+  CHECK(!integrators::is_result(r.result.status));
+  CHECK(!std::filesystem::exists(dir));
+  int beside = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir.parent_path()))
+    beside += e.path().filename().string().find(dir.filename().string() + ".tmp") != std::string::npos;
+  CHECK(beside == 0);
+}
+
+TEST_CASE("every method reads the stop request at its progress reports") {
+  // Set before the run: each method stops at its first report, after 4096 accepted steps
+  // (Moreau–Jean, compliance) or 1024 (event-driven), long before excitation 7's 40 s.
+  const std::pair<const char*, std::int64_t> methods[] = {
+      {"moreau", 4096}, {"event_driven", 1024}, {"compliance", 4096}};
+  for (const auto& [method, interval] : methods) {
+    INFO(method);
+    std::atomic<bool> stop{true};
+    RunRequest request{kScenes + "/bridge-exc7.toml", {}, method, {}};
+    request.stop = &stop;
+    const RunRecord r = execute(request);
+    CHECK(r.result.status == integrators::RunStatus::kInterrupted);
+    CHECK(!r.result.completed);
+    CHECK(r.result.steps == interval);
+    CHECK(r.result.end_time < 40.0);
+  }
 }
 
 TEST_CASE("a dump folder that cannot be made is refused before the run") {
