@@ -2,10 +2,13 @@
 
 #include "integrators/run.hpp"
 #include "io/files.hpp"
+#include "runs/estimate.hpp"
 #include "runs/lcp_dump.hpp"
 #include "runs/trust.hpp"
 
+#include <ctime>
 #include <optional>
+#include <tuple>
 #include <stdexcept>
 #include <utility>
 #include <variant>
@@ -25,6 +28,39 @@ scene::SceneTable scene_table(const RunRequest& request) {
     scene::apply_overrides(table, std::vector<std::string>{"solver.method=" + request.method});
   }
   return table;
+}
+
+// CPU time of the calling thread [s]: a run's cost, whether or not other runs share the
+// process (a sweep's threads).
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The error estimate of a run (runs/estimate.hpp): its scene built again from the same table
+// (a fresh system: the run's own is at its end state) and integrated with the companion's
+// step or tolerance; no rows but the first and the last are kept, the peaks being those of
+// the steps. Sets digest.estimate.
+void estimate_errors(const scene::Scene& scene, const integrators::Recorder& history,
+                     Digest& digest) {
+  ErrorEstimate& e = digest.estimate;
+  e.enabled = true;
+  const double t0 = scene.system->initial_time();
+  const std::optional<CompanionPlan> plan =
+      companion_plan(scene.run, integrators::end_time(scene.run) - t0);
+  if (!plan) return;
+  const double start = thread_cpu_seconds();
+  scene::Scene twin = scene::build_scene(scene.table);
+  integrators::Recorder companion_history(*twin.system, integrators::end_time(plan->config) - t0);
+  const integrators::RunResult result =
+      integrators::integrate(*twin.system, plan->config, companion_history);
+  e.companion_status = std::string(integrators::to_string(result.status));
+  if (integrators::is_result(result.status)) {
+    const Digest companion = make_digest(companion_history, result);
+    apply_estimate(digest, history, companion, companion_history, *plan);
+  }
+  e.companion_cpu_seconds = thread_cpu_seconds() - start;
 }
 
 }  // namespace
@@ -57,11 +93,20 @@ RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
   if (!prepared.dump_lcp.empty()) dump.emplace(prepared.dump_lcp);
   integrators::RunHooks hooks;
   if (dump) hooks.contact_observer = &*dump;
+  const double start = thread_cpu_seconds();
   integrators::RunResult result =
       integrators::integrate(*scene.system, scene.run, history, progress, hooks);
+  const double run_cpu_seconds = thread_cpu_seconds() - start;
   if (dump) dump->write_manifest();
   Digest digest = make_digest(history, result, scene.system->limit_states());
   digest.input = scene.input;
+  // A run that is not a result (it failed) has no peaks worth an estimate.
+  if (scene.estimate.error_estimate && integrators::is_result(result.status)) {
+    estimate_errors(scene, history, digest);
+  }
+  digest.estimate.run_cpu_seconds = run_cpu_seconds;
+  std::tie(digest.estimate.setting, digest.estimate.value) = accuracy_setting(scene.run);
+  digest.accuracy = judge_accuracy(digest, scene.estimate.accuracy);
   std::vector<std::string> warnings = std::move(prepared.warnings);
   for (auto& w : result_warnings(history, digest, result)) warnings.push_back(std::move(w));
   result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
