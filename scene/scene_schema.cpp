@@ -71,8 +71,9 @@ std::span<const c::Field<EstimateSettings>> EstimateSettings::fields() {
       c::boolean<&S::error_estimate>(
           "error_estimate",
           "estimate the numerical error of every peak, the impact count and the first impact's "
-          "time by a companion run (Moreau–Jean at 2 step, the adaptive methods at 100 "
-          "tolerance) extrapolated at the method's measured order (docs/error-estimates.md); "
+          "time by a companion run (Moreau–Jean at twice solver.step, the adaptive methods at "
+          "100 times solver.tolerance) extrapolated at the method's measured order "
+          "(docs/error-estimates.md); "
           "false: no estimate, the run alone"),
       c::number<&S::accuracy>(
           "accuracy", "-", c::open(0.0, 1.0),
