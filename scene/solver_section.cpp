@@ -21,15 +21,16 @@ void for_each_method(Fn&& fn) {
   }(std::type_identity<RunConfig>{});
 }
 
-// Every [solver] key: method, then each method's keys in their order of declaration, once.
+// Every [solver] key: method, then each method's keys in their order of declaration, once,
+// then the error estimate's (EstimateSettings).
 std::vector<std::string_view> solver_keys() {
   std::vector<std::string_view> keys = keys_of(MethodSetting::fields());
-  for (const auto key : keys_of(EstimateSettings::fields())) keys.push_back(key);
   for_each_method([&]<class O>() {
     for (const auto& f : O::fields()) {
       if (std::find(keys.begin(), keys.end(), f.key) == keys.end()) keys.push_back(f.key);
     }
   });
+  for (const auto key : keys_of(EstimateSettings::fields())) keys.push_back(key);
   return keys;
 }
 
