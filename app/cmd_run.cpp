@@ -106,6 +106,51 @@ std::string six_digits(double x) {
   return text;
 }
 
+// Three significant digits for a peak, one for its error estimate.
+std::string three_digits(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+std::string one_digit(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1g", x);
+  return text;
+}
+
+// The error estimate (docs/error-estimates.md): the companion, its cost, the impact count and
+// first impact's time with their errors, and the accuracy target met or not.
+void print_estimate(const runs::Digest& d) {
+  const runs::ErrorEstimate& e = d.estimate;
+  std::cout << "estimate   ";
+  if (!e.enabled) {
+    std::cout << "off (solver.error_estimate = false)\n";
+    return;
+  }
+  if (!e.computed) {
+    std::cout << "none: "
+              << (e.companion_status.empty() ? std::string("no companion for these settings")
+                                             : "the companion run ended " + e.companion_status)
+              << '\n';
+    return;
+  }
+  std::cout << "companion at " << e.setting << ' ' << three_digits(e.companion_value) << ", order "
+            << e.order << "; impacts " << e.impacts << " ± " << e.impacts_error;
+  if (!std::isnan(e.first_impact)) {
+    std::cout << ", first at " << six_digits(e.first_impact) << " ± "
+              << one_digit(e.first_impact_error) << " s";
+  }
+  if (e.run_cpu_seconds > 0.0) {
+    std::cout << "; cost x" << three_digits((e.run_cpu_seconds + e.companion_cpu_seconds) /
+                                           e.run_cpu_seconds);
+  }
+  std::cout << '\n';
+  const runs::Accuracy& a = d.accuracy;
+  std::cout << "accuracy   " << three_digits(100.0 * a.target) << " % "
+            << (a.met ? "met" : "not met") << " (largest: |" << a.worst << "| "
+            << three_digits(100.0 * a.worst_relative) << " %)\n";
+}
+
 // The watched limit states (docs/limit-states.md): how many, and each exceeded one with when.
 void print_limit_states(const runs::Digest& d) {
   std::size_t exceeded = 0;
@@ -151,9 +196,11 @@ void print_summary(const runs::RunRecord& record, const std::filesystem::path& o
   std::cout << "peaks     ";
   for (const runs::CoordinatePeak& c : d.coordinates) {
     std::cout << " |" << c.name << "| "
-              << (std::isfinite(c.peak) ? six_digits(c.peak) : std::string("not finite"));
+              << (std::isfinite(c.peak) ? three_digits(c.peak) : std::string("not finite"));
+    if (!std::isnan(c.error)) std::cout << " ± " << one_digit(c.error);
   }
   std::cout << '\n';
+  print_estimate(d);
   // A diverged run's balance is not a number: say so rather than print "nan".
   std::cout << "energy     balance error "
             << (std::isfinite(d.energy.error) ? six_digits(d.energy.error)

@@ -108,8 +108,8 @@ void ComplianceRun::start() {
   accepted_.q = &core_.q_;
   accepted_.u = &core_.u_;
   accepted_.normal_impulse = &impulse_;
-  recorder_.sample(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
-                   0.0);
+  recorder_.step(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
+                 0.0);
   start_gap_ = Vector::Zero(m_);
   start_rate_ = Vector::Zero(m_);
   remember_start();

@@ -23,8 +23,8 @@ bool ComplianceRun::accept_step(double t_new, bool landed, bool close_at_start) 
   if (closed_now) core_.evaluate(t_, x_, false, ContactFields::kAll);
   const StepVerdict verdict = watch(h);
   accumulate_energy(h);
-  recorder_.sample(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
-                   energy_.error);
+  recorder_.step(t_, core_.q_, core_.u_, core_.contacts_, core_.lambda_n_, core_.lambda_t_,
+                 energy_.error);
   remember_start();
   if (verdict != StepVerdict::kUnseated) return true;
   book_.unseat(t_);

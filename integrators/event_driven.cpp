@@ -124,7 +124,7 @@ bool EventDriven::start() {
   dense_ = odeint::make_dense_output(opt_.tolerance, opt_.tolerance, opt_.max_step, Dopri());
   if (!handle_event(t_, x_, 0, true)) return false;
   sys_.commit();
-  record_sample(t_, x_, false);
+  record_sample(t_, x_, SampleKind::kStep);
   const double sample_dt = rec_.sample_dt();
   next_sample_ = sample_dt > 0.0 ? t_ + sample_dt : t_;
   restart_phase(std::min(opt_.initial_step, opt_.end_time - t_));
@@ -155,7 +155,7 @@ EventDriven::StepEnd EventDriven::step() {
   t_ = t_stop;
   dense_.calc_state(t_, x_);
   phase_impulse(ta, t_stop);
-  if (rec_.sample_dt() == 0.0) record_sample(t_, x_, false);
+  record_step();
   if (k_event >= 0 && t_event <= tb) return after_event(k_event);
   return after_smooth_step();
 }
@@ -212,7 +212,7 @@ void EventDriven::sample_until(double t_stop) {
   if (!(sample_dt > 0.0)) return;
   while (next_sample_ <= t_stop) {
     dense_.calc_state(next_sample_, xs_);
-    record_sample(next_sample_, xs_, false);
+    record_sample(next_sample_, xs_, SampleKind::kBetweenSteps);
     next_sample_ += sample_dt;
   }
 }
@@ -314,7 +314,7 @@ void EventDriven::drop_removed_contacts() {
 // the system): the history ends with the last finite sample, and the run diverged.
 RunResult EventDriven::finish(bool completed) {
   if (all_finite(x_)) {
-    record_sample(t_, x_, true);
+    record_sample(t_, x_, SampleKind::kForced);
   } else {
     book_.diverge(t_);
   }
@@ -340,14 +340,23 @@ double EventDriven::balance_error(double t, const State& x) {
   return e.error;
 }
 
-void EventDriven::record_sample(double t, const State& x, bool force) {
+void EventDriven::record_sample(double t, const State& x, SampleKind kind) {
   indicators(t, x);  // fills contact data and the phase's contact forces at (t, x)
   const double err = balance_error(t, x);
-  if (force) {
-    rec_.sample_now(t, q_, u_, cbuf_, lambda_n_, lambda_t_, err);
-  } else {
-    rec_.sample(t, q_, u_, cbuf_, lambda_n_, lambda_t_, err);
+  switch (kind) {
+    case SampleKind::kBetweenSteps: rec_.sample(t, q_, u_, cbuf_, lambda_n_, lambda_t_, err); break;
+    case SampleKind::kStep: rec_.step(t, q_, u_, cbuf_, lambda_n_, lambda_t_, err); break;
+    case SampleKind::kForced: rec_.sample_now(t, q_, u_, cbuf_, lambda_n_, lambda_t_, err); break;
   }
+}
+
+void EventDriven::record_step() {
+  if (rec_.sample_dt() == 0.0) {
+    record_sample(t_, x_, SampleKind::kStep);
+    return;
+  }
+  indicators(t_, x_);
+  rec_.observe(t_, q_, u_, cbuf_, lambda_n_, lambda_t_, balance_error(t_, x_));
 }
 
 }  // namespace detail

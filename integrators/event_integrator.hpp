@@ -62,7 +62,14 @@ class EventDriven {
   void phase_impulse(double ta, double tb);
   StepVerdict accept_step();
   void drop_removed_contacts();
-  void record_sample(double t, const State& x, bool force);
+  // How record_sample hands the state to the recorder: a row between steps (kBetweenSteps,
+  // Recorder::sample), an accepted step's state (kStep, Recorder::step), or the initial or
+  // final state (kForced, Recorder::sample_now).
+  enum class SampleKind { kBetweenSteps, kStep, kForced };
+  void record_sample(double t, const State& x, SampleKind kind);
+  // The state at the end of an accepted step (t_, x_): into the peaks, and a row when every
+  // step is recorded (sample_dt = 0).
+  void record_step();
   double balance_error(double t, const State& x);
 
   // ---- phase dynamics (event_phase.cpp) ----

@@ -579,14 +579,17 @@ double MoreauJean::energy_error() {
   return energy_.error;
 }
 
+// Every step's state enters the recorder's extremes (the run's peaks), recorded or not, so the
+// energy balance is closed at every step.
 void MoreauJean::sample(bool force) {
+  const double error = energy_error();
   if (force) {
-    recorder_.sample_now(t_, q_, u_, contacts_, force_n_, force_t_, energy_error());
+    recorder_.sample_now(t_, q_, u_, contacts_, force_n_, force_t_, error);
     last_sample_t_ = t_;
-  } else if (recorder_.due(t_)) {
-    recorder_.sample(t_, q_, u_, contacts_, force_n_, force_t_, energy_error());
-    last_sample_t_ = t_;
+    return;
   }
+  if (recorder_.due(t_)) last_sample_t_ = t_;
+  recorder_.step(t_, q_, u_, contacts_, force_n_, force_t_, error);
 }
 
 }  // namespace

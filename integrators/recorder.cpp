@@ -89,14 +89,36 @@ Recorder::Recorder(const System& system, double sample_dt)
   }
   column_info_.push_back({"energy_error", ColumnKind::kEnergyError, 0});
   for (const auto& c : column_info_) columns_.push_back(c.name);
+  extremes_.resize(columns_.size() - 1);
+  gap_until_removal_.resize(static_cast<std::size_t>(ncontacts_));
 }
+
+namespace {
+
+// Appends one history row: t, q, u, (g_N, lambda_N, lambda_T) per contact, energy_error.
+void write_row(std::vector<double>& data, int ndof, int ncontacts, double t, const Vector& q,
+               const Vector& u, const std::vector<ContactData>& c, const Vector& lambda_n,
+               const Vector& lambda_t, double energy_error) {
+  data.push_back(t);
+  for (int i = 0; i < ndof; ++i) data.push_back(q[i]);
+  for (int i = 0; i < ndof; ++i) data.push_back(u[i]);
+  for (int i = 0; i < ncontacts; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    data.push_back(k < c.size() ? c[k].gap_normal : 0.0);
+    data.push_back(i < lambda_n.size() ? lambda_n[i] : 0.0);
+    data.push_back(i < lambda_t.size() ? lambda_t[i] : 0.0);
+  }
+  data.push_back(energy_error);
+}
+
+}  // namespace
 
 void Recorder::sample(double t, const Vector& q, const Vector& u,
                       const std::vector<ContactData>& c, const Vector& lambda_n,
                       const Vector& lambda_t, double energy_error) {
   // A small slack keeps round-off in t from skipping a sample.
   if (t + 1e-9 * std::max(1.0, sample_dt_) < next_sample_) return;
-  sample_now(t, q, u, c, lambda_n, lambda_t, energy_error);
+  write_row(data_, ndof_, ncontacts_, t, q, u, c, lambda_n, lambda_t, energy_error);
   next_sample_ = (sample_dt_ > 0.0) ? (std::floor(t / sample_dt_ + 1e-9) + 1.0) * sample_dt_
                                     : -1e300;
 }
@@ -104,16 +126,26 @@ void Recorder::sample(double t, const Vector& q, const Vector& u,
 void Recorder::sample_now(double t, const Vector& q, const Vector& u,
                           const std::vector<ContactData>& c, const Vector& lambda_n,
                           const Vector& lambda_t, double energy_error) {
-  data_.push_back(t);
-  for (int i = 0; i < ndof_; ++i) data_.push_back(q[i]);
-  for (int i = 0; i < ndof_; ++i) data_.push_back(u[i]);
+  write_row(data_, ndof_, ncontacts_, t, q, u, c, lambda_n, lambda_t, energy_error);
+  observe(t, q, u, c, lambda_n, lambda_t, energy_error);
+}
+
+void Recorder::observe(double t, const Vector& q, const Vector& u,
+                       const std::vector<ContactData>& c, const Vector& lambda_n,
+                       const Vector& lambda_t, double energy_error) {
+  // The values in the order of sample_now's row, without t: extremes_[k] is column k + 1.
+  std::size_t k = 0;
+  for (int i = 0; i < ndof_; ++i) extremes_[k++].fold(q[i], t);
+  for (int i = 0; i < ndof_; ++i) extremes_[k++].fold(u[i], t);
   for (int i = 0; i < ncontacts_; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    data_.push_back(k < c.size() ? c[k].gap_normal : 0.0);
-    data_.push_back(i < lambda_n.size() ? lambda_n[i] : 0.0);
-    data_.push_back(i < lambda_t.size() ? lambda_t[i] : 0.0);
+    const auto ci = static_cast<std::size_t>(i);
+    const double gap = ci < c.size() ? c[ci].gap_normal : 0.0;
+    extremes_[k++].fold(gap, t);
+    if (t <= removed_at_[ci]) gap_until_removal_[ci].fold(gap, t);
+    extremes_[k++].fold(i < lambda_n.size() ? lambda_n[i] : 0.0, t);
+    extremes_[k++].fold(i < lambda_t.size() ? lambda_t[i] : 0.0, t);
   }
-  data_.push_back(energy_error);
+  extremes_[k].fold(energy_error, t);
 }
 
 void Recorder::event(double t, int contact, EventKind kind, std::string note) {

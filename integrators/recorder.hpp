@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <cstdint>
 #include <functional>
@@ -159,9 +161,36 @@ struct Column {
   int index = 0;  // 0-based coordinate, velocity or contact index; 0 for t and energy_error
 };
 
-// Collects the time history at a fixed sampling interval, and every event.
+// The extremes of one quantity over the accepted steps of a run, and when they occur (the
+// first step that reaches each). NaN values are skipped; without a finite value max = -inf,
+// min = +inf and the times NaN.
+struct StepExtremes {
+  double max = -std::numeric_limits<double>::infinity();
+  double t_max = std::numeric_limits<double>::quiet_NaN();
+  double min = std::numeric_limits<double>::infinity();
+  double t_min = std::numeric_limits<double>::quiet_NaN();
+  double magnitude = 0.0;  // max |v| over the non-NaN values, an infinite one included
+  std::int64_t steps = 0;  // states folded in
+  void fold(double v, double t) {
+    ++steps;
+    if (std::isnan(v)) return;
+    magnitude = std::max(magnitude, std::abs(v));
+    if (!std::isfinite(v)) return;
+    if (v > max) max = v, t_max = t;
+    if (v < min) min = v, t_min = t;
+  }
+};
+
+// Collects the time history at a fixed sampling interval, every event, and the extremes of
+// every column over every accepted step, recorded or not.
 // Columns: t, <coordinate names>, <velocity names>, then per contact i = 1..m
 // gN<i>, lambdaN<i>, lambdaT<i>, then energy_error.
+//
+// Every integrator hands every accepted step's state (the initial and the final state
+// included) to step(), observe() or sample_now(), so the peaks of a run (extremes()) are those
+// of its steps: output.sample_dt changes the rows, never the peaks (docs/outputs.md). The
+// event-driven method's rows between steps (from its dense output) go to sample() alone and
+// do not count.
 class Recorder {
  public:
   // sample_dt [s] >= 0; 0 records every call to sample().
@@ -169,11 +198,22 @@ class Recorder {
 
   // Records a row if t has reached the next sampling time (always the first call).
   // lambda_n, lambda_t are contact *forces* [kN] (impulse / step for time-stepping).
+  // A row alone: it does not enter extremes() (the event-driven method's rows between steps).
   void sample(double t, const Vector& q, const Vector& u, const std::vector<ContactData>& c,
               const Vector& lambda_n, const Vector& lambda_t, double energy_error);
-  // Records a row unconditionally (used for the final state).
+  // Records a row unconditionally (the initial and the final state): a step's state, which
+  // enters extremes().
   void sample_now(double t, const Vector& q, const Vector& u, const std::vector<ContactData>& c,
                   const Vector& lambda_n, const Vector& lambda_t, double energy_error);
+  // An accepted step's state: folds it into extremes() without recording a row.
+  void observe(double t, const Vector& q, const Vector& u, const std::vector<ContactData>& c,
+               const Vector& lambda_n, const Vector& lambda_t, double energy_error);
+  // An accepted step's state: observe(), then sample().
+  void step(double t, const Vector& q, const Vector& u, const std::vector<ContactData>& c,
+            const Vector& lambda_n, const Vector& lambda_t, double energy_error) {
+    observe(t, q, u, c, lambda_n, lambda_t, energy_error);
+    sample(t, q, u, c, lambda_n, lambda_t, energy_error);
+  }
   void event(double t, int contact, EventKind kind, std::string note = {});
   // True when sample(t, ...) would record a row, so that an integrator computes what only a
   // recorded row needs (e.g. the energy balance) only then. Same rule as sample().
@@ -199,6 +239,14 @@ class Recorder {
   // The time contact i (0-based) was removed; +infinity while it was not.
   double removed_at(int i) const { return removed_at_[static_cast<std::size_t>(i)]; }
   std::size_t count(EventKind kind) const;
+  // The extremes over the accepted steps of every column but t, in the order of columns()
+  // (column c at c - 1).
+  const std::vector<StepExtremes>& extremes() const { return extremes_; }
+  // The extremes of contact i's (0-based) gap over the accepted steps up to its removal
+  // (removed_at(i)) inclusive: after it, its gap column is no contact's.
+  const StepExtremes& gap_until_removal(int i) const {
+    return gap_until_removal_[static_cast<std::size_t>(i)];
+  }
 
  private:
   int ndof_ = 0;
@@ -210,6 +258,8 @@ class Recorder {
   std::vector<double> data_;
   std::vector<Event> events_;
   std::vector<double> removed_at_;  // per contact [s]
+  std::vector<StepExtremes> extremes_;           // per column but t
+  std::vector<StepExtremes> gap_until_removal_;  // per contact
 };
 
 // After System::accept_step returned StepVerdict::kContactsRemoved at t: one "warning" event

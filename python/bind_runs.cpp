@@ -384,6 +384,20 @@ void bind_result(py::module_& m) {
           [](Result& r) -> py::object { return r.summary()["limit_states"]; },
           "summary.json's limit_states: {name: {exceeded, time, margin, unit}} "
           "(docs/limit-states.md); {} when the system watches none")
+      .def_property_readonly(
+          "peaks", [](Result& r) -> py::object { return r.summary()["peaks"]; },
+          "summary.json's peaks: {column: {max, t_max, min, t_min, abs_max, t_abs_max, error}} "
+          "over every accepted step; error is abs_max's estimated error (None when not "
+          "estimated; docs/error-estimates.md)")
+      .def_property_readonly(
+          "error_estimate", [](Result& r) -> py::object { return r.summary()["error_estimate"]; },
+          "summary.json's error_estimate: the companion run, the order and factor of the "
+          "extrapolation, impacts and first_impact with their errors, cost "
+          "(docs/error-estimates.md)")
+      .def_property_readonly(
+          "accuracy", [](Result& r) -> py::object { return r.summary()["accuracy"]; },
+          "summary.json's accuracy: {target, met, step or tolerance, worst, "
+          "worst_relative_error}; met is None without an estimate")
       .def_property_readonly("history", &Result::history,
                              "history.csv's columns: name -> numpy float64 array")
       .def_property_readonly("events", &Result::events,

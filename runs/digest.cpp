@@ -12,36 +12,30 @@ namespace {
 using integrators::ColumnKind;
 using integrators::Recorder;
 
+// A column's peaks from its extremes over the accepted steps (Recorder::extremes()).
 ColumnPeak column_peak(const Recorder& h, std::size_t c) {
+  const integrators::StepExtremes& e = h.extremes()[c - 1];
   ColumnPeak p;
   p.column = h.columns()[c];
-  double vmax = -INFINITY, vmin = INFINITY, tmax = NAN, tmin = NAN;
-  for (std::size_t r = 0; r < h.rows(); ++r) {
-    const double v = h.at(r, c);
-    if (!std::isfinite(v)) continue;
-    if (v > vmax) vmax = v, tmax = h.at(r, 0);
-    if (v < vmin) vmin = v, tmin = h.at(r, 0);
-  }
-  const bool abs_is_max = std::abs(vmax) >= std::abs(vmin);
-  p.max = vmax;
-  p.t_max = tmax;
-  p.min = vmin;
-  p.t_min = tmin;
-  p.abs_max = abs_is_max ? std::abs(vmax) : std::abs(vmin);
-  p.t_abs_max = abs_is_max ? tmax : tmin;
+  const bool abs_is_max = std::abs(e.max) >= std::abs(e.min);
+  p.max = e.max;
+  p.t_max = e.t_max;
+  p.min = e.min;
+  p.t_min = e.t_min;
+  p.abs_max = abs_is_max ? std::abs(e.max) : std::abs(e.min);
+  p.t_abs_max = abs_is_max ? e.t_max : e.t_min;
   return p;
 }
 
-// std::max(p, NaN) keeps p: a NaN sample is skipped; an infinite one is the peak.
+// An infinite value is the peak; NaN values are skipped (StepExtremes::magnitude).
 CoordinatePeak coordinate_peak(const Recorder& h, std::size_t c) {
   CoordinatePeak p;
   p.name = h.columns()[c];
-  if (h.rows() == 0) {
+  if (h.rows() == 0 || h.extremes()[c - 1].steps == 0) {
     p.peak = p.residual = std::numeric_limits<double>::quiet_NaN();
     return p;
   }
-  p.peak = 0.0;
-  for (std::size_t r = 0; r < h.rows(); ++r) p.peak = std::max(p.peak, std::abs(h.at(r, c)));
+  p.peak = h.extremes()[c - 1].magnitude;
   p.residual = h.at(h.rows() - 1, c);
   return p;
 }
@@ -79,10 +73,8 @@ Digest make_digest(const Recorder& history, const integrators::RunResult& result
       d.coordinates.push_back(coordinate_peak(history, c));
     } else if (info[c].kind == ColumnKind::kGap) {
       // A removed contact (a broken shear key) counts up to its removal only.
-      const double until = history.removed_at(info[c].index);
-      for (std::size_t r = 0; r < history.rows() && history.at(r, 0) <= until; ++r) {
-        d.max_penetration = std::max(d.max_penetration, -history.at(r, c));
-      }
+      const integrators::StepExtremes& gap = history.gap_until_removal(info[c].index);
+      if (gap.steps > 0) d.max_penetration = std::max(d.max_penetration, -gap.min);
     }
   }
   count_events(history, d);

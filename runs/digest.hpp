@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct ColumnPeak {
   double max = 0.0, t_max = 0.0;          // [unit of the column], [s]
   double min = 0.0, t_min = 0.0;
   double abs_max = 0.0, t_abs_max = 0.0;  // max(|max|, |min|) and its time (max's on a tie)
+  // The estimated absolute error of abs_max [unit of the column] (runs/estimate.hpp,
+  // docs/error-estimates.md); NaN when not estimated.
+  double error = std::numeric_limits<double>::quiet_NaN();
 };
 
 // A generalized coordinate's largest magnitude and its last recorded value.
@@ -28,6 +32,41 @@ struct CoordinatePeak {
   std::string name;       // the system's name of the coordinate ("x", "theta", ...)
   double peak = 0.0;      // max |q| over the samples, NaN samples skipped [unit of q]
   double residual = 0.0;  // q at the last sample; both NaN without samples
+  double error = std::numeric_limits<double>::quiet_NaN();  // estimated absolute error of
+                                                            //   peak; NaN: not estimated
+};
+
+// The numerical error estimate of a run (runs/estimate.hpp, docs/error-estimates.md): the run
+// is repeated by a companion at a coarser step (Moreau–Jean) or a looser tolerance (the
+// adaptive methods), and the difference of each number is extrapolated at the method's
+// measured order: error = factor |value - companion's value|, factor = 1 / (r^p - 1).
+struct ErrorEstimate {
+  bool enabled = false;           // solver.error_estimate
+  bool computed = false;          // the companion reached a result and the errors are set
+  std::string setting;            // "step" or "tolerance": what the companion changed
+  double value = 0.0;             // the run's solver.step [s] or solver.tolerance [-]
+  double companion_value = 0.0;   // the companion's
+  std::string companion_status;   // the companion's RunStatus name; empty when not run
+  double order = 0.0;             // p: the order assumed (the lowest measured, nonsmooth)
+  double ratio = 0.0;             // r = companion_value / value
+  double factor = 0.0;            // 1 / (r^p - 1)
+  std::int64_t impacts = 0;       // impacts of the run
+  double impacts_error = std::numeric_limits<double>::quiet_NaN();  // |impacts - companion's|
+  double first_impact = std::numeric_limits<double>::quiet_NaN();   // time of the first
+                                                                    //   impact [s]; NaN: none
+  double first_impact_error = std::numeric_limits<double>::quiet_NaN();  // [s]
+  double run_cpu_seconds = 0.0;        // CPU time of the run's integration [s]
+  double companion_cpu_seconds = 0.0;  // CPU time of the companion (build and integration) [s]
+};
+
+// The run judged against solver.accuracy: every coordinate's peak error estimate at most
+// accuracy times the peak (runs/estimate.hpp).
+struct Accuracy {
+  double target = 0.0;      // solver.accuracy, relative
+  bool judged = false;      // an estimate exists (met is meaningful)
+  bool met = false;
+  std::string worst;        // the coordinate of the largest relative error
+  double worst_relative = std::numeric_limits<double>::quiet_NaN();  // its error / peak
 };
 
 // Event counts of one contact, per kind in the order of integrators::kEventKindNames.
@@ -56,6 +95,9 @@ struct Digest {
   // summary.json "input": the scene's excitation as scaled (scene::Scene::input), which
   // runs::run copies from the scene; empty for a digest of a history alone.
   models::InputMotion input;
+  // summary.json "error_estimate" and "accuracy": set by runs::run (runs/estimate.hpp).
+  ErrorEstimate estimate;
+  Accuracy accuracy;
 
   std::int64_t count(integrators::EventKind kind) const;  // events of a kind, in total
 };

@@ -5,6 +5,9 @@
 #include "io/json.hpp"
 
 #include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <string_view>
 #include <utility>
 
 namespace nsb::runs {
@@ -121,7 +124,8 @@ void write_peaks(JsonText& j, const Digest& d) {
     first = false;
     const std::pair<const char*, double> fields[] = {
         {"max", p.max},         {"t_max", p.t_max},     {"min", p.min},
-        {"t_min", p.t_min},     {"abs_max", p.abs_max}, {"t_abs_max", p.t_abs_max}};
+        {"t_min", p.t_min},     {"abs_max", p.abs_max}, {"t_abs_max", p.t_abs_max},
+        {"error", p.error}};
     j.o += io::json_string(p.column) + ": {";
     for (std::size_t i = 0; i < std::size(fields); ++i) {
       j.o += i ? ", " : "";
@@ -179,6 +183,72 @@ void write_limit_states(JsonText& j, const Digest& d) {
   j.o += first ? "},\n" : "\n  },\n";
 }
 
+// `"name": {"k1": v1, ...}` of numbers, a null for each non-finite one.
+void append_object(std::string& o, std::string_view name,
+                   std::initializer_list<std::pair<const char*, double>> fields) {
+  o += io::json_string(name) + ": {";
+  bool first = true;
+  for (const auto& [k, v] : fields) {
+    o += first ? "" : ", ";
+    first = false;
+    o += io::json_string(k) + ": ";
+    io::append_json_number(o, v);
+  }
+  o += "}";
+}
+
+// The error estimate (runs/estimate.hpp): whether it was made, what the companion changed and
+// how it ended, the extrapolation (order, ratio, factor), the impact count and the first
+// impact's time with their errors, and its cost in CPU seconds.
+void write_estimate(JsonText& j, const Digest& d) {
+  const ErrorEstimate& e = d.estimate;
+  j.key("error_estimate");
+  j.o += "{\"enabled\": ";
+  j.o += e.enabled ? "true" : "false";
+  j.o += ", \"computed\": ";
+  j.o += e.computed ? "true" : "false";
+  if (e.enabled) {
+    j.o += ", \"companion\": {\"setting\": " + io::json_string(e.setting) + ", \"value\": ";
+    io::append_json_number(j.o, e.companion_value);
+    j.o += ", \"status\": " + io::json_string(e.companion_status) + "}";
+    j.o += ", \"order\": ";
+    io::append_json_number(j.o, e.order);
+    j.o += ", \"ratio\": ";
+    io::append_json_number(j.o, e.ratio);
+    j.o += ", \"factor\": ";
+    io::append_json_number(j.o, e.factor);
+    j.o += ",\n    ";
+    append_object(j.o, "impacts",
+                  {{"count", static_cast<double>(e.impacts)}, {"error", e.impacts_error}});
+    j.o += ", ";
+    append_object(j.o, "first_impact", {{"time", e.first_impact}, {"error", e.first_impact_error}});
+  }
+  j.o += ",\n    ";
+  const double ratio = e.run_cpu_seconds > 0.0
+                           ? (e.run_cpu_seconds + e.companion_cpu_seconds) / e.run_cpu_seconds
+                           : std::numeric_limits<double>::quiet_NaN();
+  append_object(j.o, "cost", {{"run_cpu_seconds", e.run_cpu_seconds},
+                              {"companion_cpu_seconds", e.companion_cpu_seconds},
+                              {"ratio", ratio}});
+  j.o += "},\n";
+}
+
+// The run judged against solver.accuracy: the target, whether it is met (null without an
+// estimate), the step or tolerance used, and the coordinate of the largest relative error.
+void write_accuracy(JsonText& j, const Digest& d) {
+  const Accuracy& a = d.accuracy;
+  j.key("accuracy");
+  j.o += "{\"target\": ";
+  io::append_json_number(j.o, a.target);
+  j.o += ", \"met\": ";
+  j.o += !a.judged ? "null" : a.met ? "true" : "false";
+  j.o += ", " + io::json_string(d.estimate.setting) + ": ";
+  io::append_json_number(j.o, d.estimate.value);
+  j.o += ", \"worst\": " + io::json_string(a.worst) + ", \"worst_relative_error\": ";
+  io::append_json_number(j.o, a.worst_relative);
+  j.o += "}\n";
+}
+
 }  // namespace
 
 std::string history_csv(const integrators::Recorder& history) {
@@ -230,7 +300,10 @@ std::string summary_json(const RunRecord& record) {
     j.o += i ? ", " : "";
     j.o += io::json_string(record.digest.warnings[i]);
   }
-  j.o += "]\n}\n";
+  j.o += "],\n";
+  write_estimate(j, record.digest);
+  write_accuracy(j, record.digest);
+  j.o += "}\n";
   return std::move(j.o);
 }
 

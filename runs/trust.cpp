@@ -1,6 +1,7 @@
 #include "runs/trust.hpp"
 
 #include "io/csv.hpp"
+#include "runs/estimate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,19 +19,6 @@ constexpr double kRoundoffDepth = 1e-9;
 
 // Three significant digits for messages (printf's %.3g).
 std::string brief(double x) { return io::three_digits(x); }
-
-// The smallest and largest value of column c over the rows at times up to `until` [s].
-ColumnPeak peak_until(const integrators::Recorder& history, std::size_t c, double until) {
-  ColumnPeak p;
-  bool first = true;
-  for (std::size_t r = 0; r < history.rows() && history.at(r, 0) <= until; ++r) {
-    const double v = history.at(r, c), t = history.at(r, 0);
-    if (first || v < p.min) std::tie(p.min, p.t_min) = std::pair(v, t);
-    if (first || v > p.max) std::tie(p.max, p.t_max) = std::pair(v, t);
-    first = false;
-  }
-  return p;
-}
 
 }  // namespace
 
@@ -99,6 +87,7 @@ std::vector<std::string> result_warnings(const integrators::Recorder& history,
                                          const TrustLimits& limits) {
   limits.validate();
   std::vector<std::string> w;
+  if (std::string a = accuracy_warning(digest); !a.empty()) w.push_back(std::move(a));
   const double e = result.energy.error;
   if (!std::isfinite(e)) {
     w.push_back("energy_balance: the energy balance is not a finite number; the run cannot "
@@ -115,12 +104,10 @@ std::vector<std::string> result_warnings(const integrators::Recorder& history,
   const auto& info = history.column_info();
   for (std::size_t c = 1; c < info.size(); ++c) {
     if (info[c].kind != integrators::ColumnKind::kGap) continue;
-    // peaks[c - 1]: the peaks skip the time column. A removed contact (a broken shear key)
-    // is checked up to its removal only: after it, its gap is no contact's.
+    // Over the accepted steps; a removed contact (a broken shear key) is checked up to its
+    // removal only: after it, its gap is no contact's.
     const int contact = info[c].index;
-    const ColumnPeak gap = std::isinf(history.removed_at(contact))
-                               ? digest.peaks[c - 1]
-                               : peak_until(history, c, history.removed_at(contact));
+    const integrators::StepExtremes& gap = history.gap_until_removal(contact);
     const double lo = gap.min, hi = gap.max;
     if (!(lo < -kRoundoffDepth)) continue;
     const double depth = -lo;

@@ -46,7 +46,8 @@ std::vector<std::string> step_warnings(integrators::System& system,
                                        const integrators::RunConfig& config, double record_step,
                                        const TrustLimits& limits = {});
 
-// Warnings about a finished run from its digest: its energy-balance error and, for the
+// Warnings about a finished run from its digest: its error estimate against solver.accuracy
+// (runs/estimate.hpp, accuracy_warning), its energy-balance error and, for the
 // rigid-contact methods (not compliance, whose penetration is the modelled contact
 // deformation), the deepest penetration of each contact (its gap columns, by ColumnKind).
 std::vector<std::string> result_warnings(const integrators::Recorder& history,

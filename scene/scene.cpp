@@ -108,7 +108,7 @@ Scene build_scene(const SceneTable& source) {
 
   Section m(ctx, *model, "model");
   scene.kind = read_kind(m);
-  scene.run = read_solver(solver);
+  scene.run = read_solver(solver, scene.estimate);
   output.only(keys_of(OutputSettings::fields()));
   output.read_all(OutputSettings::fields(), scene.output);
 

@@ -96,6 +96,7 @@ struct Scene {
   // bridge in segments.
   std::optional<models::BridgeDesign> design;
   integrators::RunConfig run;          // the [solver] table: the options of its method
+  EstimateSettings estimate;           // [solver] error_estimate and accuracy
   OutputSettings output;
   double record_step = 0.0;            // shortest sampling interval of the scene's ground-motion
                                        //   records after time scaling [s]; 0 without a record

@@ -9,6 +9,7 @@
 #include "models/excitation_scaling.hpp"
 #include "models/parts.hpp"
 #include "scene/scene_reader.hpp"
+#include "scene/scene_schema.hpp"
 
 #include <memory>
 #include <optional>
@@ -23,7 +24,8 @@ namespace nsb::scene {
 // other methods declare is accepted when one of them accepts its value (a scene may carry the
 // settings of several methods; --method switches between them); a key no method declares is
 // unknown.
-integrators::RunConfig read_solver(Section& s);
+// solver.error_estimate and solver.accuracy (every method's keys) go into `estimate`.
+integrators::RunConfig read_solver(Section& s, EstimateSettings& estimate);
 
 // The chosen method's own checks across fields (Moreau–Jean: step <= end_time), reported at
 // the [solver] key they name.

@@ -74,7 +74,8 @@ constexpr std::string_view kEnd = "<!-- schema:end -->";
 std::vector<DocTable> scene_doc_tables() {
   std::vector<DocTable> out;
   out.push_back(table("top", SceneHeader::fields(), SceneHeader{}, {{"kind", "required"}}));
-  out.push_back(table("solver", MethodSetting::fields(), MethodSetting{}));
+  out.push_back({"solver", kHeader + rows(MethodSetting::fields(), MethodSetting{}) +
+                               rows(EstimateSettings::fields(), EstimateSettings{})});
   add_method_tables(out);
   out.push_back(table("output", OutputSettings::fields(), OutputSettings{}));
   out.push_back(table("model.bouncing_ball", bouncing_ball_fields(), BouncingBall::Parameters{}));

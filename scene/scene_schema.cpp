@@ -73,6 +73,28 @@ std::span<const c::Field<MethodSetting>> MethodSetting::fields() {
   return f;
 }
 
+std::span<const c::Field<EstimateSettings>> EstimateSettings::fields() {
+  using S = EstimateSettings;
+  static const c::Field<S> f[] = {
+      c::boolean<&S::error_estimate>(
+          "error_estimate",
+          "estimate the numerical error of every peak, the impact count and the first impact's "
+          "time by a companion run (Moreau–Jean at twice solver.step, the adaptive methods at "
+          "100 times solver.tolerance) extrapolated at the method's measured order "
+          "(docs/error-estimates.md); "
+          "false: no estimate, the run alone"),
+      c::number<&S::accuracy>(
+          "accuracy", "-", c::open(0.0, 1.0),
+          "relative accuracy target: a run whose estimated error of a coordinate's peak exceeds "
+          "accuracy times the peak warns \"accuracy: ...\" (exit 1 under --strict)"),
+  };
+  return f;
+}
+
+void EstimateSettings::validate() const {
+  c::validate_fields<EstimateSettings>(*this, fields(), "solver.");
+}
+
 std::span<const c::Field<OutputSettings>> OutputSettings::fields() {
   using S = OutputSettings;
   static const c::Field<S> f[] = {

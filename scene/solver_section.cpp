@@ -23,7 +23,8 @@ void for_each_method(Fn&& fn) {
   }(std::type_identity<RunConfig>{});
 }
 
-// Every [solver] key: method, then each method's keys in their order of declaration, once.
+// Every [solver] key: method, then each method's keys in their order of declaration, once,
+// then the error estimate's (EstimateSettings).
 std::vector<std::string_view> solver_keys() {
   std::vector<std::string_view> keys = keys_of(MethodSetting::fields());
   for_each_method([&]<class O>() {
@@ -31,6 +32,7 @@ std::vector<std::string_view> solver_keys() {
       if (std::find(keys.begin(), keys.end(), f.key) == keys.end()) keys.push_back(f.key);
     }
   });
+  for (const auto key : keys_of(EstimateSettings::fields())) keys.push_back(key);
   return keys;
 }
 
@@ -54,10 +56,11 @@ void check_other_method_key(const Section& s, std::string_view key) {
 
 }  // namespace
 
-RunConfig read_solver(Section& s) {
+RunConfig read_solver(Section& s, EstimateSettings& estimate) {
   s.only(solver_keys());
   MethodSetting chosen;
   s.read_all(MethodSetting::fields(), chosen);
+  s.read_all(EstimateSettings::fields(), estimate);
   RunConfig config = integrators::default_config(chosen.method);
   std::visit(
       [&s](auto& options) {
@@ -66,6 +69,7 @@ RunConfig read_solver(Section& s) {
         for (auto&& [k, v] : s.table()) {
           const std::string_view key = k.str();
           if (config::find_field(MethodSetting::fields(), key) != nullptr) continue;
+          if (config::find_field(EstimateSettings::fields(), key) != nullptr) continue;
           if (config::find_field(fields, key) == nullptr) check_other_method_key(s, key);
         }
       },

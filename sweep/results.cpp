@@ -98,8 +98,10 @@ std::vector<Column> base_columns(const std::vector<std::string>& factors,
   for (std::size_t k = 0; k < factors.size(); ++k)
     c.push_back({factors[k], Field::kFactor, k, factor_kinds[k]});
   c.push_back({"status", Field::kStatus, 0, ValueKind::kText});
-  for (std::size_t k = 0; k < coordinates.size(); ++k)
+  for (std::size_t k = 0; k < coordinates.size(); ++k) {
     c.push_back({"peak_" + coordinates[k], Field::kPeak, k, ValueKind::kReal});
+    c.push_back({"peak_" + coordinates[k] + "_error", Field::kPeakError, k, ValueKind::kReal});
+  }
   if (!coordinates.empty())
     c.push_back({"residual_" + coordinates.back(), Field::kResidual, 0, ValueKind::kReal});
   for (const Fixed& f : kFixed) c.push_back({f.name, f.field, 0, f.kind});
@@ -125,6 +127,7 @@ void read_cell(Row& row, const Column& c, const std::string& text,
     case Field::kFactor: row.labels.at(c.index) = text; break;
     case Field::kStatus: row.status = text; break;
     case Field::kPeak: row.peaks.at(c.index) = real_of(text); break;
+    case Field::kPeakError: row.peak_errors.at(c.index) = real_of(text); break;
     case Field::kResidual: row.residual = real_of(text); break;
     case Field::kImpacts: row.impacts = count_of(text); break;
     case Field::kMaxPenetration: row.max_penetration = real_of(text); break;
@@ -197,6 +200,7 @@ Row make_row(const Design& d, std::size_t index, const runs::RunRecord& record, 
     for (const auto& c : digest.coordinates)
       if (c.name == name) last = &c;
     row.peaks.push_back(last ? last->peak : kNotANumber);
+    row.peak_errors.push_back(last ? last->error : kNotANumber);
   }
   if (last) row.residual = last->residual;
   row.impacts = digest.count(integrators::EventKind::kImpact);
@@ -221,6 +225,7 @@ Row rejected_row(const Design& d, std::size_t index, const std::string& message,
   row.labels = d.runs[index].labels;
   row.status = "rejected";
   row.peaks.assign(base_coordinates(d).size(), kNotANumber);
+  row.peak_errors = row.peaks;
   row.message = message;
   row.wall_s = wall;
   return row;
@@ -246,6 +251,7 @@ std::optional<double> Results::number(const Row& row, std::size_t column) const 
     case Field::kStatus:
     case Field::kMessage: return std::nullopt;
     case Field::kPeak: return finite(row.peaks.at(c.index));
+    case Field::kPeakError: return finite(row.peak_errors.at(c.index));
     case Field::kResidual: return finite(row.residual);
     case Field::kImpacts: return finite(row.impacts);
     case Field::kMaxPenetration: return finite(row.max_penetration);
@@ -276,6 +282,7 @@ std::string Results::cell(const Row& row, std::size_t column) const {
     case Field::kFactor: return row.labels.at(c.index);
     case Field::kStatus: return row.status;
     case Field::kPeak: return io::csv_number(row.peaks.at(c.index));
+    case Field::kPeakError: return io::csv_number(row.peak_errors.at(c.index));
     case Field::kResidual: return io::csv_number(row.residual);
     case Field::kImpacts: return count_text(row.impacts);
     case Field::kMaxPenetration: return io::csv_number(row.max_penetration);
@@ -377,6 +384,10 @@ Results results_of(const Table& t) {
                                     [&h](const Column& x) { return x.name == h; });
         f != fixed.end() && f->field != Field::kRun && f->field != Field::kStatus) {
       c = *f;
+    } else if (h.rfind("peak_", 0) == 0 && ends("_error")) {
+      // peak_<q>_error follows peak_<q>: the coordinate is the last one read.
+      c.field = Field::kPeakError;
+      c.index = r.coordinates.empty() ? 0 : r.coordinates.size() - 1;
     } else if (h.rfind("peak_", 0) == 0) {
       c.field = Field::kPeak;
       c.index = r.coordinates.size();
@@ -405,6 +416,7 @@ Results results_of(const Table& t) {
     Row row;
     row.labels.resize(r.factors.size());
     row.peaks.assign(r.coordinates.size(), kNotANumber);
+    row.peak_errors = row.peaks;
     for (std::size_t k = 0; k < r.columns.size(); ++k)
       read_cell(row, r.columns[k], fields.at(k), r.limit_states);
     r.rows.push_back(std::move(row));
@@ -437,6 +449,7 @@ std::optional<Row> parse_row(const Design& d, std::size_t index, const std::stri
   Row row;
   row.labels.resize(r.factors.size());
   row.peaks.assign(r.coordinates.size(), kNotANumber);
+  row.peak_errors = row.peaks;
   for (std::size_t k = 0; k < r.columns.size(); ++k) read_cell(row, r.columns[k], fields[k], {});
   // The design's own labels, not their text read back (csv_fields trims unquoted blanks).
   row.labels = run.labels;

@@ -41,6 +41,8 @@ struct Row {
   std::vector<std::string> labels;  // one per factor of the design; empty: the base value
   std::string status;               // integrators::RunStatus name, or "rejected"
   std::vector<double> peaks;        // max |q| per coordinate of Results::coordinates
+  std::vector<double> peak_errors;  // the estimated absolute error of each peak (runs::
+                                    //   CoordinatePeak::error); NaN: not estimated
   double residual = kNotANumber;    // the last coordinate's value at the end
   std::optional<std::int64_t> impacts;  // impact events
   double max_penetration = kNotANumber;  // max over samples and contacts of -gN, >= 0 [m]
@@ -67,14 +69,15 @@ std::string_view to_string(ValueKind kind);
 
 // The columns of results.csv after `run` and the factor columns, for a system whose
 // generalized coordinates are `coordinates` (base_coordinates of the design), without the
-// limit states': status, peak_<q> for every coordinate q, residual_<q> for the last, then
+// limit states': status, peak_<q> and peak_<q>_error for every coordinate q, residual_<q> for
+// the last, then
 // impacts through message, and wall_s.
 std::vector<std::string> result_columns(const std::vector<std::string>& coordinates);
 
 // What a column of results.csv holds: which field of a Row (and, for a factor, a coordinate's
 // peak or a limit state, which one: `index`).
 enum class Field {
-  kRun, kFactor, kStatus, kPeak, kResidual, kImpacts, kMaxPenetration, kEnergyError, kEndTime,
+  kRun, kFactor, kStatus, kPeak, kPeakError, kResidual, kImpacts, kMaxPenetration, kEnergyError, kEndTime,
   kSteps, kLcpSolves, kLcpFallbacks, kLcpUnsolved, kFailureTime, kMessage, kExceeded, kMargin,
   kWall,
 };
@@ -82,7 +85,7 @@ enum class Field {
 struct Column {
   std::string name;  // the header of results.csv
   Field field = Field::kRun;
-  std::size_t index = 0;  // kFactor: the factor; kPeak: the coordinate; kExceeded, kMargin:
+  std::size_t index = 0;  // kFactor: the factor; kPeak, kPeakError: the coordinate; kExceeded, kMargin:
                           //   the limit state in Results::limit_states
   ValueKind kind = ValueKind::kText;  // the type of its values (Python's dtype)
 };
@@ -94,7 +97,8 @@ struct Column {
 ValueKind factor_kind(const Factor& factor);
 
 // The rows of a sweep in run order, and results.csv's columns: run, the factors, status,
-// peak_<q> for every coordinate q, residual_<q> of the last, impacts through message, then
+// peak_<q> and peak_<q>_error for every coordinate q, residual_<q> of the last, impacts through
+// message, then
 // <name>_exceeded and <name>_margin for every limit state some run has (in the order each
 // first appears in run order), and wall_s last.
 struct Results {

@@ -24,7 +24,11 @@ CASES = [
 
 
 def without_wall_time(summary):
-    return {k: v for k, v in summary.items() if k != "wall_time"}
+    """The summary without its timings: wall_time and the error estimate's CPU seconds."""
+    out = {k: v for k, v in summary.items() if k != "wall_time"}
+    if "error_estimate" in out:
+        out["error_estimate"] = {k: v for k, v in out["error_estimate"].items() if k != "cost"}
+    return out
 
 
 @pytest.mark.parametrize("scene,method,overrides", CASES)
@@ -104,3 +108,20 @@ def test_version_and_build_info():
     assert nsbridge.__version__ == info["version"]
     assert info["revision"] and info["compiler"].split()[0] in ("gcc", "clang")
     assert set(info["libraries"]) >= {"Eigen", "Boost", "GSL", "toml++", "pybind11", "Python"}
+
+
+def test_peaks_carry_their_error_estimate_and_the_accuracy_verdict(source):
+    # Moreau–Jean at 2e-3 s on the ball: the companion at 4e-3 s; each peak's error is the
+    # factor 1 / (2^0.95 - 1) times the difference of the two runs' peaks (docs/error-estimates.md).
+    r = nsbridge.run(source / "scenes/bouncing-ball.toml", overrides=["solver.step=2e-3"])
+    e = r.error_estimate
+    assert e["enabled"] and e["computed"]
+    assert e["companion"] == {"setting": "step", "value": 4e-3, "status": "completed"}
+    assert e["factor"] == pytest.approx(1.0 / (2.0 ** 0.95 - 1.0))
+    assert r.peaks["y"]["error"] >= 0
+    assert e["cost"]["companion_cpu_seconds"] > 0
+    assert r.accuracy["target"] == 0.01 and r.accuracy["step"] == 2e-3
+    assert r.accuracy["met"] in (True, False)
+    off = nsbridge.run(source / "scenes/bouncing-ball.toml", overrides=["solver.error_estimate=false"])
+    assert off.peaks["y"]["error"] is None
+    assert off.error_estimate["enabled"] is False and off.accuracy["met"] is None

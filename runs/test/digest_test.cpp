@@ -32,15 +32,15 @@ Recorder history(TwoCorners& s) {
   lt << 0.0, 0.0;
   c[0].gap_normal = 0.2;
   c[1].gap_normal = 1.0;
-  rec.sample(0.0, q, u, c, ln, lt, 0.0);
+  rec.step(0.0, q, u, c, ln, lt, 0.0);
   q[0] = -2.0;
   c[1].gap_normal = -0.1;
-  rec.sample(0.25, q, u, c, ln, lt, 0.0);
+  rec.step(0.25, q, u, c, ln, lt, 0.0);
   q[0] = 1.5;
   q[2] = -3e-3;
   u[2] = NAN;
   c[1].gap_normal = 0.0;
-  rec.sample(0.5, q, u, c, ln, lt, 0.0);
+  rec.step(0.5, q, u, c, ln, lt, 0.0);
   rec.event(0.2, 2, EventKind::kImpact);
   rec.event(0.3, 2, EventKind::kSlip);
   rec.event(0.3, 1, EventKind::kStick);

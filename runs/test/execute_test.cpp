@@ -99,6 +99,8 @@ TEST_CASE("a scene value runs bit for bit as its file; the value's origin names 
     CHECK(history_csv(b.history) == history_csv(a.history));
     CHECK(events_csv(b.history) == events_csv(a.history));
     a.result.wall_time = b.result.wall_time = 0.0;
+    a.digest.estimate.run_cpu_seconds = b.digest.estimate.run_cpu_seconds = 0.0;
+    a.digest.estimate.companion_cpu_seconds = b.digest.estimate.companion_cpu_seconds = 0.0;
     CHECK(summary_json(b) == summary_json(a));
   }
   // Text overrides on a value, typed ones on a file: the same rule either way.

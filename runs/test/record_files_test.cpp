@@ -48,10 +48,10 @@ Recorder filled_recorder(TwoCorners& s) {
   u << 0.5, 0.0, 1e300;
   ln << 144.0, 0.0;
   lt << -72.0, 0.0;
-  rec.sample(0.0, q, u, c, ln, lt, 1e-9);
+  rec.step(0.0, q, u, c, ln, lt, 1e-9);
   q[0] = -2.0;
   u[2] = NAN;
-  rec.sample(0.25, q, u, c, ln, lt, 2e-9);
+  rec.step(0.25, q, u, c, ln, lt, 2e-9);
   rec.event(0.125, 1, EventKind::kImpact);
   rec.event(0.25, 2, EventKind::kSlip);
   rec.event(0.25, 0, EventKind::kWarning, "note, with \"quotes\"");
@@ -114,8 +114,10 @@ TEST_CASE("summary.json holds the documented keys") {
         "\"samples\": 2", "\"energy\"", "\"error\": 1e-09", "\"events\": {\"impact\": 1",
         "\"contact_events\": [{\"contact\": 1, \"impact\": 1", "\"peaks\"",
         "\"x\": {\"max\": 0.3333333333333333, \"t_max\": 0, \"min\": -2, \"t_min\": 0.25, "
-        "\"abs_max\": 2, \"t_abs_max\": 0.25}",
-        "\"warnings\": [\"a \\\"warning\\\"\"]"}) {
+        "\"abs_max\": 2, \"t_abs_max\": 0.25, \"error\": null}",
+        "\"warnings\": [\"a \\\"warning\\\"\"]",
+        "\"error_estimate\": {\"enabled\": false, \"computed\": false",
+        "\"cost\": {\"run_cpu_seconds\": 0", "\"accuracy\": {\"target\": 0, \"met\": null"}) {
     INFO(key);
     CHECK(j.find(key) != std::string::npos);
   }

@@ -121,7 +121,7 @@ response = "peak_theta"
 threshold = 1
 )");
   CHECK(e4.find("response.toml:13:12: fragility.limit_state[0].response: \"peak_theta\" is not "
-                "a results.csv column of this design (allowed: peak_y, residual_y,") !=
+                "a results.csv column of this design (allowed: peak_y, peak_y_error, residual_y,") !=
         std::string::npos);
   for (const std::string bad : {"nan", "inf", "\"1\""}) {
     const auto e = error_of("threshold", "[fragility]\nim = \"model.restitution\"\n"

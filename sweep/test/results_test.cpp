@@ -40,6 +40,7 @@ Row row(const Design& d, std::size_t index, std::string status, std::vector<Limi
   r.labels = d.runs[index].labels;
   r.status = std::move(status);
   r.peaks = {1.0};
+  r.peak_errors = {0.002};
   r.residual = -0.25;
   r.impacts = 3;
   r.max_penetration = 0.0;
@@ -67,13 +68,13 @@ TEST_CASE("results.csv from typed rows: limit columns are the union, before wall
   rows[1]->message = "x, y";
   const Results r = results_of(d, rows);
   const std::string expected =
-      "run,model.gravity,name,status,peak_y,residual_y,impacts,max_penetration,energy_error,"
-      "end_time,steps,lcp_solves,lcp_fallbacks,lcp_unsolved,failure_time,message,"
+      "run,model.gravity,name,status,peak_y,peak_y_error,residual_y,impacts,max_penetration,"
+      "energy_error,end_time,steps,lcp_solves,lcp_fallbacks,lcp_unsolved,failure_time,message,"
       "closure_left_exceeded,closure_left_margin,unseating_left_exceeded,unseating_left_margin,"
       "wall_s\n"
-      "0000,,,completed,1,-0.25,3,0,1e-05,4,120,0,0,0,,,1,-0.001,,,1.5\n"
-      "0001,9.81,,unseated,1,-0.25,3,0,1e-05,4,120,0,0,0,,\"x, y\",0,0.01,0,0.25,1.5\n"
-      "0002,4.905,,rejected,,,,,,,,,,,,\"bad \"\"step\"\", too large\",,,,,0.1\n";
+      "0000,,,completed,1,0.002,-0.25,3,0,1e-05,4,120,0,0,0,,,1,-0.001,,,1.5\n"
+      "0001,9.81,,unseated,1,0.002,-0.25,3,0,1e-05,4,120,0,0,0,,\"x, y\",0,0.01,0,0.25,1.5\n"
+      "0002,4.905,,rejected,,,,,,,,,,,,,\"bad \"\"step\"\", too large\",,,,,0.1\n";
   CHECK(r.csv() == expected);
   // The same text read back gives the same table.
   const fs::path file = fs::temp_directory_path() / ("nsb_results_" + std::to_string(::getpid()));
@@ -92,9 +93,10 @@ TEST_CASE("without limit states there are no limit columns") {
   const Design d = ball_design();
   const Results r = results_of(d, {row(d, 3, "completed", {})});
   CHECK(r.csv() ==
-        "run,model.gravity,name,status,peak_y,residual_y,impacts,max_penetration,energy_error,"
-        "end_time,steps,lcp_solves,lcp_fallbacks,lcp_unsolved,failure_time,message,wall_s\n"
-        "0003,,\"a, b\",completed,1,-0.25,3,0,1e-05,4,120,0,0,0,,,1.5\n");
+        "run,model.gravity,name,status,peak_y,peak_y_error,residual_y,impacts,max_penetration,"
+        "energy_error,end_time,steps,lcp_solves,lcp_fallbacks,lcp_unsolved,failure_time,message,"
+        "wall_s\n"
+        "0003,,\"a, b\",completed,1,0.002,-0.25,3,0,1e-05,4,120,0,0,0,,,1.5\n");
 }
 
 TEST_CASE("a row's resume files read back to the same row") {
@@ -103,9 +105,10 @@ TEST_CASE("a row's resume files read back to the same row") {
   r.failure_time = 0.125;
   r.message = "non-finite state, at \"t\"\nsecond line";
   r.peaks = {kNotANumber};
+  r.peak_errors = {kNotANumber};
   const std::string line = row_line(d, r);
   CHECK(line ==
-        "0003,,\"a, b\",diverged,,-0.25,3,0,1e-05,4,120,0,0,0,0.125,"
+        "0003,,\"a, b\",diverged,,,-0.25,3,0,1e-05,4,120,0,0,0,0.125,"
         "\"non-finite state, at \"\"t\"\"\nsecond line\",1.5");
   const std::string limits = limit_states_csv(r.limit_states);
   CHECK(limits == "name,exceeded,margin\nclosure_left,1,-0.001\nu,0,\n");

@@ -1,0 +1,154 @@
+#include "runs/estimate.hpp"
+
+#include "io/csv.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+namespace nsb::runs {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+CompanionPlan plan_of(integrators::RunConfig config, std::string setting, double value,
+                      double companion_value, double order) {
+  const double r = companion_value / value;
+  return CompanionPlan{std::move(config), std::move(setting), value, companion_value, order,
+                       1.0 / (std::pow(r, order) - 1.0)};
+}
+
+// The companion of an adaptive method: tolerance r tol, at most `top` (the open upper end of
+// the tolerance's range, halved); none when that is no looser than the run's.
+template <class Options>
+std::optional<CompanionPlan> looser(const Options& o, double top, double order) {
+  const double loose = std::min(kToleranceRatio * o.tolerance, 0.5 * top);
+  if (!(loose > o.tolerance)) return std::nullopt;
+  Options c = o;
+  c.tolerance = loose;
+  return plan_of(c, "tolerance", o.tolerance, loose, order);
+}
+
+}  // namespace
+
+std::pair<std::string, double> accuracy_setting(const integrators::RunConfig& config) {
+  return std::visit(
+      [](const auto& o) -> std::pair<std::string, double> {
+        if constexpr (std::is_same_v<std::decay_t<decltype(o)>, integrators::MoreauJeanOptions>) {
+          return {"step", o.step};
+        } else {
+          return {"tolerance", o.tolerance};
+        }
+      },
+      config);
+}
+
+std::optional<CompanionPlan> companion_plan(const integrators::RunConfig& config,
+                                            double duration) {
+  return std::visit(
+      [duration](const auto& o) -> std::optional<CompanionPlan> {
+        using O = std::decay_t<decltype(o)>;
+        if constexpr (std::is_same_v<O, integrators::MoreauJeanOptions>) {
+          const double coarse = kMoreauStepRatio * o.step;
+          if (!(coarse <= duration)) return std::nullopt;
+          O c = o;
+          c.step = coarse;
+          return plan_of(c, "step", o.step, coarse, kMoreauOrder);
+        } else if constexpr (std::is_same_v<O, integrators::EventDrivenOptions>) {
+          return looser(o, 1.0, kEventDrivenOrder);  // tolerance in (0, 1)
+        } else {
+          return looser(o, 0.1, kComplianceOrder);  // tolerance in (0, 0.1)
+        }
+      },
+      config);
+}
+
+double first_impact_time(const integrators::Recorder& history) {
+  for (const auto& e : history.events()) {
+    if (e.kind == integrators::EventKind::kImpact) return e.t;
+  }
+  return kNaN;
+}
+
+void apply_estimate(Digest& run, const integrators::Recorder& run_history,
+                    const Digest& companion, const integrators::Recorder& companion_history,
+                    const CompanionPlan& plan) {
+  ErrorEstimate& e = run.estimate;
+  e.computed = true;
+  e.setting = plan.setting;
+  e.value = plan.value;
+  e.companion_value = plan.companion_value;
+  e.order = plan.order;
+  e.ratio = plan.companion_value / plan.value;
+  e.factor = plan.factor;
+  // The peaks: both digests have the columns of one system, in one order.
+  for (std::size_t c = 0; c < run.peaks.size() && c < companion.peaks.size(); ++c) {
+    run.peaks[c].error = plan.factor * std::abs(run.peaks[c].abs_max - companion.peaks[c].abs_max);
+  }
+  for (std::size_t c = 0; c < run.coordinates.size() && c < companion.coordinates.size(); ++c) {
+    run.coordinates[c].error =
+        plan.factor * std::abs(run.coordinates[c].peak - companion.coordinates[c].peak);
+  }
+  // A count has no asymptotic order: its error is the difference itself.
+  e.impacts = run.count(integrators::EventKind::kImpact);
+  e.impacts_error = std::abs(static_cast<double>(
+      e.impacts - companion.count(integrators::EventKind::kImpact)));
+  // The first impact's time: extrapolated like a peak; Moreau–Jean places an event at the end
+  // of its step, so its error is at least the step.
+  e.first_impact = first_impact_time(run_history);
+  const double tc = first_impact_time(companion_history);
+  if (std::isnan(e.first_impact) != std::isnan(tc)) {
+    e.first_impact_error = std::numeric_limits<double>::infinity();  // one run has none
+  } else if (!std::isnan(e.first_impact)) {
+    e.first_impact_error = plan.factor * std::abs(e.first_impact - tc);
+    if (plan.setting == "step") e.first_impact_error = std::max(e.first_impact_error, plan.value);
+  }
+}
+
+Accuracy judge_accuracy(const Digest& digest, double target) {
+  Accuracy a;
+  a.target = target;
+  if (!digest.estimate.computed) return a;
+  a.judged = true;
+  a.met = true;
+  a.worst_relative = 0.0;
+  for (const CoordinatePeak& c : digest.coordinates) {
+    // A peak of zero with a zero error is exact; with a nonzero one, infinitely wrong.
+    const double rel = c.error == 0.0 ? 0.0 : c.error / c.peak;
+    if (!(rel <= target)) a.met = false;
+    if (!(rel <= a.worst_relative)) {
+      a.worst_relative = rel;
+      a.worst = c.name;
+    }
+  }
+  return a;
+}
+
+std::string accuracy_warning(const Digest& digest) {
+  const ErrorEstimate& e = digest.estimate;
+  const Accuracy& a = digest.accuracy;
+  if (!e.enabled) return {};
+  const std::string knob = e.setting == "step" ? "solver.step" : "solver.tolerance";
+  if (!e.computed) {
+    return "accuracy: no error estimate: " +
+           (e.companion_status.empty()
+                ? std::string("no companion run can be made for these solver settings")
+                : "the companion run ended " + e.companion_status) +
+           "; the peaks' errors are unknown";
+  }
+  if (a.met) return {};
+  const CoordinatePeak* worst = nullptr;
+  for (const CoordinatePeak& c : digest.coordinates) {
+    if (c.name == a.worst) worst = &c;
+  }
+  const std::string peak = worst != nullptr ? io::three_digits(worst->peak) : "?";
+  const std::string error = worst != nullptr ? io::three_digits(worst->error) : "?";
+  return "accuracy: the peak |" + a.worst + "| " + peak + " has an estimated error of " +
+         error + " (" + io::three_digits(100.0 * a.worst_relative) + " % of it), above " +
+         "solver.accuracy = " + io::three_digits(100.0 * a.target) + " %; reduce " + knob +
+         " (now " + io::three_digits(e.value) + ")";
+}
+
+}  // namespace nsb::runs

@@ -1,0 +1,216 @@
+// Tests of the peaks over every step and of their error estimates (runs/estimate.hpp,
+// docs/error-estimates.md): the sampling interval changes the rows, never the peaks; the
+// companion plans and Richardson's factors of each method; the errors and the accuracy verdict
+// from hand-made digests; a shipped scene's estimate, its warning and its keys in summary.json.
+#include "runs/estimate.hpp"
+#include "runs/files.hpp"
+#include "runs/run.hpp"
+
+#include "integrators/run.hpp"
+#include "testsupport/systems.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace nsb::runs {
+namespace {
+
+const std::string kScenes = NSB_SCENES_DIR;
+
+// Two doubles equal as values, NaN equal to NaN.
+bool same(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
+// Excitation 7's first 10 s: the deck strikes the abutments (impacts) within them.
+RunRecord exc7(const std::string& method, const std::string& sample_dt,
+               std::vector<std::string> more = {}) {
+  std::vector<std::string> o{"solver.end_time=10", "output.sample_dt=" + sample_dt,
+                             "solver.error_estimate=false"};
+  o.insert(o.end(), more.begin(), more.end());
+  return execute({kScenes + "/bridge-exc7.toml", o, method, {}});
+}
+
+// The extremes of one column over the rows of a history, the first row reaching each: the
+// peaks' definition applied to the rows that sample_dt = 0 records (every step).
+ColumnPeak peak_of_rows(const integrators::Recorder& h, std::size_t c) {
+  ColumnPeak p;
+  p.max = -INFINITY, p.min = INFINITY, p.t_max = p.t_min = NAN;
+  for (std::size_t r = 0; r < h.rows(); ++r) {
+    const double v = h.at(r, c);
+    if (!std::isfinite(v)) continue;
+    if (v > p.max) p.max = v, p.t_max = h.at(r, 0);
+    if (v < p.min) p.min = v, p.t_min = h.at(r, 0);
+  }
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("the peaks are those of every step: output.sample_dt changes the rows only") {
+  for (const std::string method : {"moreau", "event_driven", "compliance"}) {
+    CAPTURE(method);
+    const RunRecord fine = exc7(method, "1e-4");
+    const RunRecord coarse = exc7(method, "1.0");
+    const RunRecord every = exc7(method, "0");
+    REQUIRE(integrators::succeeded(fine.result.status));
+    CHECK(coarse.history.rows() < fine.history.rows());
+    // The deck strikes the abutments within the window (the compliance method's contacts
+    // close and open instead of impacting).
+    CHECK(fine.digest.count(integrators::EventKind::kImpact) +
+              fine.digest.count(integrators::EventKind::kClose) > 0);
+    REQUIRE(fine.digest.peaks.size() == coarse.digest.peaks.size());
+    for (std::size_t i = 0; i < fine.digest.peaks.size(); ++i) {
+      const ColumnPeak& a = fine.digest.peaks[i];
+      const ColumnPeak& b = coarse.digest.peaks[i];
+      CAPTURE(a.column);
+      CHECK(same(a.max, b.max));
+      CHECK(same(a.t_max, b.t_max));
+      CHECK(same(a.min, b.min));
+      CHECK(same(a.t_min, b.t_min));
+      CHECK(same(a.abs_max, b.abs_max));
+      CHECK(same(a.t_abs_max, b.t_abs_max));
+      // Against the rows of the run that records every step.
+      const ColumnPeak rows = peak_of_rows(every.history, i + 1);
+      CHECK(same(a.max, rows.max));
+      CHECK(same(a.min, rows.min));
+      CHECK(same(a.t_max, rows.t_max));
+      CHECK(same(a.t_min, rows.t_min));
+    }
+    for (std::size_t i = 0; i < fine.digest.coordinates.size(); ++i) {
+      CHECK(fine.digest.coordinates[i].peak == coarse.digest.coordinates[i].peak);
+    }
+    CHECK(fine.digest.max_penetration == coarse.digest.max_penetration);
+    CHECK(fine.digest.warnings == coarse.digest.warnings);
+  }
+}
+
+TEST_CASE("the companion of each method and Richardson's factor 1 / (r^p - 1)") {
+  integrators::MoreauJeanOptions mj;
+  mj.step = 1e-3;
+  mj.end_time = 10.0;
+  const auto m = companion_plan(mj, 10.0);
+  REQUIRE(m.has_value());
+  CHECK(m->setting == "step");
+  CHECK(std::get<integrators::MoreauJeanOptions>(m->config).step == 2e-3);
+  CHECK(m->order == kMoreauOrder);
+  // 2^0.95 = 1.93187...: factor 1 / 0.93187 = 1.07311.
+  CHECK(m->factor == doctest::Approx(1.07311).epsilon(1e-5));
+  CHECK_FALSE(companion_plan(mj, 1.5e-3).has_value());  // 2 h beyond the run's duration
+
+  integrators::EventDrivenOptions ed;
+  ed.tolerance = 1e-8;
+  const auto e = companion_plan(ed, 10.0);
+  REQUIRE(e.has_value());
+  CHECK(std::get<integrators::EventDrivenOptions>(e->config).tolerance == doctest::Approx(1e-6));
+  // 100^0.88 = 57.544: factor 1 / 56.544 = 0.017685.
+  CHECK(e->factor == doctest::Approx(0.017685).epsilon(1e-4));
+  ed.tolerance = 0.6;  // already above half the range's top: no looser companion
+  CHECK_FALSE(companion_plan(ed, 10.0).has_value());
+
+  integrators::ComplianceOptions co;
+  co.tolerance = 1e-8;
+  const auto c = companion_plan(co, 10.0);
+  REQUIRE(c.has_value());
+  CHECK(c->factor == doctest::Approx(1.0).epsilon(1e-12));  // |p_tol - p_100tol| itself
+  co.tolerance = 1e-3;  // 100 tol = 0.1 is the range's open top: the companion takes 0.05
+  CHECK(std::get<integrators::ComplianceOptions>(companion_plan(co, 10.0)->config).tolerance ==
+        0.05);
+}
+
+TEST_CASE("errors from a companion's digest, and the verdict against the accuracy") {
+  // Run: |x| 2.0, |theta| 1e-3, first impact at 0.30 s; companion: |x| 1.9, |theta| 1.5e-3,
+  // first impact at 0.32 s, one impact more. p = 1, r = 2: factor 1.
+  testsupport::TwoCornerBody s({});
+  integrators::Recorder run_history(s, 0.0), companion_history(s, 0.0);
+  run_history.event(0.30, 1, integrators::EventKind::kImpact);
+  companion_history.event(0.32, 1, integrators::EventKind::kImpact);
+  companion_history.event(0.40, 2, integrators::EventKind::kImpact);
+  Digest run = make_digest(run_history, {});
+  Digest companion = make_digest(companion_history, {});
+  run.coordinates = {{"x", 2.0, 0.0}, {"theta", 1e-3, 0.0}};
+  companion.coordinates = {{"x", 1.9, 0.0}, {"theta", 1.5e-3, 0.0}};
+  run.peaks[0].abs_max = 2.0;
+  companion.peaks[0].abs_max = 2.5;
+  const CompanionPlan plan{integrators::MoreauJeanOptions{}, "step", 1e-3, 2e-3, 1.0, 1.0};
+  run.estimate.enabled = true;
+  apply_estimate(run, run_history, companion, companion_history, plan);
+  CHECK(run.estimate.computed);
+  CHECK(run.peaks[0].error == 0.5);
+  CHECK(run.coordinates[0].error == doctest::Approx(0.1).epsilon(1e-12));
+  CHECK(run.coordinates[1].error == doctest::Approx(5e-4).epsilon(1e-12));
+  CHECK(run.estimate.impacts == 1);
+  CHECK(run.estimate.impacts_error == 1.0);
+  CHECK(run.estimate.first_impact == 0.30);
+  CHECK(run.estimate.first_impact_error == doctest::Approx(0.02).epsilon(1e-9));
+
+  // |x|: 0.1 / 2 = 5 %; |theta|: 5e-4 / 1e-3 = 50 %, the worst.
+  run.accuracy = judge_accuracy(run, 0.6);
+  CHECK(run.accuracy.judged);
+  CHECK(run.accuracy.met);
+  CHECK(accuracy_warning(run).empty());
+  run.accuracy = judge_accuracy(run, 0.1);
+  CHECK_FALSE(run.accuracy.met);
+  CHECK(run.accuracy.worst == "theta");
+  CHECK(run.accuracy.worst_relative == doctest::Approx(0.5));
+  CHECK(accuracy_warning(run) ==
+        "accuracy: the peak |theta| 0.001 has an estimated error of 0.0005 (50 % of it), above "
+        "solver.accuracy = 10 %; reduce solver.step (now 0.001)");
+
+  // Without an estimate there is no verdict; a companion that failed says so.
+  Digest plain = make_digest(run_history, {});
+  plain.estimate.enabled = true;
+  plain.estimate.companion_status = "diverged";
+  plain.accuracy = judge_accuracy(plain, 0.01);
+  CHECK_FALSE(plain.accuracy.judged);
+  CHECK(accuracy_warning(plain).rfind("accuracy: no error estimate: the companion run ended "
+                                      "diverged", 0) == 0);
+  plain.estimate.enabled = false;
+  CHECK(accuracy_warning(plain).empty());
+}
+
+TEST_CASE("a shipped scene's estimate: errors of every peak, its cost, summary.json's keys") {
+  const RunRecord r = execute(
+      {kScenes + "/bridge-exc7.toml", {"solver.end_time=10", "solver.step=1e-3"}, {}, {}});
+  REQUIRE(integrators::succeeded(r.result.status));
+  const ErrorEstimate& e = r.digest.estimate;
+  CHECK(e.enabled);
+  REQUIRE(e.computed);
+  CHECK(e.companion_value == 2e-3);
+  CHECK(e.companion_status == "completed");
+  for (const ColumnPeak& p : r.digest.peaks) {
+    CAPTURE(p.column);
+    CHECK(p.error >= 0.0);
+  }
+  for (const CoordinatePeak& c : r.digest.coordinates) CHECK(c.error >= 0.0);
+  CHECK(e.companion_cpu_seconds > 0.0);
+  CHECK(e.run_cpu_seconds > 0.0);
+  CHECK(r.digest.accuracy.judged);
+  const bool warned = std::any_of(r.digest.warnings.begin(), r.digest.warnings.end(),
+                                  [](const std::string& w) { return w.rfind("accuracy:", 0) == 0; });
+  CHECK(warned == !r.digest.accuracy.met);
+  const std::string json = summary_json(r);
+  CHECK(json.find("\"error_estimate\": {\"enabled\": true, \"computed\": true") != std::string::npos);
+  CHECK(json.find("\"accuracy\": {\"target\": 0.01, \"met\": ") != std::string::npos);
+  CHECK(json.find("\"step\": 0.001") != std::string::npos);
+
+  // Off: no companion, no error, no verdict.
+  const RunRecord off = execute({kScenes + "/bridge-exc7.toml",
+                                 {"solver.end_time=2", "solver.error_estimate=false"}, {}, {}});
+  CHECK_FALSE(off.digest.estimate.enabled);
+  CHECK(std::isnan(off.digest.peaks[0].error));
+  CHECK(off.digest.estimate.companion_cpu_seconds == 0.0);
+  CHECK(summary_json(off).find("\"met\": null") != std::string::npos);
+}
+
+TEST_CASE("solver.accuracy and solver.error_estimate are checked like every key") {
+  CHECK_THROWS_WITH_AS(execute({kScenes + "/bouncing-ball.toml", {"solver.accuracy=0"}, {}, {}}),
+                       doctest::Contains("solver.accuracy"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(
+      execute({kScenes + "/bouncing-ball.toml", {"solver.error_estimate=2"}, {}, {}}),
+      doctest::Contains("solver.error_estimate"), std::invalid_argument);
+}
+
+}  // namespace nsb::runs
