@@ -75,7 +75,8 @@ std::vector<DocTable> scene_doc_tables() {
   std::vector<DocTable> out;
   out.push_back(table("top", SceneHeader::fields(), SceneHeader{}, {{"kind", "required"}}));
   out.push_back({"solver", kHeader + rows(MethodSetting::fields(), MethodSetting{}) +
-                               rows(EstimateSettings::fields(), EstimateSettings{})});
+                               rows(EstimateSettings::fields(), EstimateSettings{}),
+                 joined(keys(MethodSetting::fields()), keys(EstimateSettings::fields()))});
   add_method_tables(out);
   out.push_back(table("output", OutputSettings::fields(), OutputSettings{}));
   out.push_back(table("model.bouncing_ball", bouncing_ball_fields(), BouncingBall::Parameters{}));
