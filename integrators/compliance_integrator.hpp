@@ -132,7 +132,7 @@ class ComplianceRun {
         closed_(static_cast<std::size_t>(m_), 0), pending_(static_cast<std::size_t>(m_), 0),
         stepper_(core_, 2 * core_.dofs(), options.tolerance, options.tolerance, options.max_step) {}
 
-  // Reads stop (may be nullptr) at every progress report: RunBookkeeping::watch.
+  // Reads stop (may be nullptr) at every accepted step: RunBookkeeping::watch.
   void watch(const std::atomic<bool>* stop) { book_.watch(stop); }
 
   // The run from the system's initial state to end_time, or to the first stop.

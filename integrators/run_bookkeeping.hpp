@@ -34,11 +34,15 @@ class RunBookkeeping {
 
   // One accepted step.
   void count_step() { ++result_.steps; }
-  // Reads stop (RunHooks::stop; may be nullptr) at every progress report.
+  // Reads stop (RunHooks::stop; may be nullptr) at every accepted step.
   void watch(const std::atomic<bool>* stop) { stop_ = stop; }
-  // When the accepted steps are a multiple of the interval: calls progress with the time
-  // reached, then reads the stop request, which ends the run at t (interrupted()).
+  // Reads the stop request, which ends the run at t (interrupted()), at every step: a relaxed
+  // load costs nanoseconds against a step's microseconds, and a step slowed by what observes
+  // it (--dump-lcp writes every contact problem) still stops within one step. When the
+  // accepted steps are a multiple of the interval, calls progress with the time reached and
+  // reads the request again (a Python caller sets it from the callback).
   void progress_at_interval(double t) {
+    if (stop_ != nullptr && stop_->load(std::memory_order_relaxed)) interrupt(t);
     if ((result_.steps & interval_mask_) != 0) return;
     if (progress_) progress_(t);
     if (stop_ != nullptr && stop_->load(std::memory_order_relaxed)) interrupt(t);

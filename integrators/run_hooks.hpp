@@ -22,9 +22,9 @@ struct RunHooks {
   // at the end of a run that reached end_time.
   const MoreauJeanCheckpoint* resume = nullptr;
   MoreauJeanCheckpoint* checkpoint = nullptr;
-  // A stop request (Ctrl-C in `nsbridge run` or in Python): read each time the run reports
-  // its progress (every few thousand steps), after the progress callback; once true, the run
-  // ends there with RunStatus::kInterrupted. Not owned; nullptr: never stopped.
+  // A stop request (Ctrl-C in `nsbridge run` or in Python): read at every accepted step and
+  // after each progress callback; once true, the run ends there with
+  // RunStatus::kInterrupted. Not owned; nullptr: never stopped.
   const std::atomic<bool>* stop = nullptr;
 };
 

@@ -332,11 +332,20 @@ struct ExcitationRecords {
   double sa_damping = 0.05;  // zeta of the reported PSA
 };
 
-// The factor that scales record r to target [g]; fails at key when the record is all zeros.
-double factor_to(const Section& s, const std::string& key, const Record& r, double target) {
+// The factor that scales record r to target [g]; fails at key when the record is all zeros,
+// or so weak that the factor, times scale, overflows.
+double factor_to(const Section& s, const std::string& key, const Record& r, double target,
+                 double scale) {
   const double pk = peak(r);
   if (!(pk > 0)) s.fail(key, "the record's peak acceleration is zero: cannot scale it");
-  return target * kStandardGravity / pk;
+  const double factor = target * kStandardGravity / pk;
+  if (!std::isfinite(factor * scale)) {
+    s.fail(key, "the record's peak acceleration " + six_digits(pk) +
+                    " m/s^2 is too small to scale to " + six_digits(target) + " g" +
+                    (scale != 1.0 ? " with scale = " + six_digits(scale) : std::string()) +
+                    ": the factor overflows");
+  }
+  return factor;
 }
 
 // target_pga scales the transverse component (or the longitudinal one when it is alone);
@@ -346,13 +355,16 @@ void scale_to_targets(const Section& s, const ExcitationSettings& e, ExcitationR
   const Record* ref = out.transverse ? &*out.transverse
                                      : (out.longitudinal ? &*out.longitudinal : nullptr);
   double common = 1.0;
-  if (ref != nullptr && e.target_pga > 0) common = factor_to(s, "target_pga", *ref, e.target_pga);
+  if (ref != nullptr && e.target_pga > 0) {
+    common = factor_to(s, "target_pga", *ref, e.target_pga, e.scale);
+  }
   out.transverse_factor = e.scale * common;
   out.longitudinal_factor = e.scale * common;
   if (e.longitudinal_pga > 0) {
     if (!out.longitudinal) s.fail("longitudinal_pga", "needs a longitudinal_record to scale");
     out.longitudinal_factor =
-        e.scale * factor_to(s, "longitudinal_pga", *out.longitudinal, e.longitudinal_pga);
+        e.scale *
+        factor_to(s, "longitudinal_pga", *out.longitudinal, e.longitudinal_pga, e.scale);
   }
 }
 
@@ -363,12 +375,17 @@ using FirstPeriod = std::function<double()>;
 // The factor that scales record r to a PSA of target [g] at out.sa_period; fails at key when
 // the record's PSA there is zero.
 double factor_to_sa(const Section& s, const std::string& key, const Record& r, double target,
-                    const ExcitationRecords& out) {
+                    const ExcitationRecords& out, double scale) {
   const double sa = spectral_acceleration_g(time_scaled(r, out.options.time_scale), out.sa_period,
                                             out.sa_damping);
   if (!(sa > 0)) {
     s.fail(key, "the record's spectral acceleration at sa_period = " +
                     config::format_value(out.sa_period) + " s is zero: cannot scale it");
+  }
+  if (!std::isfinite(target / sa * scale)) {
+    s.fail(key, "the record's spectral acceleration " + six_digits(sa) +
+                    " g at sa_period is too small to scale to " + six_digits(target) +
+                    " g: the factor overflows");
   }
   return target / sa;
 }
@@ -390,18 +407,20 @@ void scale_to_spectra(const Section& s, const ExcitationSettings& e,
     s.fail("sa_period", "the bridge has no finite first natural period; give sa_period (> 0 s)");
   }
   double common = 1.0;
-  if (e.target_sa > 0) common = factor_to_sa(s, "target_sa", *ref, e.target_sa, out);
+  if (e.target_sa > 0) common = factor_to_sa(s, "target_sa", *ref, e.target_sa, out, e.scale);
   out.transverse_factor = e.scale * common;
   out.longitudinal_factor = e.scale * common;
   if (e.longitudinal_pga > 0) {
     if (!out.longitudinal) s.fail("longitudinal_pga", "needs a longitudinal_record to scale");
     out.longitudinal_factor =
-        e.scale * factor_to(s, "longitudinal_pga", *out.longitudinal, e.longitudinal_pga);
+        e.scale *
+        factor_to(s, "longitudinal_pga", *out.longitudinal, e.longitudinal_pga, e.scale);
   }
   if (e.longitudinal_sa > 0) {
     if (!out.longitudinal) s.fail("longitudinal_sa", "needs a longitudinal_record to scale");
     out.longitudinal_factor =
-        e.scale * factor_to_sa(s, "longitudinal_sa", *out.longitudinal, e.longitudinal_sa, out);
+        e.scale *
+        factor_to_sa(s, "longitudinal_sa", *out.longitudinal, e.longitudinal_sa, out, e.scale);
   }
 }
 

@@ -43,9 +43,10 @@ void add_bridge_tables(std::vector<DocTable>& out) {
   out.push_back(table("model.bents", BentSettings::fields(), BentSettings{}, derived));
   out.push_back({"model.seats",
                  kHeader + rows(bridge_seat_fields(), bridge) +
-                     rows(SeatMotionSettings::fields(), SeatMotionSettings{}),
+                     rows(SeatMotionSettings::fields(), SeatMotionSettings{}, {{"rotation_dt", "none"}}),
                  joined(keys(bridge_seat_fields()), keys(SeatMotionSettings::fields()))});
-  out.push_back(table("model.excitation", ExcitationSettings::fields(), ExcitationSettings{}));
+  out.push_back(table("model.excitation", ExcitationSettings::fields(), ExcitationSettings{},
+                      {{"record_dt", "none"}}));
   // A deck in several bodies: the bridge's [[model.segments]] and [[model.hinges]], the deck
   // chain's [[model.decks]] and [[model.joints]] (the same keys).
   out.push_back(table("model.layout", LayoutSettings::fields(), LayoutSettings{}));

@@ -150,7 +150,10 @@ Plan prepare(const Design& d, const SweepOptions& options) {
     }
   }
   fs::create_directories(options.out / "runs", ec);
-  if (ec) throw std::invalid_argument("--out: cannot create " + (options.out / "runs").string());
+  if (ec) {
+    throw std::invalid_argument("--out " + options.out.string() + ": cannot create the directory '" +
+                                (options.out / "runs").string() + "': " + ec.message());
+  }
   std::ostringstream m;
   m << "# The sweep in this folder (nsbridge sweep); a rerun resumes it.\n"
     << "design = " << toml::value<std::string>(d.file.string()) << '\n'

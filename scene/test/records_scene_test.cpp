@@ -115,20 +115,20 @@ TEST_CASE("an amplitude key without a record is an error at that key") {
 
 TEST_CASE("time_scale that makes the sample times coincide names the key and the record") {
   write("long.txt", "0 0\n1 0.1\n2 -0.1\n3 0\n");
-  // 1e308 * 2 s overflows; 5e-324 (the least subnormal) * 0.1 s and * 0.2 s both round to 0.
+  // 1e308 and 5e-324 are outside time_scale's range [0.001, 1000], refused at the key.
   const auto e = error_of("ts.toml", bridge_with("transverse_record = \"long.txt\"\n"
                                                  "time_scale = 1e308\n"));
   CHECK(contains(e, "ts.toml:14:"));
   CHECK(contains(e, "model.excitation.time_scale"));
-  CHECK(contains(e, "long.txt"));
   CHECK(contains(e, "1e+308"));
-  CHECK(contains(e, "infinite"));
-  write("short.txt", "0 0\n0.1 0.1\n0.2 -0.1\n0.3 0\n");
-  const auto c = error_of("ts2.toml", bridge_with("transverse_record = \"short.txt\"\n"
-                                                  "time_scale = 5e-324\n"));
+  // Within the range: 3 and the next double, 3.0000000000000004, both times 0.003 round to
+  // the same double (checked in IEEE 754 binary64 arithmetic), so samples 1 and 2 coincide.
+  write("close.txt", "0 0\n3 0.1\n3.0000000000000004 -0.1\n4 0\n");
+  const auto c = error_of("ts2.toml", bridge_with("transverse_record = \"close.txt\"\n"
+                                                  "time_scale = 0.003\n"));
   CHECK(contains(c, "ts2.toml:14:"));
   CHECK(contains(c, "model.excitation.time_scale"));
-  CHECK(contains(c, "short.txt"));
+  CHECK(contains(c, "close.txt"));
   CHECK(contains(c, "coincide"));
 }
 
@@ -142,4 +142,18 @@ TEST_CASE("a record whose motion overflows is reported at [model.excitation] wit
   CHECK(contains(e, "huge.AT2"));
   CHECK(contains(e, "overflows (time span 5e+300 s)"));
   CHECK(e.size() < 300);
+}
+
+TEST_CASE("a record too weak for its target is refused at the target's key") {
+  // Peak 1e-306 m/s^2 scaled to 20 g: the factor 9.81 * 20 / 1e-306 = 1.96e308 is finite, and
+  // times scale = 1000 it overflows; before the check, the overflow reached the ground
+  // motion's own check as "GroundMotionOptions: scale must be finite".
+  write("weak.txt", "0 0\n0.01 1e-306\n0.02 -1e-306\n0.03 0\n");
+  const auto e = error_of("weak.toml", bridge_with("transverse_record = \"weak.txt\"\n"
+                                                   "target_pga = 20\n"
+                                                   "scale = 1000\n"));
+  CHECK(contains(e, "weak.toml:14:"));
+  CHECK(contains(e, "model.excitation.target_pga"));
+  CHECK(contains(e, "too small to scale to 20 g with scale = 1000"));
+  CHECK(e.find("GroundMotionOptions") == std::string::npos);
 }

@@ -30,6 +30,7 @@ NSBRIDGE, SCENE_DOCS, SCENES = (os.path.abspath(a) for a in sys.argv[1:4])
 # (The schema's tables are those of docs/scenes.md; a deck chain's [[model.decks]] and
 # [[model.joints]] hold the keys of model.segments and model.hinges.)
 SCENES_OF = {
+    "solver": [("bouncing-ball.toml", "solver.", [])],
     "solver.moreau": [("bouncing-ball.toml", "solver.", ["--method", "moreau"])],
     "solver.event_driven": [("bouncing-ball.toml", "solver.", ["--method", "event_driven"])],
     "solver.compliance": [("bouncing-ball.toml", "solver.", ["--method", "compliance"])],

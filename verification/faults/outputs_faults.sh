@@ -152,42 +152,79 @@ check "full disk, figures: the message names --out and the reason" \
   grep -Eq "^nsbridge: --out $tmp/fig: cannot write '$tmp/fig/[^']+': File too large" <<<"$out"
 check "full disk, figures: no staging or temporary left" no_leftovers "$tmp/fig"
 
-# 8. Read-only folders. root writes through a missing write permission, so these cases say
-#    they are skipped rather than pass.
+# 8. Read-only folders. root writes through a missing write permission, so as root these cases
+#    run nsbridge as the unprivileged user nobody (setpriv), on copies of the binary, the two
+#    scenes and their records that nobody can read, in a folder that nobody owns.
+as_user=()
+ball_ro=$ball
+exc7_ro=$root/scenes/bridge-exc7.toml
+design_ro=$tmp/sw/design.toml
+nsb_ro=$nsb
 if [[ $(id -u) -eq 0 ]]; then
-  echo "SKIPPED: read-only folders: running as root, whom chmod does not stop from writing"
-else
-  mkdir -p "$tmp/ro/parent/old"
-  expect 0 'bouncing-ball' -- run "$ball" --out "$tmp/ro/parent/old" --quiet --set solver.end_time=0.5
-  chmod a-w "$tmp/ro/parent"
-  expect 2 "^nsbridge: --out $tmp/ro/parent/new: cannot create the directory '$tmp/ro/parent/new': Permission denied" \
-    -- run "$ball" --out "$tmp/ro/parent/new" --quiet
-  expect 2 "^nsbridge: --out $tmp/ro/parent/old: cannot write beside '$tmp/ro/parent/old' in '$tmp/ro/parent': Permission denied" \
-    -- run "$ball" --out "$tmp/ro/parent/old" --quiet
-  expect 2 "^nsbridge: --out $tmp/ro/parent/new: cannot create the directory" \
-    -- sweep "$tmp/sw/design.toml" --out "$tmp/ro/parent/new"
-  chmod u+w "$tmp/ro/parent"
-  chmod a-w "$tmp/ro/parent/old"
-  expect 2 "^nsbridge: --out $tmp/ro/parent/old: cannot write into '$tmp/ro/parent/old': Permission denied" \
-    -- run "$ball" --out "$tmp/ro/parent/old" --quiet
-  chmod u+w "$tmp/ro/parent/old"
-  # The permission lost during the run: the parent made read-only while the bridge runs.
-  "$nsb" run "$root/scenes/bridge-exc7.toml" --set solver.end_time=1.5 --out "$tmp/ro/parent/old" \
-    --quiet >"$tmp/ro/log" 2>&1 &
-  pid=$!
-  sleep 0.3
-  chmod a-w "$tmp/ro/parent"
-  wait $pid
-  rc=$?
-  chmod u+w "$tmp/ro/parent"
-  check "permission lost during the run: exit 2 (got $rc: $(cat "$tmp/ro/log"))" test $rc -eq 2
-  check "permission lost during the run: the message of an unwritable --out" \
-    grep -Eq "^nsbridge: --out $tmp/ro/parent/old: cannot .*Permission denied" "$tmp/ro/log"
-  check "permission lost during the run: the previous set stays" \
-    grep -q '"end_time": 0.5,' "$tmp/ro/parent/old/summary.json"
-  check "permission lost during the run: nothing left beside it" \
-    test "$(ls -A "$tmp/ro/parent" | tr '\n' ' ')" = "old "
+  if ! command -v setpriv >/dev/null; then
+    echo "SKIPPED: read-only folders: running as root without setpriv to drop the privilege"
+    echo "outputs faults: $passed passed, $failed failed"
+    [[ $failed -eq 0 ]]
+    exit
+  fi
+  chmod 755 "$tmp"
+  src=$tmp/ro-src
+  mkdir -p "$src/scenes" "$src/data/ground-motions" "$tmp/ro"
+  cp "$nsb" "$src/nsbridge"
+  cp "$ball" "$root/scenes/bridge-exc7.toml" "$src/scenes/"
+  cp "$root"/data/ground-motions/RSN988_NORTHR_CCN{090,360}.AT2 "$src/data/ground-motions/"
+  sed "s#^scene = .*#scene = \"$src/scenes/bridge-exc7.toml\"#" "$tmp/sw/design.toml" >"$src/design.toml"
+  chown -R 65534:65534 "$src" "$tmp/ro"
+  as_user=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+  nsb_ro=$src/nsbridge
+  ball_ro=$src/scenes/bouncing-ball.toml
+  exc7_ro=$src/scenes/bridge-exc7.toml
+  design_ro=$src/design.toml
+  echo "read-only folders: as root, nsbridge runs as nobody (setpriv)"
 fi
+# expect_ro CODE PATTERN -- ARGS...: expect, for nsbridge run by the unprivileged user.
+expect_ro() {
+  local code=$1 pattern=$2
+  shift 3
+  out=$("${as_user[@]}" "$nsb_ro" "$@" 2>&1)
+  local rc=$?
+  if [[ $rc -eq $code ]] && grep -Eq -- "$pattern" <<<"$out" && ! grep -q 'internal error' <<<"$out"; then
+    ok
+  else
+    bad "nsbridge $* -> exit $rc (expected $code, /$pattern/): $(head -3 <<<"$out")"
+  fi
+}
+mkdir -p "$tmp/ro/parent/old"
+[[ ${#as_user[@]} -gt 0 ]] && chown -R 65534:65534 "$tmp/ro"
+expect_ro 0 'bouncing-ball' -- run "$ball_ro" --out "$tmp/ro/parent/old" --quiet --set solver.end_time=0.5
+chmod a-w "$tmp/ro/parent"
+expect_ro 2 "^nsbridge: --out $tmp/ro/parent/new: cannot create the directory '$tmp/ro/parent/new': Permission denied" \
+  -- run "$ball_ro" --out "$tmp/ro/parent/new" --quiet
+expect_ro 2 "^nsbridge: --out $tmp/ro/parent/old: cannot write beside '$tmp/ro/parent/old' in '$tmp/ro/parent': Permission denied" \
+  -- run "$ball_ro" --out "$tmp/ro/parent/old" --quiet
+expect_ro 2 "^nsbridge: --out $tmp/ro/parent/new: cannot create the directory" \
+  -- sweep "$design_ro" --out "$tmp/ro/parent/new"
+chmod u+w "$tmp/ro/parent"
+chmod a-w "$tmp/ro/parent/old"
+expect_ro 2 "^nsbridge: --out $tmp/ro/parent/old: cannot write into '$tmp/ro/parent/old': Permission denied" \
+  -- run "$ball_ro" --out "$tmp/ro/parent/old" --quiet
+chmod u+w "$tmp/ro/parent/old"
+# The permission lost during the run: the parent made read-only while the bridge runs.
+"${as_user[@]}" "$nsb_ro" run "$exc7_ro" --set solver.end_time=10 --set solver.step=5e-6 --out "$tmp/ro/parent/old" \
+  --quiet >"$tmp/ro/log" 2>&1 &
+pid=$!
+sleep 0.3
+chmod a-w "$tmp/ro/parent"
+wait $pid
+rc=$?
+chmod u+w "$tmp/ro/parent"
+check "permission lost during the run: exit 2 (got $rc: $(cat "$tmp/ro/log"))" test $rc -eq 2
+check "permission lost during the run: the message of an unwritable --out" \
+  grep -Eq "^nsbridge: --out $tmp/ro/parent/old: cannot .*Permission denied" "$tmp/ro/log"
+check "permission lost during the run: the previous set stays" \
+  grep -q '"end_time": 0.5,' "$tmp/ro/parent/old/summary.json"
+check "permission lost during the run: nothing left beside it" \
+  test "$(ls -A "$tmp/ro/parent" | tr '\n' ' ')" = "old "
 
 echo "outputs faults: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]
