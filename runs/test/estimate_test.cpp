@@ -24,11 +24,15 @@ const std::string kScenes = NSB_SCENES_DIR;
 // Two doubles equal as values, NaN equal to NaN.
 bool same(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
 
-// Excitation 7's first 10 s: the deck strikes the abutments (impacts) within them.
+// Excitation 7's first 4.5 s: the deck strikes the abutments (impacts) from 3.96 s on (the
+// first impact of Moreau-Jean at the scene's step). Moreau-Jean at 5e-4 s: the property
+// checked (peaks that do not depend on sample_dt) holds at any step, and the test stays
+// short under the sanitizers.
 RunRecord exc7(const std::string& method, const std::string& sample_dt,
                std::vector<std::string> more = {}) {
-  std::vector<std::string> o{"solver.end_time=10", "output.sample_dt=" + sample_dt,
+  std::vector<std::string> o{"solver.end_time=4.5", "output.sample_dt=" + sample_dt,
                              "solver.error_estimate=false"};
+  if (method == "moreau") o.push_back("solver.step=5e-4");
   o.insert(o.end(), more.begin(), more.end());
   return execute({kScenes + "/bridge-exc7.toml", o, method, {}});
 }
