@@ -19,6 +19,13 @@ namespace nsb::store {
 
 namespace fs = std::filesystem;
 
+// A CSV file as nsbridge writes it (io/csv.hpp, RFC 4180): the header, then the rows, a quoted
+// field possibly holding commas, doubled quotes and line breaks.
+struct CsvText {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+};
+
 namespace {
 
 // An HDF5 identifier closed by its own function when it goes out of scope.
@@ -123,21 +130,23 @@ bool write_string(hid_t group, const char* name, const std::string& value) {
   return d.ok() && H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &text) >= 0;
 }
 
-// Rows of about 256 kB per chunk: large enough that deflate finds the repetition of a column
-// over time (shuffle groups the bytes of equal rank), small enough that reading a time window
-// decompresses little more than it needs.
-constexpr hsize_t kChunkValues = 32768;
-// zlib's level 4: within a few per cent of level 9's size on histories, several times faster.
+// A history is chunked column by column, 16384 samples (128 kB) a chunk: shuffle and deflate
+// then see one smooth series at a time (a quarter smaller than chunks of whole rows on the
+// benchmark bridge's histories, docs/outputs.md), and reading one column decompresses only
+// that column.
+constexpr hsize_t kChunkSamples = 16384;
+// zlib's level 4: within 1 % of level 9's size on histories, several times faster.
 constexpr unsigned kDeflateLevel = 4;
 
-// A rows x columns table of doubles (row-major), chunked by rows, shuffled and deflated.
+// A samples x columns table of doubles (row-major in memory), chunked by column, shuffled and
+// deflated.
 bool write_matrix(hid_t group, const char* name, const std::vector<double>& values, hsize_t rows,
                   hsize_t columns) {
   const hsize_t dims[2] = {rows, columns};
   const Handle space(H5Screate_simple(2, dims, nullptr), H5Sclose);
   const Handle create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   if (rows > 0 && columns > 0) {
-    const hsize_t chunk[2] = {std::clamp<hsize_t>(kChunkValues / columns, 1, rows), columns};
+    const hsize_t chunk[2] = {std::min(kChunkSamples, rows), 1};
     H5Pset_chunk(create.get(), 2, chunk);
     H5Pset_shuffle(create.get());
     H5Pset_deflate(create.get(), kDeflateLevel);
@@ -168,13 +177,6 @@ bool write_integers(hid_t group, const std::string& name, const std::vector<std:
   return d.ok() && (values.empty() || H5Dwrite(d.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL,
                                                H5P_DEFAULT, values.data()) >= 0);
 }
-
-// A CSV file as nsbridge writes it (io/csv.hpp, RFC 4180): the header, then the rows, a quoted
-// field possibly holding commas, doubled quotes and line breaks.
-struct CsvText {
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;
-};
 
 CsvText parse_csv(const std::string& text) {
   std::vector<std::vector<std::string>> lines;
@@ -268,6 +270,76 @@ bool write_columns(hid_t group, const CsvText& csv) {
 
 }  // namespace
 
+// A run's files as its group holds them (history.csv's kept columns, events.csv,
+// summary.json), read before the group is written.
+struct RunFiles {
+  bool keep_history = false;
+  std::vector<std::string> names;  // the kept history columns
+  std::vector<double> values;      // samples x names, row-major
+  hsize_t samples = 0;
+  std::optional<CsvText> events;       // events.csv; none for a rejected run
+  std::optional<std::string> summary;  // summary.json's text; none for a rejected run
+};
+
+namespace {
+
+// What a run's folder holds for its group, read and parsed without HDF5, so that workers read
+// their runs' files at the same time and take turns only to write. Throws
+// std::invalid_argument for a column of output.hdf5_history the history lacks.
+RunFiles read_run_files(const sweep::Design& d, const fs::path& dir, std::size_t index) {
+  const std::string& id = d.runs.at(index).id;
+  const fs::path folder = dir / "runs" / id;
+  // The kept columns of history.csv, read before the group is made, so that a column the
+  // design names and the run lacks leaves no group behind.
+  RunFiles files;
+  const fs::path history = folder / "history.csv";
+  files.keep_history =
+      d.output.history != sweep::OutputSpec::History::kNone && fs::exists(history);
+  if (files.keep_history) {
+    const CsvText csv = parse_csv(read_text(history));
+    std::vector<std::size_t> keep;
+    if (d.output.history == sweep::OutputSpec::History::kAll) {
+      for (std::size_t c = 0; c < csv.header.size(); ++c) keep.push_back(c);
+    } else {
+      std::vector<std::string> wanted = {"t"};
+      for (const auto& c : d.output.columns)
+        if (c != "t") wanted.push_back(c);
+      for (const auto& name : wanted) {
+        const auto at = std::find(csv.header.begin(), csv.header.end(), name);
+        if (at == csv.header.end()) {
+          std::string all;
+          for (const auto& h : csv.header) all += (all.empty() ? "" : ", ") + h;
+          throw std::invalid_argument(d.file.string() + ":" + std::to_string(d.output.line) +
+                                      ": output.hdf5_history: run " + id + "'s history.csv has no "
+                                      "column \"" + name + "\" (it has " + all + ")");
+        }
+        keep.push_back(static_cast<std::size_t>(at - csv.header.begin()));
+      }
+    }
+    files.values.reserve(csv.rows.size() * keep.size());
+    for (std::size_t r = 0; r < csv.rows.size(); ++r) {
+      for (const std::size_t c : keep) {
+        double v = 0.0;
+        if (c >= csv.rows[r].size() || !parse_double(csv.rows[r][c], v)) {
+          throw io::WriteError("cannot read '" + history.string() + "': line " +
+                               std::to_string(r + 2) + ", column " + csv.header[c] +
+                               " is not a number");
+        }
+        files.values.push_back(v);
+      }
+    }
+    for (const std::size_t c : keep) files.names.push_back(csv.header[c]);
+    files.samples = csv.rows.size();
+  }
+  if (const fs::path events = folder / "events.csv"; fs::exists(events))
+    files.events = parse_csv(read_text(events));
+  if (const fs::path summary = folder / "summary.json"; fs::exists(summary))
+    files.summary = read_text(summary);
+  return files;
+}
+
+}  // namespace
+
 std::string history_selection(const sweep::OutputSpec& output) {
   switch (output.history) {
     case sweep::OutputSpec::History::kAll:
@@ -356,66 +428,22 @@ void StudyStore::prepared(const sweep::Design& design,
       if ((!done || !rows[i]) && H5Ldelete(runs.get(), id, H5P_DEFAULT) < 0)
         write_failed(f, std::string("delete the unfinished group /runs/") + id);
     }
-    if (rows[i] && !done) write_run(i, *rows[i]);
+    if (rows[i] && !done) write_run(i, *rows[i], read_run_files(design, dir_, i));
   }
   if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) write_failed(f, "flush the file");
 }
 
 void StudyStore::finished(std::size_t index, const sweep::Row& row) {
+  const RunFiles files = read_run_files(*design_, dir_, index);
   const std::lock_guard<std::mutex> lock(mutex_);
-  write_run(index, row);
+  write_run(index, row, files);
 }
 
-void StudyStore::write_run(std::size_t index, const sweep::Row& row) {
+void StudyStore::write_run(std::size_t index, const sweep::Row& row, const RunFiles& files) {
   const fs::path f = file();
   const sweep::Design& d = *design_;
   const std::string& id = d.runs.at(index).id;
-  const fs::path folder = dir_ / "runs" / id;
   const std::string where = "/runs/" + id;
-  // The kept columns of history.csv, read before the group is made, so that a column the
-  // design names and the run lacks leaves no group behind.
-  const fs::path history = folder / "history.csv";
-  std::vector<std::string> names;
-  std::vector<double> values;
-  hsize_t samples = 0;
-  const bool keep_history =
-      d.output.history != sweep::OutputSpec::History::kNone && fs::exists(history);
-  if (keep_history) {
-    const CsvText csv = parse_csv(read_text(history));
-    std::vector<std::size_t> keep;
-    if (d.output.history == sweep::OutputSpec::History::kAll) {
-      for (std::size_t c = 0; c < csv.header.size(); ++c) keep.push_back(c);
-    } else {
-      std::vector<std::string> wanted = {"t"};
-      for (const auto& c : d.output.columns)
-        if (c != "t") wanted.push_back(c);
-      for (const auto& name : wanted) {
-        const auto at = std::find(csv.header.begin(), csv.header.end(), name);
-        if (at == csv.header.end()) {
-          std::string all;
-          for (const auto& h : csv.header) all += (all.empty() ? "" : ", ") + h;
-          throw std::invalid_argument(d.file.string() + ":" + std::to_string(d.output.line) +
-                                      ": output.hdf5_history: run " + id + "'s history.csv has no "
-                                      "column \"" + name + "\" (it has " + all + ")");
-        }
-        keep.push_back(static_cast<std::size_t>(at - csv.header.begin()));
-      }
-    }
-    values.reserve(csv.rows.size() * keep.size());
-    for (std::size_t r = 0; r < csv.rows.size(); ++r) {
-      for (const std::size_t c : keep) {
-        double v = 0.0;
-        if (c >= csv.rows[r].size() || !parse_double(csv.rows[r][c], v)) {
-          throw io::WriteError("cannot read '" + history.string() + "': line " +
-                               std::to_string(r + 2) + ", column " + csv.header[c] +
-                               " is not a number");
-        }
-        values.push_back(v);
-      }
-    }
-    for (const std::size_t c : keep) names.push_back(csv.header[c]);
-    samples = csv.rows.size();
-  }
   const Handle runs(H5Gopen2(file_, "runs", H5P_DEFAULT), H5Gclose);
   const Handle g(H5Gcreate2(runs.get(), id.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                  H5Gclose);
@@ -425,21 +453,19 @@ void StudyStore::write_run(std::size_t index, const sweep::Row& row) {
       !write_string_attribute(g.get(), "row", sweep::results_of(d, {row}).csv()))
     write_failed(f, "write the row of " + where);
 
-  if (keep_history) {
-    if (!write_matrix(g.get(), "history", values, samples, names.size()))
+  if (files.keep_history) {
+    if (!write_matrix(g.get(), "history", files.values, files.samples, files.names.size()))
       write_failed(f, "write " + where + "/history");
     const Handle h(H5Dopen2(g.get(), "history", H5P_DEFAULT), H5Dclose);
-    if (!write_strings_attribute(h.get(), "columns", names))
+    if (!write_strings_attribute(h.get(), "columns", files.names))
       write_failed(f, "write " + where + "/history's columns");
   }
-  const fs::path events = folder / "events.csv";
-  if (fs::exists(events)) {
+  if (files.events) {
     const Handle e(H5Gcreate2(g.get(), "events", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-    if (!e.ok() || !write_columns(e.get(), parse_csv(read_text(events))))
+    if (!e.ok() || !write_columns(e.get(), *files.events))
       write_failed(f, "write " + where + "/events");
   }
-  const fs::path summary = folder / "summary.json";
-  if (fs::exists(summary) && !write_string(g.get(), "summary", read_text(summary)))
+  if (files.summary && !write_string(g.get(), "summary", *files.summary))
     write_failed(f, "write " + where + "/summary");
   // Written last: a group without it is one a stopped process left unfinished.
   if (!write_int_attribute(g.get(), "done", 1)) write_failed(f, "mark " + where + " done");

@@ -20,10 +20,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace nsb::store {
+
+struct RunFiles;  // a run's files, read for its group (study_store.cpp)
 
 // The name of the file in DIR, and the version of its layout (attribute `format_version`).
 inline constexpr const char* kFileName = "sweep.h5";
@@ -54,7 +57,7 @@ class StudyStore final : public sweep::SweepObserver {
   const std::vector<std::string>& notes() const { return notes_; }
 
  private:
-  void write_run(std::size_t index, const sweep::Row& row);
+  void write_run(std::size_t index, const sweep::Row& row, const RunFiles& files);
 
   std::filesystem::path dir_;
   bool restart_ = false;

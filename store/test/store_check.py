@@ -173,6 +173,7 @@ def check_same(dir_a, dir_b):
         for name in a["results"].attrs["columns"]:
             if name != "wall_s":
                 same_dataset(f"/results/{name}", a["results"][name], b["results"][name])
+        return len(a["runs"])
 
 
 RESULTS = (None, None)
@@ -183,8 +184,7 @@ if __name__ == "__main__":
     elif mode == "partial":
         n = check_dir(sys.argv[2], complete=False)
     else:
-        check_same(sys.argv[2], sys.argv[3])
-        n = 0
+        n = check_same(sys.argv[2], sys.argv[3])
     for f in failures:
         print("FAILED:", f, file=sys.stderr)
     if not failures:
