@@ -286,9 +286,17 @@ namespace {
 // What a run's folder holds for its group, read and parsed without HDF5, so that workers read
 // their runs' files at the same time and take turns only to write. Throws
 // std::invalid_argument for a column of output.hdf5_history the history lacks.
-RunFiles read_run_files(const sweep::Design& d, const fs::path& dir, std::size_t index) {
+RunFiles read_run_files(const sweep::Design& d, const fs::path& dir, std::size_t index,
+                        const sweep::Row& row) {
   const std::string& id = d.runs.at(index).id;
   const fs::path folder = dir / "runs" / id;
+  // Every run but a rejected one has its outputs beside its row; without them (an MPI rank's
+  // folder on a disk rank 0 does not see) the group would silently lack them.
+  if (row.status != "rejected" && !fs::exists(folder / "summary.json")) {
+    throw io::WriteError("cannot read '" + (folder / "summary.json").string() +
+                         "': not found (under MPI, DIR must be on a file system every rank "
+                         "shares, docs/sweep.md)");
+  }
   // The kept columns of history.csv, read before the group is made, so that a column the
   // design names and the run lacks leaves no group behind.
   RunFiles files;
@@ -428,13 +436,13 @@ void StudyStore::prepared(const sweep::Design& design,
       if ((!done || !rows[i]) && H5Ldelete(runs.get(), id, H5P_DEFAULT) < 0)
         write_failed(f, std::string("delete the unfinished group /runs/") + id);
     }
-    if (rows[i] && !done) write_run(i, *rows[i], read_run_files(design, dir_, i));
+    if (rows[i] && !done) write_run(i, *rows[i], read_run_files(design, dir_, i, *rows[i]));
   }
   if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) write_failed(f, "flush the file");
 }
 
 void StudyStore::finished(std::size_t index, const sweep::Row& row) {
-  const RunFiles files = read_run_files(*design_, dir_, index);
+  const RunFiles files = read_run_files(*design_, dir_, index, row);
   const std::lock_guard<std::mutex> lock(mutex_);
   write_run(index, row, files);
 }
