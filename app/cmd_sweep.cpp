@@ -1,10 +1,11 @@
-// nsbridge sweep DESIGN.toml --out DIR [--jobs N] [--set key=value ...] [--restart]
+// nsbridge sweep DESIGN.toml --out DIR [--jobs N] [--set key=value ...] [--restart] [--hdf5]
 //                            [--plot [--pga-key KEY] [--response COLUMN] [--limit VALUE]
 //                                    [--gnuplot PATH]] [--plot-only]
 //
 // Expands a design file (docs/sweep.md) into runs of one scene, runs them on --jobs threads
 // (or, started by mpirun, on every rank), writes each run's outputs to DIR/runs/<id>/ and one
-// row per run to DIR/results.csv. A rerun over the same DIR resumes. A design with a
+// row per run to DIR/results.csv (with --hdf5 also into DIR/sweep.h5, docs/outputs.md). A
+// rerun over the same DIR resumes. A design with a
 // [fragility] section also gets DIR/fragility.json (and, with --plot, DIR/fragility.png):
 // docs/fragility.md. Exit code 1 when some run did not complete (the rows say which); 2 for a
 // bad design, before any run, or for a DIR that cannot be written, before or during the runs
@@ -14,6 +15,7 @@
 #include "app/interrupt.hpp"
 #include "io/files.hpp"
 
+#include "store/study_store.hpp"
 #include "sweep/fragility_sweep.hpp"
 #include "sweep/plots.hpp"
 #include "sweep/runner.hpp"
@@ -32,6 +34,7 @@ struct SweepArgs {
   sweep::SweepOptions options;
   bool plot = false;
   bool plot_only = false;
+  bool hdf5 = false;
   sweep::PlotOptions plots;
 };
 
@@ -62,8 +65,15 @@ void sweep_and_report(SweepArgs& args) {
     return;
   }
   args.options.stop = &stop_on_interrupt();
+  std::unique_ptr<store::StudyStore> h5;
+  if (args.hdf5) {
+    h5 = std::make_unique<store::StudyStore>(args.options.out, args.options.restart);
+    args.options.observer = h5.get();
+  }
   const sweep::SweepSummary s = sweep::run_sweep(args.design, args.options);
   if (!s.primary) return;
+  if (h5)
+    for (const auto& note : h5->notes()) std::cerr << "nsbridge sweep: " << note << '\n';
   if (s.interrupted) {
     std::cerr << "nsbridge sweep: interrupted: " << s.complete << " of " << s.runs
               << " runs complete in " << args.options.out.string()
@@ -82,6 +92,7 @@ void sweep_and_report(SweepArgs& args) {
   std::cout << "failed     " << s.failed << " of " << s.runs
             << " runs did not complete (their status is in results.csv)\n";
   std::cout << "results    " << s.results.string() << '\n';
+  if (h5) std::cout << "store      " << h5->file().string() << '\n';
   if (args.plot) draw(args, s.table);
   fragility(args, s.design, s.table, args.plot);
   if (s.failed > 0) exit_code() = 1;
@@ -115,6 +126,9 @@ void add_sweep_command(CLI::App& app) {
       ->allow_extra_args(false);
   cmd->add_flag("--restart", args->options.restart,
                 "Discard the runs already in --out (needed when the design changed)");
+  cmd->add_flag("--hdf5", args->hdf5,
+                "Also write DIR/sweep.h5: every run's history, events, summary and the results "
+                "(docs/outputs.md)");
   cmd->add_flag("--plot", args->plot,
                 "Draw IDA, exceedance and tornado plots into DIR/plots/ (and DIR/fragility.png)");
   cmd->add_flag("--plot-only", args->plot_only, "Only draw the plots from DIR/results.csv");

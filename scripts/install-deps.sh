@@ -17,8 +17,10 @@ packages=(
   libgnuplot-iostream-dev libboost-iostreams-dev libboost-system-dev libboost-filesystem-dev
   gnuplot-nox
   libopenmpi-dev openmpi-bin
+  libhdf5-dev
   clang libfuzzer-14-dev libclang-rt-14-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-pandas
+  python3-h5py
   python3-venv python3-pip python3-setuptools
   python3-siconos
 )

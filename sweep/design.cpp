@@ -501,6 +501,38 @@ void read_scene(const scene::Source& c, const toml::table& root,
   }
 }
 
+// The [output] section: `hdf5_history`, the history columns `nsbridge sweep --hdf5` keeps in
+// sweep.h5: "all" (the default), "none", or a list of history.csv column names (`t` is always
+// kept). A name no run's history has is reported when sweep.h5 is written (the columns are
+// the system's, known only once it is built).
+void read_output(const scene::Source& c, const toml::table& root, Design& d) {
+  const auto* node = root.get("output");
+  if (node == nullptr) return;
+  const auto* t = node->as_table();
+  if (t == nullptr) c.fail(node, "output", "must be a table [output]");
+  check_keys(c, *t, "output", {"hdf5_history"});
+  const auto* h = t->get("hdf5_history");
+  if (h == nullptr) return;
+  d.output.line = static_cast<int>(h->source().begin.line);
+  constexpr const char* kAllowed =
+      "must be \"all\", \"none\" or an array of history.csv column names";
+  if (const auto* a = h->as_array()) {
+    d.output.history = OutputSpec::History::kColumns;
+    std::set<std::string> seen;
+    for (const auto& e : *a) {
+      const auto name = e.value<std::string>();
+      if (!e.is_string() || name->empty()) c.fail(&e, "output.hdf5_history", kAllowed);
+      if (!seen.insert(*name).second)
+        c.fail(&e, "output.hdf5_history", "\"" + *name + "\" appears twice");
+      d.output.columns.push_back(*name);
+    }
+    return;
+  }
+  const std::string v = h->value<std::string>().value_or("");
+  if (!h->is_string() || (v != "all" && v != "none")) c.fail(h, "output.hdf5_history", kAllowed);
+  d.output.history = v == "all" ? OutputSpec::History::kAll : OutputSpec::History::kNone;
+}
+
 // `mode`, and the keys that only one mode takes: `samples` and `seed` (latin), `runs` (list).
 void read_mode(const scene::Source& c, const toml::table& root, Design& d) {
   if (const auto* mode = root.get("mode")) {
@@ -589,11 +621,12 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
   const toml::table root = parse_design(file);
   check_keys(c, root, "",
              {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor",
-              "fragility"});
+              "fragility", "output"});
   Design d;
   d.file = fs::absolute(file).lexically_normal();
   read_scene(c, root, extra_set, d);
   read_mode(c, root, d);
+  read_output(c, root, d);
   read_factors(c, root, d);
   expand(c, root, d);
   load_base_scene(d);

@@ -63,6 +63,20 @@ struct Input {
   std::string hash;            // content_hash of its bytes
 };
 
+// The design's [output] section: what `nsbridge sweep --hdf5` keeps of each run's history in
+// DIR/sweep.h5 (docs/outputs.md, "sweep.h5"). It changes no run and no CSV file, so it is not
+// part of the design's hash.
+struct OutputSpec {
+  enum class History {
+    kAll,      // every column of history.csv (the default)
+    kNone,     // no history: events, summary and row only
+    kColumns,  // the columns listed in `columns`
+  };
+  History history = History::kAll;  // output.hdf5_history: "all", "none" or a list of columns
+  std::vector<std::string> columns;  // kColumns: history.csv column names, `t` always kept
+  int line = 0;                      // line of output.hdf5_history in the design file; 0: absent
+};
+
 struct Design {
   std::filesystem::path file;    // the design file
   std::filesystem::path scene;       // the base scene, resolved against the design's folder
@@ -82,6 +96,7 @@ struct Design {
                      //   and overrides and the content of every input
   std::optional<FragilitySpec> fragility;  // the [fragility] section, when the design has one;
                                            //   not part of the hash (it changes no run)
+  OutputSpec output;                       // the [output] section; not part of the hash either
 };
 
 // Reads and expands a design file. Throws std::invalid_argument naming the file, line and key

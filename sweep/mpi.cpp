@@ -86,6 +86,7 @@ bool load_everywhere(const Session& mpi, const fs::path& design_file, const Swee
     if (primary) {
       validate_design(d);
       plan = prepare(d, options);
+      if (options.observer != nullptr) options.observer->prepared(d, plan.rows);
     }
   } catch (...) {
     error = std::current_exception();
@@ -102,8 +103,9 @@ bool load_everywhere(const Session& mpi, const fs::path& design_file, const Swee
 // Rank 0 while the runs go on: the pending indices handed out one at a time to its own
 // workers and to the other ranks', the rows gathered, the first error kept.
 struct Dispatch {
-  explicit Dispatch(Plan& p) : plan(p) {}
+  Dispatch(Plan& p, SweepObserver* o) : plan(p), observer(o) {}
   Plan& plan;
+  SweepObserver* observer;
   std::atomic<std::size_t> next{0}, done{0}, failed{0};
   std::atomic<int> local_exited{0};
   std::atomic<bool> stop{false};
@@ -127,6 +129,9 @@ void local_worker(Dispatch& work, const Design& d, const SweepOptions& options) 
       RunOutcome o = run_one(d, static_cast<std::size_t>(index), options.out);
       work.plan.rows[static_cast<std::size_t>(index)] = std::move(o.row);
       if (!o.succeeded) work.failed.fetch_add(1);
+      if (options.observer != nullptr)
+        options.observer->finished(static_cast<std::size_t>(index),
+                                   *work.plan.rows[static_cast<std::size_t>(index)]);
     } catch (...) {
       const std::lock_guard<std::mutex> lock(work.error_mutex);
       if (!work.error) work.error = std::current_exception();
@@ -158,10 +163,20 @@ void serve(Dispatch& work, const Design& d, const MPI_Status& status, int& remot
       work.stop.store(true);
     } else {
       const std::size_t at = text.find('\0');
-      work.plan.rows[static_cast<std::size_t>(index)] =
-          parse_row(d, static_cast<std::size_t>(index), text.substr(0, at), text.substr(at + 1));
+      auto& row = work.plan.rows[static_cast<std::size_t>(index)];
+      row = parse_row(d, static_cast<std::size_t>(index), text.substr(0, at), text.substr(at + 1));
       ++work.ran_elsewhere;
       if (static_cast<Report>(report) == Report::kFailed) work.failed.fetch_add(1);
+      // The run's outputs are on the file system all ranks share (docs/sweep.md, "Workers").
+      if (work.observer != nullptr && row) {
+        try {
+          work.observer->finished(static_cast<std::size_t>(index), *row);
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(work.error_mutex);
+          if (!work.error) work.error = std::current_exception();
+          work.stop.store(true);
+        }
+      }
     }
     work.done.fetch_add(1);
   }
@@ -232,9 +247,10 @@ SweepSummary run_sweep_mpi(const fs::path& design_file, const SweepOptions& opti
   s.ran = plan.pending.size();
   s.workers = jobs + remote_workers;
   s.notes = plan.notes;
-  Dispatch work(plan);
+  Dispatch work(plan, options.observer);
   dispatch(work, d, options, jobs, remote_workers, s);
   s.table = write_results(d, options, plan.rows);
+  if (options.observer != nullptr) options.observer->completed(s.table);
   s.failed = count_failed(plan.rows);
   s.results = options.out / "results.csv";
   s.design = std::move(d);

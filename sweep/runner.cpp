@@ -220,6 +220,8 @@ std::size_t run_threaded(const Design& d, const SweepOptions& options, Plan& pla
             if (o.interrupted) break;
             plan.rows[plan.pending[k]] = std::move(o.row);
             if (!o.succeeded) failed.fetch_add(1);
+            if (options.observer != nullptr)
+              options.observer->finished(plan.pending[k], *plan.rows[plan.pending[k]]);
           } catch (...) {
             const std::lock_guard<std::mutex> lock(error_mutex);
             if (!error) error = std::current_exception();
@@ -291,6 +293,7 @@ SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options)
         "ranks do nothing");
   }
   Plan plan = prepare(d, options);
+  if (options.observer != nullptr) options.observer->prepared(d, plan.rows);
   s.notes.insert(s.notes.end(), plan.notes.begin(), plan.notes.end());
   s.runs = d.runs.size();
   s.already_done = s.runs - plan.pending.size();
@@ -313,6 +316,7 @@ SweepSummary run_sweep(const fs::path& design_file, const SweepOptions& options)
     return s;
   }
   s.table = write_results(d, options, plan.rows);
+  if (options.observer != nullptr) options.observer->completed(s.table);
   s.failed = count_failed(plan.rows);
   s.results = options.out / "results.csv";
   s.design = std::move(d);

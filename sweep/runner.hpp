@@ -17,6 +17,22 @@
 
 namespace nsb::sweep {
 
+// What a sweep tells a store of its runs (store/, DIR/sweep.h5), on the one process that
+// writes results.csv (MPI rank 0). An exception it throws ends the sweep as a failed write
+// does (run_threaded); the runs complete so far stay and a rerun resumes.
+class SweepObserver {
+ public:
+  virtual ~SweepObserver() = default;
+  // DIR is prepared (sweep::prepare), before any run: rows[i] is set for each run whose
+  // outputs are complete in DIR. May throw std::invalid_argument (exit 2, nothing run).
+  virtual void prepared(const Design& design, const std::vector<std::optional<Row>>& rows) = 0;
+  // Run `index` is finished: its outputs and resume files are complete in DIR/runs/<id>/.
+  // Called from any worker thread, possibly from several at once.
+  virtual void finished(std::size_t index, const Row& row) = 0;
+  // results.csv was written from `table`, after every run.
+  virtual void completed(const Results& table) = 0;
+};
+
 struct SweepOptions {
   std::filesystem::path out;     // the sweep's folder DIR (created if needed)
   int jobs = 0;                  // worker threads per process, >= 0; 0 = all cores (under MPI:
@@ -29,6 +45,8 @@ struct SweepOptions {
                                       //   end as interrupted and write nothing, no new run
                                       //   starts. The sweep sets it itself when a run cannot
                                       //   write its outputs. Not owned; nullptr: none
+  SweepObserver* observer = nullptr;  // told of the runs as they finish (rank 0 only); not
+                                      //   owned; nullptr: none
   void validate() const;         // throws std::invalid_argument naming the field
 };
 

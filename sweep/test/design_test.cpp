@@ -20,6 +20,7 @@ namespace fs = std::filesystem;
 using nsb::sweep::Design;
 using nsb::sweep::load_design;
 using nsb::sweep::Mode;
+using nsb::sweep::OutputSpec;
 using nsb::sweep::validate_design;
 
 namespace {
@@ -387,4 +388,37 @@ TEST_CASE("every shipped design in scenes/sweeps/ is valid") {
   CHECK(designs >= 3);
   // Fig. 6: 6 distinct excitations x with/without pounding x 3 friction coefficients.
   CHECK(load_design(kScenes + "/sweeps/fig6.toml").runs.size() == 36);
+}
+
+TEST_CASE("[output] hdf5_history: all, none or columns, and not part of the design's hash") {
+  const std::string factors = R"(
+[[factor]]
+key = "model.restitution"
+values = [0.5, 0.9]
+)";
+  const Design plain = load_design(write_design("output_plain", scene_line() + factors));
+  CHECK(plain.output.history == OutputSpec::History::kAll);  // the default
+  const Design none = load_design(
+      write_design("output_none", scene_line() + factors + "[output]\nhdf5_history = \"none\"\n"));
+  CHECK(none.output.history == OutputSpec::History::kNone);
+  const Design some = load_design(write_design(
+      "output_some", scene_line() + factors + "[output]\nhdf5_history = [\"y\", \"vy\"]\n"));
+  CHECK(some.output.history == OutputSpec::History::kColumns);
+  CHECK(some.output.columns == std::vector<std::string>{"y", "vy"});
+  CHECK(some.output.line == 7);  // scene, then the factor's four lines, then [output]
+  // The section changes no run: the same hash, so a changed selection reruns nothing.
+  CHECK(some.hash == plain.hash);
+  CHECK(none.hash == plain.hash);
+  // Refused at its line and column: a value of another type, a name twice, an unknown key.
+  const auto error = [&](const std::string& name, const std::string& section) {
+    const fs::path file = write_design(name, scene_line() + factors + section);
+    return error_of([&] { (void)load_design(file); });
+  };
+  CHECK(error("output_bad", "[output]\nhdf5_history = 3\n").find(
+            ":7:16: output.hdf5_history: must be \"all\", \"none\" or an array") !=
+        std::string::npos);
+  CHECK(error("output_twice", "[output]\nhdf5_history = [\"y\", \"y\"]\n")
+            .find(":7:22: output.hdf5_history: \"y\" appears twice") != std::string::npos);
+  CHECK(error("output_key", "[output]\nhdf5 = \"all\"\n").find("output.hdf5: unknown key") !=
+        std::string::npos);
 }
