@@ -25,7 +25,9 @@ using namespace nsb::sweep;
 
 namespace {
 
-const fs::path kData = fs::path(__FILE__).parent_path() / "data" / "records-import";
+// NSB_DATA_DIR is the source tree's data/ folder; the fixtures are beside this file.
+const fs::path kData =
+    fs::path(NSB_DATA_DIR).parent_path() / "sweep" / "test" / "data" / "records-import";
 
 fs::path scratch(const std::string& name) {
   const fs::path dir =
