@@ -27,6 +27,8 @@ void add_figures_command(CLI::App& app);    // nsbridge figures --out DIR [--qui
 void add_sweep_command(CLI::App& app);      // nsbridge sweep DESIGN.toml --out DIR ...
 void add_spectrum_command(CLI::App& app);   // nsbridge spectrum RECORD... [--periods ...]
 void add_suite_spectra_command(CLI::App& app);  // nsbridge suite-spectra SUITE.csv --out DIR
+void add_records_command(CLI::App& app);        // nsbridge records import DIR --out SUITE_DIR
+void add_export_command(CLI::App& app);         // nsbridge export pelicun DIR [--out PREFIX]
 
 // nsbridge --version: version, git revision (at build time), build type, compiler and the
 // versions of the libraries linked.

@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   nsb::app::add_sweep_command(app);
   nsb::app::add_spectrum_command(app);
   nsb::app::add_suite_spectra_command(app);
+  nsb::app::add_records_command(app);
+  nsb::app::add_export_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
