@@ -274,8 +274,14 @@ BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridg
                              config::format_value(half) + " m (got " +
                              config::format_value(b.position) + ")");
     }
+    if (s.has("column_offsets") &&
+        b.column_offsets.size() != static_cast<std::size_t>(b.design.columns)) {
+      s.fail("column_offsets", "must give one offset per column: " +
+                                   std::to_string(b.column_offsets.size()) + " offsets for "
+                                   "columns = " + std::to_string(b.design.columns));
+    }
     p.bents.push_back({b.position, bent_spring(s, b, "longitudinal"),
-                       bent_spring(s, b, "transverse")});
+                       bent_spring(s, b, "transverse"), b.column_offsets, b.skew_deg});
     out.delays.push_back(b.delay);
     out.segments.push_back(b.segment);
     if (need_height && !s.has("height")) {
