@@ -306,6 +306,12 @@ SeatMotions read_seats(const Section& m, BridgeDesign& p) {
   const auto* t = m.subtable("seats");
   if (t == nullptr) return out;
   Section s(m.context(), *t, m.key_path("seats"));
+  // The seat length belongs to the abutment's own table, beside its backfill and restrainer.
+  if (s.has("seat_length")) {
+    s.fail("seat_length", "the abutments' seat length is a key of [model.abutments] "
+                          "(seat_length), a hinge's of its [[model.hinges]] element; "
+                          "[model.seats] holds the seats' contact law and motion");
+  }
   std::vector<std::string_view> keys = keys_of(bridge_seat_fields());
   for (const auto& k : keys_of(SeatMotionSettings::fields())) keys.push_back(k);
   s.only(keys);

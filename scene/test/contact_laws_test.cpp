@@ -1,6 +1,7 @@
 // Contact laws per family (docs/compliance.md, "Contact laws per family"): each family's
 // compliance_stiffness reaches its contacts' ContactData::stiffness, 0 where a family gives
-// none (the run's solver.contact_stiffness), and a bad value is named at its key.
+// none (the run's solver.contact_stiffness), and a bad value is named at its key; an abutment's
+// seat length is read in [model.abutments] only, and refused in [model.seats] with that name.
 #include "scene/scene.hpp"
 #include "scene/test/scene_files.hpp"
 
@@ -119,4 +120,20 @@ compliance_stiffness = -1.0
 )" + kBents + kSolver);
   CHECK(e.find("bad.toml:") != std::string::npos);
   CHECK(e.find("model.seats.compliance_stiffness: must be >= 0") != std::string::npos);
+}
+
+TEST_CASE("seat_length under [model.seats] is refused with its table named") {
+  const std::string e = error_of("seat.toml", R"([model]
+kind = "bridge"
+[model.deck]
+mass = 140.5
+inertia = 13090.0
+length = 33.53
+width = 2.44
+[model.seats]
+seat_length = 0.3
+)" + kBents + kSolver);
+  CHECK(e.find("seat.toml:") != std::string::npos);
+  CHECK(e.find("model.seats.seat_length: the abutments' seat length is a key of "
+               "[model.abutments] (seat_length)") != std::string::npos);
 }
