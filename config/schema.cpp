@@ -88,6 +88,10 @@ std::string describe_kind(Kind kind, std::string_view unit, const Range& range,
     }
     case Kind::kText: return "a string";
     case Kind::kVector3: return with_unit("an array of 3 finite numbers", unit);
+    case Kind::kNumbers:
+      return range.describe() == "any"
+                 ? with_unit("an array of finite numbers", unit)
+                 : with_unit("an array of numbers, each " + range.describe(), unit);
   }
   return {};
 }
@@ -127,6 +131,14 @@ std::string misfit_value(Kind kind, std::string_view unit, const Range& range,
       if (x.size() != 3) return "expected an array of 3 numbers";
       for (double d : x) {
         if (!std::isfinite(d)) return "must be finite";
+      }
+      return {};
+    }
+    case Kind::kNumbers: {
+      if (!std::holds_alternative<std::vector<double>>(v)) return "expected an array of numbers";
+      for (double d : std::get<std::vector<double>>(v)) {
+        if (!std::isfinite(d)) return "must be finite";
+        if (!range.contains(d)) return rule + " (got " + six_digits(d) + ")";
       }
       return {};
     }

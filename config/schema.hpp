@@ -35,7 +35,7 @@
 namespace nsb::config {
 
 // The values a field can hold, as the scene reader and the docs see them. Choices (enums) are
-// their names; three-vectors are std::vector<double> of size 3.
+// their names; three-vectors are std::vector<double> of size 3, lists of numbers of any size.
 using Value = std::variant<double, std::int64_t, bool, std::string, std::vector<double>>;
 
 enum class Kind {
@@ -45,6 +45,7 @@ enum class Kind {
   kChoice,   // one of `choices` (an enum, or a string restricted to a list)
   kText,     // free text (a record file name, a description)
   kVector3,  // three finite numbers (x, y, theta)
+  kNumbers,  // a list of finite numbers, each within `range` (empty: the key's default)
 };
 
 // The interval a number must lie in: [lo, hi], either end open or infinite.
@@ -215,6 +216,26 @@ Field<detail::Owner<Path...>> vector3(std::string_view key, std::string_view uni
     auto& m = detail::follow<Path...>(s);
     const auto& x = std::get<std::vector<double>>(v);
     for (int i = 0; i < 3; ++i) m(i) = x[static_cast<std::size_t>(i)];
+  };
+  return f;
+}
+
+// A std::vector<double> member: a list of numbers of any length, each within range.
+template <auto... Path>
+Field<detail::Owner<Path...>> numbers(std::string_view key, std::string_view unit, Range range,
+                                      std::string_view meaning) {
+  using S = detail::Owner<Path...>;
+  Field<S> f;
+  f.key = key;
+  f.kind = Kind::kNumbers;
+  f.unit = unit;
+  f.range = range;
+  f.meaning = meaning;
+  f.get = [](const S& s) -> Value {
+    return std::vector<double>(detail::follow<Path...>(const_cast<S&>(s)));
+  };
+  f.set = [](S& s, const Value& v) {
+    detail::follow<Path...>(s) = std::get<std::vector<double>>(v);
   };
   return f;
 }

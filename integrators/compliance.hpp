@@ -112,12 +112,20 @@ struct ComplianceOptions {
                                        //   at rest would otherwise get unbounded damping
   double initial_step = 1e-5;          // first trial step [s], > 0
   long max_steps = 50'000'000;         // accepted + rejected steps before giving up, > 0
-  // The contact stiffness the run uses: stiffness * stiffness_factor [kN/m^1.5].
+  // The contact stiffness the run uses where a contact gives none: stiffness *
+  // stiffness_factor [kN/m^1.5].
   double effective_stiffness() const { return stiffness * stiffness_factor; }
   // The schema of these fields (keys of a scene's [solver] table, units, ranges).
   static std::span<const config::Field<ComplianceOptions>> fields();
   void validate() const;               // throws std::invalid_argument naming the key
 };
+
+// The Hertz k of contact c [kN/m^1.5]: its own (ContactData::stiffness, a per-family scene key)
+// times stiffness_factor, or options.effective_stiffness() where it gives none.
+inline double contact_stiffness(const ComplianceOptions& options, const ContactData& c) {
+  return c.stiffness > 0.0 ? c.stiffness * options.stiffness_factor
+                           : options.effective_stiffness();
+}
 
 // Integrates `system` from its initial state to options.end_time. Records a sample after
 // every accepted step (the recorder thins them to its sample_dt), with lambdaN, lambdaT the

@@ -57,7 +57,9 @@ StepVerdict ComplianceRun::watch(double h) {
 double ComplianceRun::contact_potential() const {
   double v = 0.0;
   for (const ContactData& c : core_.contacts_) {
-    if (!c.far && c.gap_normal < 0.0) v += 0.4 * options_.effective_stiffness() * std::pow(-c.gap_normal, 2.5);
+    if (!c.far && c.gap_normal < 0.0) {
+      v += 0.4 * contact_stiffness(options_, c) * std::pow(-c.gap_normal, 2.5);
+    }
   }
   return v;
 }

@@ -64,10 +64,10 @@ void Core::load_contacts(double t, ContactFields data) {
 NormalForce Core::normal_force(int i, const ContactData& c) {
   const double delta = -c.gap_normal;
   const double delta_rate = -c.gap_rate(u_);
-  const NormalForce fn =
-      hertz_damp_force(opt_.effective_stiffness(), chi_[i], v_minus_[i], delta, delta_rate);
+  const double k = contact_stiffness(opt_, c);
+  const NormalForce fn = hertz_damp_force(k, chi_[i], v_minus_[i], delta, delta_rate);
   lambda_n_[i] = fn.force;
-  damping_part_[i] = fn.force - opt_.effective_stiffness() * delta * std::sqrt(delta);
+  damping_part_[i] = fn.force - k * delta * std::sqrt(delta);
   f_.noalias() += c.w_normal * fn.force;
   return fn;
 }

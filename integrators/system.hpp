@@ -34,6 +34,9 @@ struct ContactData {
   double wbar_tangent = 0.0;   // gddot_T - W_T^T udot [m/s^2]
   double restitution = 0.0;    // Newton's coefficient eps_i in [0, 1]
   double friction = 0.0;       // Coulomb's coefficient mu_i >= 0
+  double stiffness = 0.0;      // the compliance method's Hertz k of this contact [kN/m^1.5],
+                               // > 0; 0: the run's solver.contact_stiffness (the rigid
+                               // methods ignore it)
   bool far = false;            // the system guarantees this contact cannot close within
                                // the current step bound; integrators may skip it
 

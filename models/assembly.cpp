@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <initializer_list>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -86,6 +87,11 @@ void Assembly::validate_parts() const {
             prefix + "position", "must lie on the body, |s| <= L/2 [m]");
     validate_takeda(bent.longitudinal, prefix + "longitudinal");
     validate_takeda(bent.transverse, prefix + "transverse");
+    for (const double e : bent.column_offsets) {
+      require(std::isfinite(e), prefix + "column_offsets", "must be finite [m]");
+    }
+    require(std::isfinite(bent.skew_deg) && std::abs(bent.skew_deg) < 80.0, prefix + "skew_deg",
+            "must be in (-80, 80) [deg]");
   }
   const auto np = static_cast<int>(parts_.prescribed.size());
   for (std::size_t i = 0; i < parts_.contacts.size(); ++i) {
@@ -105,12 +111,15 @@ void Assembly::validate_parts() const {
     require(std::isfinite(c.restitution) && c.restitution >= 0 && c.restitution <= 1,
             prefix + "restitution", "must be in [0, 1]");
     require(std::isfinite(c.friction) && c.friction >= 0, prefix + "friction", "must be >= 0");
+    require(std::isfinite(c.stiffness) && c.stiffness >= 0, prefix + "stiffness",
+            "must be >= 0 [kN/m^1.5] (0: solver.contact_stiffness)");
   }
 }
 
 void Assembly::build_bents(const integrators::Matrix& mass) {
   body_forces_.resize(parts_.bodies.size());
   bent_slot_.resize(parts_.bents.size());
+  bent_columns_.resize(parts_.bents.size());
   for (std::size_t i = 0; i < body_forces_.size(); ++i) {
     BodyForces& body = body_forces_[i];
     body.offset = static_cast<int>(3 * i);
@@ -119,14 +128,48 @@ void Assembly::build_bents(const integrators::Matrix& mass) {
       const auto& p = parts_.bents[j];
       if (static_cast<std::size_t>(p.body) != i) continue;
       bent_slot_[j] = bents_.size();
-      bents_.push_back({.offset = body.offset, .position = p.position,
-                        .x = takeda::Spring(p.longitudinal), .y = takeda::Spring(p.transverse),
-                        .ground_x = motions_.add(p.ground_longitudinal, false),
-                        .ground_y = motions_.add(p.ground_transverse, false)});
-      // K0 += k0_x b_x b_x^T + k0_y b_y b_y^T.
-      const Eigen::Vector3d by(0.0, 1.0, p.position);
-      body.k0(0, 0) += p.longitudinal.k0;
-      body.k0 += p.transverse.k0 * by * by.transpose();
+      const int ground_x = motions_.add(p.ground_longitudinal, false);
+      const int ground_y = motions_.add(p.ground_transverse, false);
+      if (p.column_offsets.empty() && p.skew_deg == 0.0) {
+        bent_columns_[j] = 1;
+        bents_.push_back({.offset = body.offset, .position = p.position,
+                          .x = takeda::Spring(p.longitudinal), .y = takeda::Spring(p.transverse),
+                          .ground_x = ground_x, .ground_y = ground_y});
+        // K0 += k0_x b_x b_x^T + k0_y b_y b_y^T.
+        const Eigen::Vector3d by(0.0, 1.0, p.position);
+        body.k0(0, 0) += p.longitudinal.k0;
+        body.k0 += p.transverse.k0 * by * by.transpose();
+        continue;
+      }
+      // The columns (models/parts.hpp, Bent): each 1/n of both springs at its own point.
+      const std::vector<double> offsets =
+          p.column_offsets.empty() ? std::vector<double>{0.0} : p.column_offsets;
+      const double share = 1.0 / static_cast<double>(offsets.size());
+      const auto column_spring = [share](takeda::Parameters k) {
+        k.k0 *= share;
+        k.f_crack *= share;
+        k.f_yield *= share;
+        return k;
+      };
+      const double beta = p.skew_deg * std::numbers::pi / 180.0;
+      const Eigen::Vector2d n(std::cos(beta), -std::sin(beta));
+      const Eigen::Vector2d t(std::sin(beta), std::cos(beta));
+      bent_columns_[j] = offsets.size();
+      for (const double e : offsets) {
+        BentState c{.offset = body.offset, .position = p.position,
+                    .x = takeda::Spring(column_spring(p.longitudinal)),
+                    .y = takeda::Spring(column_spring(p.transverse)), .ground_x = ground_x,
+                    .ground_y = ground_y};
+        c.general = true;
+        c.point = Eigen::Vector2d(p.position + e * std::tan(beta), e);
+        c.ax = n;
+        c.ay = t;
+        c.jx = Eigen::Vector3d(n.x(), n.y(), n.y() * c.point.x() - n.x() * c.point.y());
+        c.jy = Eigen::Vector3d(t.x(), t.y(), t.y() * c.point.x() - t.x() * c.point.y());
+        body.k0 += c.x.parameters().k0 * c.jx * c.jx.transpose() +
+                   c.y.parameters().k0 * c.jy * c.jy.transpose();
+        bents_.push_back(std::move(c));
+      }
     }
     body.bent_end = bents_.size();
     connectors_.add_initial_stiffness(static_cast<int>(i), body.k0);
@@ -151,6 +194,13 @@ void Assembly::build_damping(const integrators::Matrix& mass) {
     const Eigen::LDLT<Eigen::Matrix3d> ldlt(b.k0);
     for (std::size_t j = b.bent_begin; j < b.bent_end; ++j) {
       BentState& bent = bents_[j];
+      if (bent.general) {
+        // d f / d u_g = k0_x a_x J_x + k0_y a_y J_y per ground direction.
+        const double kx = bent.x.parameters().k0, ky = bent.y.parameters().k0;
+        bent.qs_x = ldlt.solve(kx * bent.ax.x() * bent.jx + ky * bent.ay.x() * bent.jy);
+        bent.qs_y = ldlt.solve(kx * bent.ax.y() * bent.jx + ky * bent.ay.y() * bent.jy);
+        continue;
+      }
       bent.qs_x = ldlt.solve(Eigen::Vector3d(bent.x.parameters().k0, 0.0, 0.0));
       bent.qs_y =
           ldlt.solve(bent.y.parameters().k0 * Eigen::Vector3d(0.0, 1.0, bent.position));
@@ -173,7 +223,7 @@ void Assembly::build_contacts() {
       seat_contacts_.push_back({.slot = i, .offset = 3 * c.body, .seat = c.obstacle_index,
                                 .rest = parts_.bodies[static_cast<std::size_t>(c.body)].rest,
                                 .geometry = geometry, .restitution = c.restitution,
-                                .friction = c.friction});
+                                .friction = c.friction, .stiffness = c.stiffness});
     } else {
       body_contacts_.push_back({.slot = i, .offset_a = 3 * c.body,
                                 .offset_b = 3 * c.obstacle_index,
@@ -181,7 +231,8 @@ void Assembly::build_contacts() {
                                 .rest_b = parts_.bodies[static_cast<std::size_t>(
                                     c.obstacle_index)].rest,
                                 .geometry = geometry,
-                                .restitution = c.restitution, .friction = c.friction});
+                                .restitution = c.restitution, .friction = c.friction,
+                                .stiffness = c.stiffness});
     }
   }
 }
@@ -274,11 +325,21 @@ integrators::Matrix Assembly::initial_stiffness() const {
 }
 
 double Assembly::bent_force_longitudinal(int j) const {
-  return bents_[bent_slot_.at(static_cast<std::size_t>(j))].x.force();
+  const std::size_t first = bent_slot_.at(static_cast<std::size_t>(j));
+  double f = bents_[first].x.force();
+  for (std::size_t c = 1; c < bent_columns_[static_cast<std::size_t>(j)]; ++c) {
+    f += bents_[first + c].x.force();
+  }
+  return f;
 }
 
 double Assembly::bent_force_transverse(int j) const {
-  return bents_[bent_slot_.at(static_cast<std::size_t>(j))].y.force();
+  const std::size_t first = bent_slot_.at(static_cast<std::size_t>(j));
+  double f = bents_[first].y.force();
+  for (std::size_t c = 1; c < bent_columns_[static_cast<std::size_t>(j)]; ++c) {
+    f += bents_[first + c].y.force();
+  }
+  return f;
 }
 
 void Assembly::forces(double t, const integrators::Vector& q, const integrators::Vector& u,
@@ -301,6 +362,13 @@ void Assembly::forces_of(double t, const integrators::Vector& q, const integrato
     Eigen::Vector3d fs = Eigen::Vector3d::Zero();
     for (std::size_t j = body.bent_begin; j < body.bent_end; ++j) {
       BentState& b = bents_[j];
+      if (b.general) {
+        const double gx = motions_.value(b.ground_x).d, gy = motions_.value(b.ground_y).d;
+        const double fx = b.x.set_trial(b.deformation_x(q, o, gx, gy));
+        const double fy = b.y.set_trial(b.deformation_y(q, o, gx, gy));
+        fs -= fx * b.jx + fy * b.jy;
+        continue;
+      }
       const double s = b.position;
       // Body displacement at the bent relative to the bent's own ground (small rotations).
       const double dx = q(o) - motions_.value(b.ground_x).d;
@@ -331,6 +399,10 @@ void Assembly::tangent(double, const integrators::Vector&, const integrators::Ve
     const double s = b.position;
     const int o = b.offset;
     const double kx = b.x.tangent(), ky = b.y.tangent();
+    if (b.general) {
+      K.block<3, 3>(o, o) += kx * b.jx * b.jx.transpose() + ky * b.jy * b.jy.transpose();
+      continue;
+    }
     K(o, o) += kx;
     K(o + 1, o + 1) += ky;
     K(o + 1, o + 2) += ky * s;
@@ -395,6 +467,7 @@ void Assembly::contacts_of(double t, const integrators::Vector& q, const integra
     }
     const auto k = corner_contact(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
     parts::write_contact(k, offset, c.restitution, c.friction, out[c.slot]);
+    out[c.slot].stiffness = c.stiffness;
   }
   if (!kOneBody) {  // a contact against a body needs two
     for (const auto& c : body_contacts_) {
@@ -404,6 +477,7 @@ void Assembly::contacts_of(double t, const integrators::Vector& q, const integra
                                            u.segment<3>(c.offset_b));
       parts::write_body_contact(k, c.offset_a, c.offset_b, c.restitution, c.friction,
                                 out[c.slot]);
+      out[c.slot].stiffness = c.stiffness;
     }
   }
   mark_broken(out);
@@ -523,6 +597,11 @@ integrators::PowerTerms Assembly::power_of(double t, const integrators::Vector& 
     ground -= us.dot(cvr);
   }
   for (const auto& b : bents_) {
+    if (b.general) {
+      const Eigen::Vector2d f = b.x.force() * b.ax + b.y.force() * b.ay;
+      ground -= f.x() * motions_.value(b.ground_x).v + f.y() * motions_.value(b.ground_y).v;
+      continue;
+    }
     ground -= b.x.force() * motions_.value(b.ground_x).v +
               b.y.force() * motions_.value(b.ground_y).v;
   }

@@ -120,13 +120,28 @@ class Assembly final : public integrators::SystemBase {
   std::vector<integrators::LimitStateValue> limit_states() const override;
 
  private:
-  // One bent with its two springs, its body's DOF offset and its motions in motions_.
+  // One bent, or one column of a bent with columns, with its two springs, its body's DOF
+  // offset and its motions in motions_. A column (general = true) acts at point of the body
+  // frame, its springs x and y along the unit directions ax and ay with the Jacobians jx and
+  // jy (models/parts.hpp, Bent); a bent on the axis (general = false) is the special case
+  // point = (position, 0), ax = (1, 0), ay = (0, 1), evaluated as the plain spring pair.
   struct BentState {
     int offset = 0;
     double position = 0.0;
     takeda::Spring x, y;
     int ground_x = parts::MotionTable::kNone, ground_y = parts::MotionTable::kNone;
     Eigen::Vector3d qs_x = Eigen::Vector3d::Zero(), qs_y = Eigen::Vector3d::Zero();
+    bool general = false;
+    Eigen::Vector2d point = Eigen::Vector2d::Zero();
+    Eigen::Vector2d ax = Eigen::Vector2d::UnitX(), ay = Eigen::Vector2d::UnitY();
+    Eigen::Vector3d jx = Eigen::Vector3d::UnitX(), jy = Eigen::Vector3d::UnitY();
+    // The spring deformations of the state (q at the body's offset o, ground displacements).
+    double deformation_x(const integrators::Vector& q, int o, double gx, double gy) const {
+      return jx(0) * (q(o) - gx) + jx(1) * (q(o + 1) - gy) + jx(2) * q(o + 2);
+    }
+    double deformation_y(const integrators::Vector& q, int o, double gx, double gy) const {
+      return jy(0) * (q(o) - gx) + jy(1) * (q(o + 1) - gy) + jy(2) * q(o + 2);
+    }
   };
   // One body's share of the smooth force: its bents bents_[bent_begin, bent_end), its damping
   // block C_bb and its initial stiffness K0_bb, summed body by body into fixed-size vectors.
@@ -148,14 +163,14 @@ class Assembly final : public integrators::SystemBase {
     int offset = 0, seat = 0;
     Eigen::Vector3d rest = Eigen::Vector3d::Zero();
     CornerFace geometry;
-    double restitution = 0.0, friction = 0.0;
+    double restitution = 0.0, friction = 0.0, stiffness = 0.0;
   };
   struct BodyContact {
     std::size_t slot = 0;
     int offset_a = 0, offset_b = 0;
     Eigen::Vector3d rest_a = Eigen::Vector3d::Zero(), rest_b = Eigen::Vector3d::Zero();
     CornerFace geometry;
-    double restitution = 0.0, friction = 0.0;
+    double restitution = 0.0, friction = 0.0, stiffness = 0.0;
   };
 
   // One shear key as the run goes: its contact's slot, the peak mean force [kN], and whether
@@ -220,7 +235,8 @@ class Assembly final : public integrators::SystemBase {
   bool connected_ = false;  // !connectors_.empty(): restrainers or ground links
   parts::MotionTable motions_;
   std::vector<BentState> bents_;         // grouped by body, in the given order within a body
-  std::vector<std::size_t> bent_slot_;   // bents_ index of the given bent j
+  std::vector<std::size_t> bent_slot_;   // bents_ index of the given bent j (its first column)
+  std::vector<std::size_t> bent_columns_;  // bents_ entries of the given bent j (its columns)
   std::vector<BodyForces> body_forces_;  // one per body
   std::vector<SeatIndex> seat_index_;
   std::vector<SeatContact> seat_contacts_;

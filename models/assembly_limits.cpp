@@ -67,12 +67,21 @@ integrators::StepVerdict Assembly::watch_limits(const integrators::AcceptedStep&
   if (watch_.watches_drift()) {
     update_motions(step.t);
     // The bent top's displacement relative to its support, as the bent's springs see it.
+    // A bent with columns: each column's top, the watch keeping the largest.
     for (std::size_t j = 0; j < parts_.bents.size(); ++j) {
-      const BentState& b = bents_[bent_slot_[j]];
-      const int o = b.offset;
-      const double dx = q(o) - motions_.value(b.ground_x).d;
-      const double dy = q(o + 1) + b.position * q(o + 2) - motions_.value(b.ground_y).d;
-      watch_.drift(step.t, j, dx, dy);
+      for (std::size_t c = 0; c < bent_columns_[j]; ++c) {
+        const BentState& b = bents_[bent_slot_[j] + c];
+        const int o = b.offset;
+        if (b.general) {
+          const double dx = q(o) - b.point.y() * q(o + 2) - motions_.value(b.ground_x).d;
+          const double dy = q(o + 1) + b.point.x() * q(o + 2) - motions_.value(b.ground_y).d;
+          watch_.drift(step.t, j, dx, dy);
+          continue;
+        }
+        const double dx = q(o) - motions_.value(b.ground_x).d;
+        const double dy = q(o + 1) + b.position * q(o + 2) - motions_.value(b.ground_y).d;
+        watch_.drift(step.t, j, dx, dy);
+      }
     }
   }
   watch_.end_state(step.t, q);

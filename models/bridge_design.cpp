@@ -113,6 +113,8 @@ void BridgeDesign::validate() const {
   require(std::isfinite(restitution) && restitution >= 0 && restitution <= 1, "restitution",
           "must be in [0, 1]");
   require(std::isfinite(friction) && friction >= 0, "friction", "must be >= 0");
+  require(std::isfinite(compliance_stiffness) && compliance_stiffness >= 0,
+          "compliance_stiffness", "must be >= 0 [kN/m^1.5] (0: solver.contact_stiffness)");
   require(std::isfinite(damping_ratio_i) && damping_ratio_i >= 0 && damping_ratio_i < 1,
           "damping_ratio_i", "must be in [0, 1)");
   require(std::isfinite(damping_ratio_j) && damping_ratio_j >= 0 && damping_ratio_j < 1,

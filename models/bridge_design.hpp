@@ -50,12 +50,17 @@ struct BentDesign {
 };
 
 struct BridgeDesign {
-  // A bent under the deck: two Takeda springs at the position s along the deck axis. Its
-  // transverse force acts with the lever arm s (models/parts.hpp, Bent).
+  // A bent under the deck: two Takeda springs at the position s along the deck axis, or its
+  // columns at their offsets. Its transverse force acts with the lever arm s, each column's
+  // longitudinal force with its offset (models/parts.hpp, Bent).
   struct Bent {
     double position = 0.0;                // s_j along the deck axis from the centre [m]
     takeda::Parameters longitudinal;      // bent spring along x (all columns together)
     takeda::Parameters transverse;        // bent spring along y
+    // The columns' transverse positions from the deck axis [m] (one per column, each column
+    // carrying 1/n of both springs at its own position); empty: the whole bent on the axis.
+    std::vector<double> column_offsets{};
+    double skew_deg = 0.0;                // the bent's own skew beta [deg] (parts.hpp, Bent)
   };
   // The ground motion of one support; null means none in that direction.
   struct SupportMotion {
@@ -75,6 +80,9 @@ struct BridgeDesign {
   DeckGeometry deck{33.53, 2.44, 0.0, 0.0127, 0.0127};
   double restitution = 0.0;   // eps_N in [0, 1] (paper: 0)
   double friction = 0.5;      // mu >= 0 (paper: 0.5)
+  double compliance_stiffness = 0.0;  // Hertz k of the four abutment contacts under the
+                                      //   compliance method [kN/m^1.5], >= 0; 0: the run's
+                                      //   solver.contact_stiffness
   double damping_ratio_i = 0.08, damping_ratio_j = 0.08;  // Rayleigh ratios, >= 0 (paper 8 %)
   int damping_mode_i = 1, damping_mode_j = 3;            // 1-based modes, distinct, in 1..3
   // None: a free deck (no damping, which needs the bents' stiffness); else >= 2 bents at >= 2

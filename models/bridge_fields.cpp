@@ -59,6 +59,10 @@ std::span<const config::Field<BridgeDesign>> bridge_seat_fields() {
                                  "all four deck-corner contacts (paper: 0)"),
       c::number<&P::friction>("friction", "-", c::non_negative(),
                               "all four deck-corner contacts (paper: 0.5)"),
+      c::number<&P::compliance_stiffness>("compliance_stiffness", "kN/m^1.5", c::non_negative(),
+                                          "Hertz k of eq. (9) for the four deck-corner contacts "
+                                          "under the compliance method; 0: "
+                                          "solver.contact_stiffness"),
   };
   return f;
 }

@@ -28,7 +28,8 @@ Assembly::Parts deck_parts(const BridgeDesign& p) {
   for (std::size_t j = 0; j < p.bents.size(); ++j) {
     parts::Bent b{.body = 0, .position = p.bents[j].position,
                   .longitudinal = p.bents[j].longitudinal, .transverse = p.bents[j].transverse,
-                  .ground_longitudinal = nullptr, .ground_transverse = nullptr};
+                  .ground_longitudinal = nullptr, .ground_transverse = nullptr,
+                  .column_offsets = p.bents[j].column_offsets, .skew_deg = p.bents[j].skew_deg};
     if (!excitation.bents.empty()) {
       b.ground_longitudinal = excitation.bents[j].longitudinal;
       b.ground_transverse = excitation.bents[j].transverse;
@@ -47,7 +48,8 @@ Assembly::Parts deck_parts(const BridgeDesign& p) {
     parts.contacts.push_back({.body = 0, .corner = i, .obstacle = parts::Obstacle::kPrescribed,
                               .obstacle_index = DeckGeometry::abutment_of(i),
                               .face = {.point = c.face_point, .normal = c.face_normal},
-                              .restitution = p.restitution, .friction = p.friction});
+                              .restitution = p.restitution, .friction = p.friction,
+                              .stiffness = p.compliance_stiffness});
   }
   return parts;
 }
@@ -148,7 +150,8 @@ Assembly::Parts bridge_parts(const BridgeDesign& p, const SegmentedDeck& deck) {
                           .obstacle = parts::Obstacle::kBody,
                           .obstacle_index = static_cast<int>(k - 1), .face = face,
                           .restitution = deck.hinges[k - 1].restitution,
-                          .friction = deck.hinges[k - 1].friction});
+                          .friction = deck.hinges[k - 1].friction,
+                          .stiffness = deck.hinges[k - 1].compliance_stiffness});
     }
   }
   for (std::size_t i = 2; i < 4; ++i) {

@@ -77,7 +77,8 @@ Assembly::Parts DeckChain::parts(const Parameters& p) {
                  const parts::Face& face, const Joint& j) {
     out.contacts.push_back({.body = deck, .corner = corner, .obstacle = obstacle,
                             .obstacle_index = index, .face = face,
-                            .restitution = j.restitution, .friction = j.friction});
+                            .restitution = j.restitution, .friction = j.friction,
+                            .stiffness = j.compliance_stiffness});
   };
   for (int corner : {0, 1}) add(0, corner, parts::Obstacle::kPrescribed, 0, left_face, p.joints[0]);
   for (std::size_t k = 1; k < n; ++k) {
@@ -104,6 +105,10 @@ std::span<const config::Field<DeckChain::Joint>> joint_fields() {
                                  "Newton's ε_N of the joint's two corner contacts"),
       c::number<&P::friction>("friction", "-", c::non_negative(),
                               "Coulomb's μ of the joint's two corner contacts"),
+      c::number<&P::compliance_stiffness>("compliance_stiffness", "kN/m^1.5", c::non_negative(),
+                                          "Hertz k of eq. (9) for the joint's two contacts "
+                                          "under the compliance method; 0: "
+                                          "solver.contact_stiffness"),
   };
   return f;
 }

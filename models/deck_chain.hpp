@@ -49,6 +49,8 @@ struct DeckChain {
     double gap = 0.0;          // clear distance along the axis at rest [m], >= 0
     double restitution = 0.0;  // Newton's eps_N in [0, 1]
     double friction = 0.0;     // Coulomb's mu >= 0
+    double compliance_stiffness = 0.0;  // Hertz k of its contacts under the compliance
+                                        //   method [kN/m^1.5]; 0: solver.contact_stiffness
   };
   struct Parameters {
     std::vector<Deck> decks;    // N >= 1

@@ -95,6 +95,16 @@ struct PrescribedBody {
 // bent kinematics are linear in theta, |theta| < 0.01 rad in the benchmark):
 //   F_x = Takeda_x(x - u_gx(t)),   F_y = Takeda_y(y + s theta - u_gy(t)),
 //   f_b -= F_x (1, 0, 0) + F_y (0, 1, s).
+// A bent with columns (column_offsets not empty) or its own skew beta is n columns, each with
+// 1/n of both springs (k0, cracking and yield forces; the yield displacement is the bent's),
+// at the point r_c = (s + e_c tan beta, e_c) of the body frame, on the bent's line through
+// (s, 0) at beta from the transverse axis (the deck faces' convention, docs/bridge.md). The
+// longitudinal spring acts along the line's normal n = (cos beta, -sin beta), the transverse
+// one along the line t = (sin beta, cos beta): for a direction a, the column's deformation is
+//   delta_a = a . (p_c - u_g(t)),  p_c = (x - r_c,y theta, y + r_c,x theta),
+//   so d delta_a / d q = J_a = (a_x, a_y, a_y r_c,x - a_x r_c,y),   f_b -= F_a J_a,
+// which with no offsets and beta = 0 is the single spring pair above (docs/bridge.md, "Bents
+// with their columns").
 struct Bent {
   int body = 0;                    // index of the rigid body, >= 0
   double position = 0.0;           // s from the body centre along its axis [m], |s| <= L/2
@@ -102,6 +112,9 @@ struct Bent {
   takeda::Parameters transverse;   // spring along y
   Motion ground_longitudinal;      // u_gx(t); null: fixed
   Motion ground_transverse;        // u_gy(t); null: fixed
+  std::vector<double> column_offsets{};  // e_c, the columns' transverse positions [m];
+                                         //   empty: the bent acts at (s, 0)
+  double skew_deg = 0.0;                 // beta [deg], |beta| < 80
 };
 
 // What a corner touches: the face of a prescribed body, or the face of another rigid body.
@@ -156,6 +169,7 @@ struct CornerContact {
   Face face;                    // in the obstacle's frame
   double restitution = 0.0;     // Newton's eps_N in [0, 1]
   double friction = 0.0;        // Coulomb's mu >= 0
+  double stiffness = 0.0;       // compliance Hertz k [kN/m^1.5], >= 0; 0: solver.contact_stiffness
 };
 
 // A shear key (models/shear_keys.hpp): contact `contact` (0-based, among the assembly's

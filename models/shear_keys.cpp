@@ -21,7 +21,8 @@ void add_key(Assembly::Parts& parts, const ShearKeyParameters& keys, int body, i
                             .obstacle_index = seat,
                             .face = {.point = point - reference,
                                      .normal = Eigen::Vector2d(0.0, -side)},
-                            .restitution = keys.restitution, .friction = keys.friction});
+                            .restitution = keys.restitution, .friction = keys.friction,
+                            .stiffness = keys.compliance_stiffness});
 }
 
 }  // namespace
@@ -31,6 +32,8 @@ void ShearKeyParameters::validate(const std::string& prefix) const {
   require(restitution >= 0.0 && restitution <= 1.0, prefix + "restitution",
           "must be in [0, 1]");
   require(std::isfinite(friction) && friction >= 0.0, prefix + "friction", "must be >= 0");
+  require(std::isfinite(compliance_stiffness) && compliance_stiffness >= 0.0,
+          prefix + "compliance_stiffness", "must be >= 0 [kN/m^1.5] (0: solver.contact_stiffness)");
   require(std::isfinite(capacity) && capacity >= 0.0, prefix + "capacity",
           "must be >= 0 [kN] (0: unbreakable)");
 }
@@ -108,6 +111,9 @@ std::span<const config::Field<ShearKeyParameters>> shear_key_fields() {
                               "Coulomb's coefficient mu of the key contacts"),
       c::number<&K::capacity>("capacity", "kN", c::non_negative(),
                               "mean contact force of a step that breaks a key; 0: unbreakable"),
+      c::number<&K::compliance_stiffness>("compliance_stiffness", "kN/m^1.5", c::non_negative(),
+                                          "Hertz k of eq. (9) for the key contacts under the "
+                                          "compliance method; 0: solver.contact_stiffness"),
   };
   return f;
 }

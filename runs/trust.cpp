@@ -20,6 +20,32 @@ constexpr double kRoundoffDepth = 1e-9;
 // Three significant digits for messages (printf's %.3g).
 std::string brief(double x) { return io::three_digits(x); }
 
+// The compliance contacts that penetrate deeper than limits.compliance_penetration of their gap
+// at t0 (the history's first row); a contact closed at t0 (a resting contact) has no gap to
+// compare with and is not checked.
+void compliance_penetration_warnings(const integrators::Recorder& history,
+                                     const TrustLimits& limits, std::vector<std::string>& w) {
+  if (history.rows() == 0) return;
+  const auto& info = history.column_info();
+  for (std::size_t c = 1; c < info.size(); ++c) {
+    if (info[c].kind != integrators::ColumnKind::kGap) continue;
+    const int contact = info[c].index;
+    const double gap = history.at(0, c);
+    if (!(gap > kRoundoffDepth)) continue;
+    const integrators::StepExtremes& extremes = history.gap_until_removal(contact);
+    const double depth = -extremes.min;
+    if (depth > limits.compliance_penetration * gap) {
+      w.push_back("penetration: contact " + std::to_string(contact + 1) + " penetrates " +
+                  brief(depth) + " m at t = " + brief(extremes.t_min) + " s, " +
+                  brief(100.0 * depth / gap) + " % of its gap " + brief(gap) +
+                  " m at t0; the compliance model is trusted up to " +
+                  brief(100.0 * limits.compliance_penetration) +
+                  " % (raise the contact family's compliance_stiffness or "
+                  "solver.contact_stiffness)");
+    }
+  }
+}
+
 }  // namespace
 
 void TrustLimits::validate() const {
@@ -28,6 +54,9 @@ void TrustLimits::validate() const {
   };
   if (!(energy_error > 0.0 && energy_error < 1.0)) bad("energy_error", "must be in (0, 1)");
   if (!(penetration > 0.0 && penetration < 1.0)) bad("penetration", "must be in (0, 1)");
+  if (!(compliance_penetration > 0.0 && compliance_penetration < 1.0)) {
+    bad("compliance_penetration", "must be in (0, 1)");
+  }
   if (!(steps_per_period >= 1.0 && std::isfinite(steps_per_period)))
     bad("steps_per_period", "must be finite and >= 1");
   if (!(record_steps > 0.0 && std::isfinite(record_steps))) bad("record_steps", "must be > 0");
@@ -99,8 +128,11 @@ std::vector<std::string> result_warnings(const integrators::Recorder& history,
   }
   // With rigid contacts (Moreau–Jean, event-driven) g_N >= 0 is the contact law and a
   // penetration is its numerical violation. The compliance method's penetration is the Hertz
-  // deformation of the contact, a result of its model, and is not checked.
-  if (result.method == "compliance") return w;
+  // deformation of the contact, a result of its model, checked against the contact's gap.
+  if (result.method == "compliance") {
+    compliance_penetration_warnings(history, limits, w);
+    return w;
+  }
   const auto& info = history.column_info();
   for (std::size_t c = 1; c < info.size(); ++c) {
     if (info[c].kind != integrators::ColumnKind::kGap) continue;

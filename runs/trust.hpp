@@ -23,6 +23,11 @@ struct TrustLimits {
   // Largest penetration accepted, as a fraction of the contact's range of gaps over the run
   // (max g_N - min g_N), in (0, 1).
   double penetration = 0.01;
+  // Largest penetration of a compliance contact accepted, as a fraction of its gap at t0 (its
+  // opening at rest), in (0, 1): beyond it the contact's deformation is a sizeable share of
+  // the free play that the rigid methods keep, and the stiffness is too soft for the bridge
+  // (docs/compliance.md, "Contact laws per family").
+  double compliance_penetration = 0.5;
   // Fewest Moreau–Jean steps per shortest natural period of the system, >= 1.
   double steps_per_period = 20.0;
   // Largest Moreau–Jean step as a multiple of the record's sampling interval, > 0.
@@ -47,9 +52,10 @@ std::vector<std::string> step_warnings(integrators::System& system,
                                        const TrustLimits& limits = {});
 
 // Warnings about a finished run from its digest: its error estimate against solver.accuracy
-// (runs/estimate.hpp, accuracy_warning), its energy-balance error and, for the
-// rigid-contact methods (not compliance, whose penetration is the modelled contact
-// deformation), the deepest penetration of each contact (its gap columns, by ColumnKind).
+// (runs/estimate.hpp, accuracy_warning), its energy-balance error and the deepest
+// penetration of each contact (its gap columns, by ColumnKind): for the rigid-contact methods
+// against its range of gaps (a numerical violation of g_N >= 0); for compliance, whose
+// penetration is the modelled contact deformation, against its gap at t0.
 std::vector<std::string> result_warnings(const integrators::Recorder& history,
                                          const Digest& digest,
                                          const integrators::RunResult& result,

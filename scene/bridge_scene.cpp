@@ -274,8 +274,14 @@ BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridg
                              config::format_value(half) + " m (got " +
                              config::format_value(b.position) + ")");
     }
+    if (s.has("column_offsets") &&
+        b.column_offsets.size() != static_cast<std::size_t>(b.design.columns)) {
+      s.fail("column_offsets", "must give one offset per column: " +
+                                   std::to_string(b.column_offsets.size()) + " offsets for "
+                                   "columns = " + std::to_string(b.design.columns));
+    }
     p.bents.push_back({b.position, bent_spring(s, b, "longitudinal"),
-                       bent_spring(s, b, "transverse")});
+                       bent_spring(s, b, "transverse"), b.column_offsets, b.skew_deg});
     out.delays.push_back(b.delay);
     out.segments.push_back(b.segment);
     if (need_height && !s.has("height")) {
@@ -300,6 +306,12 @@ SeatMotions read_seats(const Section& m, BridgeDesign& p) {
   const auto* t = m.subtable("seats");
   if (t == nullptr) return out;
   Section s(m.context(), *t, m.key_path("seats"));
+  // The seat length belongs to the abutment's own table, beside its backfill and restrainer.
+  if (s.has("seat_length")) {
+    s.fail("seat_length", "the abutments' seat length is a key of [model.abutments] "
+                          "(seat_length), a hinge's of its [[model.hinges]] element; "
+                          "[model.seats] holds the seats' contact law and motion");
+  }
   std::vector<std::string_view> keys = keys_of(bridge_seat_fields());
   for (const auto& k : keys_of(SeatMotionSettings::fields())) keys.push_back(k);
   s.only(keys);

@@ -19,7 +19,7 @@
 namespace nsb::scene {
 
 // One key of a table: its name and kind ("number", "integer", "boolean", "choice", "text",
-// "vector3").
+// "vector3", "numbers").
 struct DocKey {
   std::string key;
   std::string kind;
@@ -63,6 +63,8 @@ std::string allowed(const config::Field<S>& f) {
     }
     case config::Kind::kText: return "text";
     case config::Kind::kVector3: return "3 finite numbers";
+    case config::Kind::kNumbers:
+      return f.range.describe() == "any" ? "finite numbers" : "numbers " + f.range.describe();
   }
   return {};
 }
@@ -103,6 +105,7 @@ inline std::string kind_name(config::Kind k) {
     case config::Kind::kChoice: return "choice";
     case config::Kind::kText: return "text";
     case config::Kind::kVector3: return "vector3";
+    case config::Kind::kNumbers: return "numbers";
   }
   return {};
 }

@@ -176,6 +176,20 @@ std::optional<config::Value> Section::value(std::string_view key, config::Kind k
       }
       return config::Value(std::move(x));
     }
+    case config::Kind::kNumbers: {
+      const toml::array* a = n->as_array();
+      if (a == nullptr) fail(key, "expected an array of numbers" + got);
+      std::vector<double> x;
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        const auto d = as_number((*a)[i]);
+        if (!d) {
+          fail(key, "expected an array of numbers, element " + std::to_string(i) + " is " +
+                        type_name((*a)[i]));
+        }
+        x.push_back(*d);
+      }
+      return config::Value(std::move(x));
+    }
   }
   return std::nullopt;
 }

@@ -142,6 +142,13 @@ std::span<const c::Field<BentSettings>> BentSettings::fields() {
       c::integer<&S::segment>("segment", c::non_negative(),
                               "0-based index of the [[model.segments]] element the bent "
                               "carries (0 with [model.deck]); position is measured on it"),
+      c::numbers<&S::column_offsets>("column_offsets", "m", c::any(),
+                                     "the columns' transverse positions from the deck axis, "
+                                     "one per column (as many as columns), each with 1/columns "
+                                     "of both springs; default: the whole bent on the axis"),
+      c::number<&S::skew_deg>("skew_deg", "deg", c::open(-80, 80),
+                              "the bent's own skew β: its line through (position, 0) at β "
+                              "from the transverse axis, springs along its normal and along it"),
   };
   return f;
 }

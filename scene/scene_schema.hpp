@@ -14,6 +14,7 @@
 #include <array>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace nsb::scene {
 
@@ -59,6 +60,8 @@ struct BentSettings {
   double yield_force_transverse = 0.0;
   double delay = 0.0;                     // [s]
   int segment = 0;                        // 0-based [[model.segments]] index it carries
+  std::vector<double> column_offsets;     // [m], one per column; empty: the bent on the axis
+  double skew_deg = 0.0;                  // the bent's own skew [deg]
   static std::span<const config::Field<BentSettings>> fields();
 };
 

@@ -10,6 +10,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -118,6 +119,60 @@ TEST_CASE("a scene value runs bit for bit as its file; the value's origin names 
   CHECK_THROWS_WITH_AS(execute({named, {}, "leapfrog", {}}),
                        doctest::Contains("<bridge>: solver.method (override): "),
                        std::invalid_argument);
+}
+
+TEST_CASE("a compliance contact softer than the bridge needs warns; the default does not") {
+  // Excitation 7 to 5 s (its first abutment impacts at 3.96 s). With the default stiffness the
+  // deepest abutment penetration is below 50 % of the 12.7 mm gap (35 % over the whole
+  // record, docs/compliance.md); 1/1000 of it gives 1000^(2/5) = 16 times the penetration of
+  // the same impact (delta_max ~ k^(-2/5), Goldsmith), far beyond the gap's half.
+  const auto penetration_warnings = [](const RunRecord& r) {
+    std::vector<std::string> out;
+    for (const auto& w : r.digest.warnings) {
+      if (w.rfind("penetration:", 0) == 0) out.push_back(w);
+    }
+    return out;
+  };
+  const RunRecord stiff =
+      execute({kScenes + "/bridge-exc7.toml", {"solver.end_time=5"}, "compliance", {}});
+  REQUIRE(integrators::succeeded(stiff.result.status));
+  CHECK(penetration_warnings(stiff).empty());
+  const RunRecord soft = execute({kScenes + "/bridge-exc7.toml",
+                                  {"solver.end_time=5", "model.seats.compliance_stiffness=2.747e4"},
+                                  "compliance", {}});
+  REQUIRE(integrators::succeeded(soft.result.status));
+  const auto w = penetration_warnings(soft);
+  REQUIRE(!w.empty());
+  CHECK(w[0].find("% of its gap 0.0127 m at t0; the compliance model is trusted up to 50 %") !=
+        std::string::npos);
+}
+
+TEST_CASE("a family's compliance stiffness is the global one for its contacts") {
+  // Excitation 7's only contacts are the four abutment corners: the abutments' own stiffness
+  // must give the run of the same global solver.contact_stiffness, sample for sample.
+  const RunRecord global = execute({kScenes + "/bridge-exc7.toml",
+                                    {"solver.end_time=5", "solver.contact_stiffness=1e7"},
+                                    "compliance", {}});
+  const RunRecord family = execute({kScenes + "/bridge-exc7.toml",
+                                    {"solver.end_time=5", "model.seats.compliance_stiffness=1e7"},
+                                    "compliance", {}});
+  const RunRecord fixed =
+      execute({kScenes + "/bridge-exc7.toml", {"solver.end_time=5"}, "compliance", {}});
+  REQUIRE(global.history.rows() == family.history.rows());
+  const std::size_t gap = global.history.column("gN1");
+  bool same = true;
+  for (std::size_t r = 0; r < global.history.rows(); ++r) {
+    same = same && global.history.at(r, gap) == family.history.at(r, gap);
+  }
+  CHECK(same);
+  // ... and it is not the default's: the softer contacts penetrate deeper.
+  const auto deepest = [](const RunRecord& r) {
+    double g = 0.0;
+    for (int i = 0; i < 4; ++i) g = std::min(g, r.history.gap_until_removal(i).min);
+    return g;
+  };
+  REQUIRE(deepest(fixed) < 0.0);
+  CHECK(deepest(global) < deepest(fixed));
 }
 
 }  // namespace nsb::runs

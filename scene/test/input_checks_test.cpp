@@ -58,10 +58,15 @@ TEST_CASE("an unknown key gets the closest spelling, or the tables that declare 
                  "typo.toml:7:9: solver.stepp: unknown key; did you mean `step`?"));
   CHECK(contains(error_of("mas.toml", kDeck + "mas = 1.0\n"),
                  "model.mas: unknown key; did you mean `mass`?"));
-  // seat_length is a key of [model.abutments] and of [[model.hinges]], not of [model.seats].
-  const std::string e = shipped_error("bridge-exc7.toml", {"model.seats.seat_length=0.3"});
-  CHECK(contains(e, "model.seats.seat_length (override): unknown key; did you mean "
-                    "`[[model.hinges]]` or `[model.abutments]`?"));
+  // pile_stiffness is a key of [model.abutments], not of [model.seats].
+  const std::string e = shipped_error("bridge-exc7.toml", {"model.seats.pile_stiffness=1"});
+  CHECK(contains(e, "model.seats.pile_stiffness (override): unknown key; did you mean "
+                    "`[model.abutments]`? (pile_stiffness is a key there)"));
+  // seat_length in [model.seats] is refused with the tables that hold it.
+  const std::string s = shipped_error("bridge-exc7.toml", {"model.seats.seat_length=0.3"});
+  CHECK(contains(s, "model.seats.seat_length (override): the abutments' seat length is a key "
+                    "of [model.abutments] (seat_length), a hinge's of its [[model.hinges]] "
+                    "element"));
   // A key no table declares gets no hint.
   CHECK(contains(error_of("none.toml", kBall + "zzzzzz = 1\n"),
                  "model.zzzzzz: unknown key; allowed here"));
