@@ -10,6 +10,12 @@ namespace nsb::models {
 
 namespace {
 
+// The outputs' name of deck corner i (0..3, models/deck_geometry.hpp): its end and side.
+std::string corner_name(int i) {
+  return std::string(DeckGeometry::abutment_of(i) == 0 ? "left" : "right") +
+         (i % 2 == 0 ? " +W/2" : " -W/2");
+}
+
 // The parts of p without its checks: the deck, seats, bents, damping and contacts.
 Assembly::Parts deck_parts(const BridgeDesign& p) {
   const BridgeDesign::Excitation& excitation = p.excitation;
@@ -47,7 +53,8 @@ Assembly::Parts deck_parts(const BridgeDesign& p) {
     parts.contacts.push_back({.body = 0, .corner = i, .obstacle = parts::Obstacle::kPrescribed,
                               .obstacle_index = DeckGeometry::abutment_of(i),
                               .face = {.point = c.face_point, .normal = c.face_normal},
-                              .restitution = p.restitution, .friction = p.friction});
+                              .restitution = p.restitution, .friction = p.friction,
+                              .family = "abutment", .name = corner_name(i)});
   }
   return parts;
 }
@@ -148,7 +155,9 @@ Assembly::Parts bridge_parts(const BridgeDesign& p, const SegmentedDeck& deck) {
                           .obstacle = parts::Obstacle::kBody,
                           .obstacle_index = static_cast<int>(k - 1), .face = face,
                           .restitution = deck.hinges[k - 1].restitution,
-                          .friction = deck.hinges[k - 1].friction});
+                          .friction = deck.hinges[k - 1].friction, .family = "hinge",
+                          .name = "hinge " + std::to_string(k) +
+                                  (corner == 0 ? " +W/2" : " -W/2")});
     }
   }
   for (std::size_t i = 2; i < 4; ++i) {

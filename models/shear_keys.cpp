@@ -21,7 +21,8 @@ void add_key(Assembly::Parts& parts, const ShearKeyParameters& keys, int body, i
                             .obstacle_index = seat,
                             .face = {.point = point - reference,
                                      .normal = Eigen::Vector2d(0.0, -side)},
-                            .restitution = keys.restitution, .friction = keys.friction});
+                            .restitution = keys.restitution, .friction = keys.friction,
+                            .family = "shear_key", .name = name});
 }
 
 }  // namespace
