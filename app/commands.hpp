@@ -27,6 +27,7 @@ void add_figures_command(CLI::App& app);    // nsbridge figures --out DIR [--qui
 void add_sweep_command(CLI::App& app);      // nsbridge sweep DESIGN.toml --out DIR ...
 void add_spectrum_command(CLI::App& app);   // nsbridge spectrum RECORD... [--periods ...]
 void add_suite_spectra_command(CLI::App& app);  // nsbridge suite-spectra SUITE.csv --out DIR
+void add_plot_command(CLI::App& app);           // nsbridge plot RUN_DIR [--what ...] [--out FILE]
 
 // nsbridge --version: version, git revision (at build time), build type, compiler and the
 // versions of the libraries linked.

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   nsb::app::add_sweep_command(app);
   nsb::app::add_spectrum_command(app);
   nsb::app::add_suite_spectra_command(app);
+  nsb::app::add_plot_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
