@@ -1,5 +1,6 @@
 // nsbridge run SCENE.toml [--out DIR] [--method moreau|event_driven|compliance]
 //                         [--set key=value ...] [--quiet] [--strict] [--dump-lcp DIR]
+//                         [--plot]
 //
 // Loads a scene (with overrides) and checks its initial state (runs::prepare), checks the
 // output directory (creating nothing), then integrates the scene with the chosen method
@@ -11,8 +12,11 @@
 // DIR/manifest.csv (runs/lcp_dump.hpp); a DIR that cannot be created is refused before the run.
 // A place that cannot be written, before the run or while writing (a full disk), is bad input:
 // exit 2 naming the option. Ctrl-C interrupts the run: nothing is written, exit 130.
+// --plot draws DIR/response.png once the files are written (app/run_plot.hpp); a drawing
+// that fails is reported and exits 1, the run's files staying.
 #include "app/commands.hpp"
 #include "app/interrupt.hpp"
+#include "app/run_plot.hpp"
 
 #include "integrators/run.hpp"
 #include "io/csv.hpp"
@@ -47,6 +51,7 @@ struct RunArgs {
   bool strict = false;
   std::string dump_lcp;
   bool dump_lcp_given = false;  // --dump-lcp was on the command line (possibly as "")
+  bool plot = false;            // draw <out>/response.png after the run
 };
 
 // A progress bar on stderr, drawn only when stderr is a terminal and only once the run has
@@ -272,6 +277,15 @@ void run(const RunArgs& args) {
     throw InputError("--out " + out.string() + ": " + e.what());
   }
   print_summary(record, out);
+  if (args.plot) {
+    const std::string failed = plot_run(out, "response", default_plot_file(out, "response"));
+    if (!failed.empty()) {
+      std::cerr << "nsbridge: --plot: " << failed << "; no figure written\n";
+      exit_code() = 1;
+    } else {
+      std::cout << "figure     " << default_plot_file(out, "response").string() << '\n';
+    }
+  }
   // The trust checks' warnings; the integrator's own are in summary.json and events.csv.
   const auto& warnings = record.digest.warnings;
   for (std::size_t i = record.digest.integrator_warnings; i < warnings.size(); ++i)
@@ -301,6 +315,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--quiet", args->quiet, "No progress bar on standard error");
   cmd->add_flag("--strict", args->strict,
                 "Exit 1 when a warning says the run is not to be trusted (docs/cli.md)");
+  cmd->add_flag("--plot", args->plot,
+                "Draw the response to <out>/response.png after the run (nsbridge plot)");
   auto* dump = cmd->add_option("--dump-lcp", args->dump_lcp,
                                "Write every contact problem to this directory (Siconos .dat "
                                "files and manifest.csv)");

@@ -29,6 +29,7 @@ void add_spectrum_command(CLI::App& app);   // nsbridge spectrum RECORD... [--pe
 void add_suite_spectra_command(CLI::App& app);  // nsbridge suite-spectra SUITE.csv --out DIR
 void add_records_command(CLI::App& app);        // nsbridge records import DIR --out SUITE_DIR
 void add_export_command(CLI::App& app);         // nsbridge export pelicun DIR [--out PREFIX]
+void add_plot_command(CLI::App& app);           // nsbridge plot RUN_DIR [--what ...] [--out FILE]
 
 // nsbridge --version: version, git revision (at build time), build type, compiler and the
 // versions of the libraries linked.

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   nsb::app::add_suite_spectra_command(app);
   nsb::app::add_records_command(app);
   nsb::app::add_export_command(app);
+  nsb::app::add_plot_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -43,19 +43,36 @@ std::string run_gnuplot(const std::string& gnuplot, const std::filesystem::path&
 
 }  // namespace
 
-std::string terminal_for(const std::filesystem::path& picture) {
+std::string terminal_for(const std::filesystem::path& picture, const ImageSize& size) {
   std::string ext = picture.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".png") return "set terminal pngcairo size 900,600";
-  if (ext == ".svg") return "set terminal svg size 900,600";
-  if (ext == ".pdf") return "set terminal pdfcairo size 6in,4in";
+  const std::string pixels = std::to_string(size.width) + "," + std::to_string(size.height);
+  const std::string font = size.font.empty() ? "" : " font '" + size.font + "'";
+  if (ext == ".png") {
+    // A gnuplot without cairo (GPVAL_TERMINALS lists what it has) draws with libgd instead.
+    return "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size " +
+           pixels + font + " } else { set terminal png size " + pixels + " }";
+  }
+  if (ext == ".svg") return "set terminal svg size " + pixels + font;
+  if (ext == ".pdf") {
+    // 150 pixels to the inch: the default 900 x 600 is 6 x 4 in.
+    const auto inches = [](int px) {
+      std::string s = std::to_string(px / 150.0);
+      s.erase(s.find_last_not_of('0') + 1);
+      if (s.back() == '.') s.pop_back();
+      return s + "in";
+    };
+    return "if (strstrt(GPVAL_TERMINALS, 'pdfcairo') == 0) { exit error 'this gnuplot has no "
+           "pdfcairo terminal: draw a .png or .svg' }; set terminal pdfcairo size " +
+           inches(size.width) + "," + inches(size.height) + font;
+  }
   return {};
 }
 
 std::string draw_gnuplot(const std::string& gnuplot, const std::string& script,
-                         const std::filesystem::path& picture) {
-  const std::string terminal = terminal_for(picture);
+                         const std::filesystem::path& picture, const ImageSize& size) {
+  const std::string terminal = terminal_for(picture, size);
   if (terminal.empty()) return picture.string() + ": expected a .png, .svg or .pdf file";
   const std::filesystem::path dir =
       picture.parent_path().empty() ? std::filesystem::path(".") : picture.parent_path();

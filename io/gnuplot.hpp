@@ -21,16 +21,19 @@ struct ImageSize {
 std::string render_gnuplot(const std::string& gnuplot, const std::filesystem::path& dir,
                            const std::string& stem, const ImageSize& size = {});
 
-// The gnuplot terminal for a picture file, chosen by its extension (.png, .svg, .pdf; any
-// case); empty for another extension.
-std::string terminal_for(const std::filesystem::path& picture);
+// The gnuplot terminal for a picture file of the given size, chosen by its extension (any
+// case): .png pngcairo (libgd's png where this gnuplot has no cairo terminals), .svg svg,
+// .pdf pdfcairo (W/150 by H/150 inches; gnuplot stops with "this gnuplot has no pdfcairo
+// terminal" where it has none, as Debian's gnuplot-nox built without cairo). Empty for
+// another extension.
+std::string terminal_for(const std::filesystem::path& picture, const ImageSize& size = {});
 
 // Draws one picture: writes `script` (everything but the terminal and output) into a hidden
-// file beside `picture`, runs gnuplot on it with terminal_for(picture), and removes the script
-// and gnuplot's log. Returns an empty string, or what failed (with the log's first line); a
-// failed drawing leaves no file behind.
+// file beside `picture`, runs gnuplot on it with terminal_for(picture, size), and removes the
+// script and gnuplot's log. Returns an empty string, or what failed (with the log's first
+// line); a failed drawing leaves no file behind.
 std::string draw_gnuplot(const std::string& gnuplot, const std::string& script,
-                         const std::filesystem::path& picture);
+                         const std::filesystem::path& picture, const ImageSize& size = {});
 
 // s as a gnuplot string literal: in double quotes, with '"' and '\\' escaped.
 std::string gnuplot_string(const std::string& s);

@@ -10,6 +10,12 @@ namespace nsb::models {
 
 namespace {
 
+// The outputs' name of deck corner i (0..3, models/deck_geometry.hpp): its end and side.
+std::string corner_name(int i) {
+  return std::string(DeckGeometry::abutment_of(i) == 0 ? "left" : "right") +
+         (i % 2 == 0 ? " +W/2" : " -W/2");
+}
+
 // The parts of p without its checks: the deck, seats, bents, damping and contacts.
 Assembly::Parts deck_parts(const BridgeDesign& p) {
   const BridgeDesign::Excitation& excitation = p.excitation;
@@ -49,7 +55,8 @@ Assembly::Parts deck_parts(const BridgeDesign& p) {
                               .obstacle_index = DeckGeometry::abutment_of(i),
                               .face = {.point = c.face_point, .normal = c.face_normal},
                               .restitution = p.restitution, .friction = p.friction,
-                              .stiffness = p.compliance_stiffness});
+                              .stiffness = p.compliance_stiffness,
+                              .family = "abutment", .name = corner_name(i)});
   }
   return parts;
 }
@@ -151,7 +158,10 @@ Assembly::Parts bridge_parts(const BridgeDesign& p, const SegmentedDeck& deck) {
                           .obstacle_index = static_cast<int>(k - 1), .face = face,
                           .restitution = deck.hinges[k - 1].restitution,
                           .friction = deck.hinges[k - 1].friction,
-                          .stiffness = deck.hinges[k - 1].compliance_stiffness});
+                          .stiffness = deck.hinges[k - 1].compliance_stiffness,
+                          .family = "hinge",
+                          .name = "hinge " + std::to_string(k) +
+                                  (corner == 0 ? " +W/2" : " -W/2")});
     }
   }
   for (std::size_t i = 2; i < 4; ++i) {

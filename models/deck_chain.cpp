@@ -73,24 +73,30 @@ Assembly::Parts DeckChain::parts(const Parameters& p) {
   const DeckGeometry plan{.length = 1.0, .width = p.width, .skew_deg = p.skew_deg};
   const parts::Face left_face{.point = Eigen::Vector2d::Zero(), .normal = plan.face_normal(0)};
   const parts::Face right_face{.point = Eigen::Vector2d::Zero(), .normal = plan.face_normal(2)};
+  // The outputs' family and name of each contact: its joint and the corner's side.
   auto add = [&](int deck, int corner, parts::Obstacle obstacle, int index,
-                 const parts::Face& face, const Joint& j) {
+                 const parts::Face& face, const Joint& j, const std::string& family,
+                 const std::string& joint) {
     out.contacts.push_back({.body = deck, .corner = corner, .obstacle = obstacle,
                             .obstacle_index = index, .face = face,
                             .restitution = j.restitution, .friction = j.friction,
-                            .stiffness = j.compliance_stiffness});
+                            .stiffness = j.compliance_stiffness,
+                            .family = family,
+                            .name = joint + (corner % 2 == 0 ? " +W/2" : " -W/2")});
   };
-  for (int corner : {0, 1}) add(0, corner, parts::Obstacle::kPrescribed, 0, left_face, p.joints[0]);
+  for (int corner : {0, 1}) {
+    add(0, corner, parts::Obstacle::kPrescribed, 0, left_face, p.joints[0], "abutment", "left");
+  }
   for (std::size_t k = 1; k < n; ++k) {
     const parts::Face face = parts::end_face(out.bodies[k - 1], parts::End::kRight);
     for (int corner : {0, 1}) {
       add(static_cast<int>(k), corner, parts::Obstacle::kBody, static_cast<int>(k - 1), face,
-          p.joints[k]);
+          p.joints[k], "hinge", "hinge " + std::to_string(k));
     }
   }
   for (int corner : {2, 3}) {
     add(static_cast<int>(n - 1), corner, parts::Obstacle::kPrescribed, 1, right_face,
-        p.joints[n]);
+        p.joints[n], "abutment", "right");
   }
   return out;
 }

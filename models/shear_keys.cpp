@@ -22,7 +22,8 @@ void add_key(Assembly::Parts& parts, const ShearKeyParameters& keys, int body, i
                             .face = {.point = point - reference,
                                      .normal = Eigen::Vector2d(0.0, -side)},
                             .restitution = keys.restitution, .friction = keys.friction,
-                            .stiffness = keys.compliance_stiffness});
+                            .stiffness = keys.compliance_stiffness,
+                            .family = "shear_key", .name = name});
 }
 
 }  // namespace

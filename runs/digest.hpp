@@ -75,6 +75,12 @@ struct ContactEvents {
   std::array<std::int64_t, integrators::kEventKindNames.size()> counts{};
 };
 
+// What contact i is (models::parts::CornerContact's family and name), for the outputs.
+struct ContactLabel {
+  std::string family;  // "abutment", "hinge" or "shear_key"
+  std::string name;    // e.g. "left +W/2", "hinge 1 -W/2", "shear_key_left_plus"
+};
+
 struct Digest {
   std::vector<ColumnPeak> peaks;             // every history column but t, in column order
   std::vector<CoordinatePeak> coordinates;   // every generalized coordinate, in order
@@ -95,6 +101,10 @@ struct Digest {
   // summary.json "input": the scene's excitation as scaled (scene::Scene::input), which
   // runs::run copies from the scene; empty for a digest of a history alone.
   models::InputMotion input;
+  // summary.json "contacts": the family and name of every contact of an assembled model (a
+  // bridge, a deck, a deck chain), in contact order, which runs::run copies from the system;
+  // empty for the test systems and for a digest of a history alone.
+  std::vector<ContactLabel> contacts;
   // summary.json "error_estimate" and "accuracy": set by runs::run (runs/estimate.hpp).
   ErrorEstimate estimate;
   Accuracy accuracy;

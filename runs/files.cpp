@@ -114,6 +114,20 @@ void write_events(JsonText& j, const Digest& d) {
   j.o += "],\n";
 }
 
+// The family and name of each contact (1-based), when the model names them.
+void write_contacts(JsonText& j, const Digest& d) {
+  j.key("contacts");
+  j.o += "[";
+  for (std::size_t c = 0; c < d.contacts.size(); ++c) {
+    j.o += c ? ", " : "";
+    j.o += "{\"contact\": ";
+    io::append_integer(j.o, static_cast<std::int64_t>(c + 1));
+    j.o += ", \"family\": " + io::json_string(d.contacts[c].family);
+    j.o += ", \"name\": " + io::json_string(d.contacts[c].name) + "}";
+  }
+  j.o += "],\n";
+}
+
 // Peaks of every history column but t: extreme values and when they occur.
 void write_peaks(JsonText& j, const Digest& d) {
   j.key("peaks");
@@ -292,6 +306,7 @@ std::string summary_json(const RunRecord& record) {
   write_input(j, record.digest.input);
   write_energy(j, record.digest.energy);
   write_events(j, record.digest);
+  write_contacts(j, record.digest);
   write_peaks(j, record.digest);
   write_limit_states(j, record.digest);
   j.key("warnings");

@@ -2,6 +2,7 @@
 
 #include "integrators/run.hpp"
 #include "io/files.hpp"
+#include "models/assembly.hpp"
 #include "runs/estimate.hpp"
 #include "runs/lcp_dump.hpp"
 #include "runs/trust.hpp"
@@ -28,6 +29,21 @@ scene::SceneTable scene_table(const RunRequest& request) {
     scene::apply_overrides(table, std::vector<std::string>{"solver.method=" + request.method});
   }
   return table;
+}
+
+// The family and name of each contact of an assembled model (models::Assembly, whose parts
+// name them); none for another system (the test systems) or when its parts name none.
+std::vector<ContactLabel> contact_labels(const integrators::System& system) {
+  std::vector<ContactLabel> labels;
+  const auto* assembly = dynamic_cast<const models::Assembly*>(&system);
+  if (assembly == nullptr) return labels;
+  bool named = false;
+  for (const auto& c : assembly->parts().contacts) {
+    labels.push_back({c.family, c.name});
+    named = named || !c.family.empty();
+  }
+  if (!named) labels.clear();
+  return labels;
 }
 
 // CPU time of the calling thread [s]: a run's cost, whether or not other runs share the
@@ -111,6 +127,7 @@ RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
   const double run_cpu_seconds = thread_cpu_seconds() - start;
   Digest digest = make_digest(history, result, scene.system->limit_states());
   digest.input = scene.input;
+  digest.contacts = contact_labels(*scene.system);
   // A run that is not a result (it failed) has no peaks worth an estimate.
   if (scene.estimate.error_estimate && integrators::is_result(result.status) &&
       !estimate_errors(scene, history, progress, hooks, digest)) {

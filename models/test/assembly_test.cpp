@@ -150,7 +150,8 @@ TEST_CASE("bad parts are rejected naming the part and field") {
   CHECK(error_of(p) == "bodies[0].mass: must be > 0 [t]");
   p = on_bents();
   p.contacts = {{.body = 0, .corner = 0, .obstacle = parts::Obstacle::kBody,
-                 .obstacle_index = 0, .face = {}, .restitution = 0.0, .friction = 0.0}};
+                 .obstacle_index = 0, .face = {}, .restitution = 0.0, .friction = 0.0,
+                 .family = "", .name = ""}};
   CHECK(error_of(p) == "contacts[0].obstacle_index: must be another body than the corner's");
   p.contacts[0].obstacle = parts::Obstacle::kPrescribed;
   CHECK(error_of(p) ==

@@ -165,6 +165,153 @@ def open_study(path):
     return Study(path)
 
 
+_METHOD_TITLES = {"moreau": "Moreau-Jean time stepping", "event_driven": "event-driven",
+                  "compliance": "compliance (penalty)"}
+_FAMILY_TITLES = {"abutment": "abutments", "hinge": "hinges", "shear_key": "shear keys",
+                  "": "contacts"}
+_PLOT_KINDS = ("response", "gaps", "bents", "energy", "events")
+
+
+def _indexed(name, prefix):
+    """The k of a column prefix + k (k >= 1), else None."""
+    rest = name[len(prefix):]
+    return int(rest) if name.startswith(prefix) and rest.isdigit() else None
+
+
+def _families(result, n):
+    """Contacts 1..n grouped by summary.json "contacts" family, as `nsbridge plot` groups
+    them: abutments, hinges, shear keys, other families, then contacts without one."""
+    labels = result.summary.get("contacts", [])
+    family = {c["contact"]: c["family"] for c in labels}
+    name = {c["contact"]: c["name"] for c in labels}
+    order = ["abutment", "hinge", "shear_key"]
+    order += [f for f in dict.fromkeys(family.get(k, "") for k in range(1, n + 1))
+              if f and f not in order]
+    order.append("")
+    groups = [(f, [k for k in range(1, n + 1) if family.get(k, "") == f]) for f in order]
+    return [(f, ks) for f, ks in groups if ks], name
+
+
+def _plot_panels(result, what):
+    """The panels of a figure, as `nsbridge plot` draws them (docs/plots.md): a list of
+    (title, xlabel, ylabel, [(x column, y column, label)]); x column None is t."""
+    h = result.history
+    panels = []
+
+    def contact_panels(prefix, quantity):
+        n = max([k for k in (_indexed(c, prefix) for c in h) if k] or [0])
+        groups, names = _families(result, n)
+        for family, members in groups:
+            curves = [(None, f"{prefix}{k}", f"{prefix}{k}" + (f": {names[k]}" if k in names else ""))
+                      for k in members if f"{prefix}{k}" in h]
+            if curves:
+                panels.append((_FAMILY_TITLES.get(family, family), "t [s]", quantity, curves))
+
+    if what == "response":
+        disp, rot = [], []
+        deck = "theta" in h  # a deck moves along (x) and across (y) the bridge
+        for c in h:
+            base = c.rstrip("0123456789")
+            body = c[len(base):]
+            label = c + (f" (body {body})" if body else
+                         {"x": " (longitudinal)", "y": " (transverse)"}.get(c, "") if deck else "")
+            if base in ("x", "y"):
+                disp.append((None, c, label))
+            elif base == "theta":
+                rot.append((None, c, label))
+        if disp:
+            panels.append(("displacements", "t [s]", "displacement [m]", disp))
+        if rot:
+            panels.append(("rotations", "t [s]", "rotation [rad]", rot))
+        contact_panels("lambdaN", "normal contact force [kN]")
+    elif what == "gaps":
+        contact_panels("gN", "normal gap [m]")
+    elif what == "bents":
+        bents = sorted({_indexed(c.split("_")[0], "bent") for c in h if c.startswith("bent")} - {None})
+        for i in bents:
+            for d, label in (("x", "longitudinal"), ("y", "transverse")):
+                u, f = f"bent{i}_u{d}", f"bent{i}_f{d}"
+                if u in h and f in h:
+                    panels.append((f"bent {i}, {label}", f"deformation u_{d} [m]",
+                                   f"force f_{d} [kN]", [(u, f, f"{f} against {u}")]))
+        if not panels:
+            raise ValueError("the history has no bent columns (bent<i>_ux, bent<i>_fx, ...): "
+                             "ask the run for them with [output] groups = [\"bents\"]")
+    elif what == "energy":
+        if "energy_error" in h:
+            panels.append(("energy balance error", "t [s]", "relative error [-]",
+                           [(None, "energy_error", "energy_error")]))
+        terms = [(None, c, c[len("energy_"):]) for c in h
+                 if c.startswith("energy_") and c != "energy_error"]
+        if terms:
+            panels.append(("energy terms", "t [s]", "energy [kJ]", terms))
+    return panels
+
+
+def _plot(self, what="response", ax=None):
+    """Draws the run with matplotlib as `nsbridge plot --what WHAT` does (docs/plots.md):
+    "response" (displacements, rotations, normal contact forces by contact family), "gaps",
+    "bents" (hysteresis loops; needs [output] groups = ["bents"]), "energy" or "events".
+    Without `ax` a new matplotlib Figure (no pyplot, so any backend, Agg included) holds one
+    axes per panel; with `ax` (an Axes, or a sequence of them) the panels are drawn into those,
+    one each. Returns the list of Axes drawn."""
+    if what not in _PLOT_KINDS:
+        raise ValueError(f"what={what!r}: expected one of {', '.join(_PLOT_KINDS)}")
+    title = f"{self.name}: {what}, {_METHOD_TITLES.get(self.method, self.method)}"
+    if what == "events":
+        panels = [None]
+    else:
+        panels = _plot_panels(self, what)
+        if not panels:
+            raise ValueError(f"the history has no columns to draw for what={what!r}")
+    if ax is None:
+        from matplotlib.figure import Figure
+        fig = Figure(figsize=(10, 1.0 + 2.6 * len(panels)), layout="constrained")
+        axes = list(fig.subplots(len(panels), 1, squeeze=False)[:, 0])
+        fig.suptitle(title)
+    else:
+        axes = list(ax) if hasattr(ax, "__len__") else [ax]
+        if len(axes) < len(panels):
+            raise ValueError(f"what={what!r} draws {len(panels)} panels; ax holds {len(axes)}")
+        axes[0].figure.suptitle(title)
+    if what == "events":
+        events = self.events
+        n = max([int(c) for c in events["contact"]] + [max([k for k in (_indexed(c, "gN") for c in self.history) if k] or [0])])
+        groups, names = _families(self, n)
+        row, ticks = {0: 0}, ["run (no contact)"]
+        for family, members in groups:
+            for k in members:
+                row[k] = len(ticks)
+                ticks.append(f"{_FAMILY_TITLES.get(family, family)} {k}" + (f": {names[k]}" if k in names else ""))
+        a = axes[0]
+        for kind, marker in (("impact", "o"), ("close", "^"), ("open", "v"), ("stick", "s"),
+                             ("slip", "x"), ("warning", "*")):
+            pick = [i for i, k in enumerate(events["kind"]) if k == kind]
+            if pick:
+                a.plot([events["t"][i] for i in pick], [row[int(events["contact"][i])] for i in pick],
+                       linestyle="none", marker=marker, markersize=4, label=kind)
+        a.set_yticks(range(len(ticks)), ticks)
+        a.set_xlabel("t [s]")
+        a.set_title("events per contact")
+        if a.lines:
+            a.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0))
+        return axes[:1]
+    t = self.history["t"]
+    for a, (panel_title, xlabel, ylabel, curves) in zip(axes, panels):
+        for x, y, label in curves:
+            a.plot(t if x is None else self.history[x], self.history[y], linewidth=1.0, label=label)
+        if ylabel == "normal gap [m]":
+            a.axhline(0.0, color="black", linestyle="--", linewidth=0.8)
+        a.set_title(panel_title)
+        a.set_xlabel(xlabel)
+        a.set_ylabel(ylabel)
+        a.grid(True)
+        a.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize="small")
+    return axes[:len(panels)]
+
+
+Result.plot = _plot
+
 # `import nsbridge.lcp` as well as `nsbridge.lcp`.
 _sys.modules[__name__ + ".lcp"] = lcp
 

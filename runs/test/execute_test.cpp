@@ -85,6 +85,40 @@ TEST_CASE("summary.json carries the scene's input: each component's PGA, PSA and
   CHECK(summary_json(ball).find("\"input\": {},") != std::string::npos);
 }
 
+TEST_CASE("summary.json names each contact's family: abutments, hinges, shear keys") {
+  // Contact order (docs/outputs.md): the two-frame bridge's seats 1-2 and 5-6, its hinge 3-4;
+  // the shear-key bridge's four deck corners (paper, Figure 2: +W/2 first), then its keys in
+  // the order models::add_shear_keys adds them; the backfill abutment's walls are bodies but
+  // their contacts stay abutments. The ball is no assembly: it names none.
+  const std::vector<std::string> short_run = {"solver.end_time=0.01",
+                                              "solver.error_estimate=false"};
+  const auto labels = [&](const std::string& scene) {
+    std::vector<std::string> out;
+    for (const auto& c : execute({kScenes + scene, short_run, {}, {}}).digest.contacts)
+      out.push_back(c.family + ": " + c.name);
+    return out;
+  };
+  CHECK(labels("/bridge-two-frame.toml") ==
+        std::vector<std::string>{"abutment: left +W/2", "abutment: left -W/2",
+                                 "hinge: hinge 1 +W/2", "hinge: hinge 1 -W/2",
+                                 "abutment: right +W/2", "abutment: right -W/2"});
+  CHECK(labels("/bridge-shear-keys.toml") ==
+        std::vector<std::string>{"abutment: left +W/2", "abutment: left -W/2",
+                                 "abutment: right +W/2", "abutment: right -W/2",
+                                 "shear_key: shear_key_left_plus", "shear_key: shear_key_left_minus",
+                                 "shear_key: shear_key_right_plus",
+                                 "shear_key: shear_key_right_minus"});
+  CHECK(labels("/bridge-backfill.toml") ==
+        std::vector<std::string>{"abutment: left +W/2", "abutment: left -W/2",
+                                 "abutment: right +W/2", "abutment: right -W/2"});
+  const RunRecord ball = execute({kScenes + "/bouncing-ball.toml", short_run, {}, {}});
+  CHECK(ball.digest.contacts.empty());
+  CHECK(summary_json(ball).find("\"contacts\": [],") != std::string::npos);
+  const RunRecord frame = execute({kScenes + "/bridge-two-frame.toml", short_run, {}, {}});
+  CHECK(summary_json(frame).find("\"contacts\": [{\"contact\": 1, \"family\": \"abutment\", "
+                                 "\"name\": \"left +W/2\"}, {\"contact\": 2, ") != std::string::npos);
+}
+
 TEST_CASE("a scene value runs bit for bit as its file; the value's origin names its errors") {
   // The same scene twice: from the file with text overrides, and from the file's table read
   // once, with the typed form of the same overrides (scene::parse_override's rule), under
