@@ -11,8 +11,8 @@
 //    the sequence's step does.
 //  - event-driven and compliance cannot restart from a saved state (their step control and
 //    event history are not saved; docs/ground-motions.md, "Sequences"): their sequence runs
-//    equal record A alone up to t_b, their state is continuous across the switch, and after it
-//    they follow the Moreau–Jean sequence within the methods' agreement.
+//    equal record A alone up to t_b and their state is continuous across the switch; after it
+//    event-driven follows the Moreau–Jean sequence within the methods' agreement.
 #include "integrators/moreau_jean.hpp"
 #include "integrators/run.hpp"
 #include "models/assembly.hpp"
@@ -49,13 +49,13 @@ constexpr double kSameSteps = 1e-12;
 // and the first after it is at most the largest speed times the interval between them, with
 // 10 % margin for the acceleration over that interval.
 constexpr double kContinuityMargin = 1.1;
-// After the switch, event-driven (tolerance 1e-8) and compliance against Moreau–Jean at
-// h = 2^-13 s, relative to each coordinate's peak: measured 1.1e-3 (event-driven) and 2.1e-2
-// (compliance, whose penalty contacts differ from rigid ones by their penetration); twice
-// that as the tolerance. A run that lost the state at the switch (B from rest) differs by
-// 0.33 of the peak.
+// After the switch, event-driven (tolerance 1e-8) against Moreau–Jean at h = 2^-13 s, relative
+// to each coordinate's peak: measured 1.4e-3 (1.3e-3 before the switch); twice that as the
+// tolerance. A run that lost the state at the switch (B meeting the bridge at rest) differs by
+// 0.27 of the peak. Compliance is not compared so: its Hertz contacts give this pounding
+// another response, 0.26 of the peak from Moreau–Jean's already before the switch (and 0.17
+// to 0.45 with the contact stiffness 10 or 100 times the default), as large as a lost state.
 constexpr double kEventAgreement = 3e-3;
-constexpr double kComplianceAgreement = 5e-2;
 
 // A scratch folder of this process, removed at exit.
 const fs::path& scratch() {
@@ -275,7 +275,7 @@ TEST_CASE("a sequence under event-driven and compliance carries the state across
   const std::string seq_file = sequence_scene(), first_file = first_scene();
   const ni::Recorder moreau = run(seq_file, "moreau", kEnd);
   for (const char* method : {"event_driven", "compliance"}) {
-    INFO("method ", method);
+    INFO("method ", std::string(method));
     const ni::Recorder sequence = run(seq_file, method, kEnd);
     const ni::Recorder before = run(first_file, method, kSwitch);
     // Up to t_b the runs take the same steps (the last of `before`, shortened to t_b, aside).
@@ -304,9 +304,12 @@ TEST_CASE("a sequence under event-driven and compliance carries the state across
       CHECK(std::abs(sequence.at(k + 1, 1 + c) - sequence.at(k, 1 + c)) <=
             kContinuityMargin * speed * dt + 1e-15);
     }
-    // After the switch, Moreau-Jean's sequence within the methods' agreement.
+    // After the switch, event-driven follows Moreau-Jean's sequence within the methods'
+    // agreement (see kEventAgreement for compliance).
     const double agreement = coordinate_difference(moreau, sequence, kSwitch, kEnd);
-    MESSAGE(method, " against Moreau-Jean after the switch: ", agreement, " of the peak");
-    CHECK(agreement <= (std::string(method) == "compliance" ? kComplianceAgreement : kEventAgreement));
+    const double agreement_before = coordinate_difference(moreau, sequence, 0.0, kSwitch);
+    MESSAGE(std::string(method), " against Moreau-Jean after the switch: ", agreement,
+            " of the peak; before it: ", agreement_before);
+    if (std::string(method) == "event_driven") CHECK(agreement <= kEventAgreement);
   }
 }

@@ -2,11 +2,13 @@
 // records' places in time, the keys that apply per record (amplitude, the trust warnings'
 // sampling step), the default end time, and the refused forms, each at its file, line and key.
 #include "models/assembly.hpp"
+#include "models/ground_motion.hpp"
 #include "scene/scene.hpp"
 #include "scene/test/scene_files.hpp"
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -17,7 +19,7 @@ namespace {
 namespace tf = nsb::scene::test_files;
 
 // A two-column record of `samples` + 1 samples at step dt from t = 0 (times written exactly):
-// a sine of period 0.3 s and amplitude 1 m/s^2 (its peak is 1 to 1e-3 at dt <= 0.01 s).
+// a sine of period 0.3 s and amplitude 1 m/s^2.
 std::string record(const std::string& name, double dt, int samples) {
   std::string text;
   for (int i = 0; i <= samples; ++i) {
@@ -28,12 +30,34 @@ std::string record(const std::string& name, double dt, int samples) {
   return tf::write(name, text).string();
 }
 
+// The samples of record(name, dt, samples), as the reader reads them back.
+nsb::models::Record samples(double dt, int n) {
+  nsb::models::Record r;
+  r.source = "synthetic";
+  for (int i = 0; i <= n; ++i) {
+    char t[32], a[32];
+    std::snprintf(t, sizeof t, "%.3f", i * dt);
+    std::snprintf(a, sizeof a, "%.17g", std::sin(2.0 * std::numbers::pi * i * dt / 0.3));
+    r.t.push_back(std::stod(t));
+    r.a.push_back(std::stod(a));
+  }
+  return r;
+}
+
+double peak(const nsb::models::Record& r) {
+  double p = 0.0;
+  for (double a : r.a) p = std::max(p, std::abs(a));
+  return p;
+}
+
 const std::string kBridge = R"([model]
 kind = "bridge"
 [[model.bents]]
 position = -8.0
+height = 2.0
 [[model.bents]]
 position = 8.0
+height = 2.0
 )";
 
 // A: 1.5 s at 0.01 s; B: 1 s at 0.005 s.
@@ -61,19 +85,23 @@ TEST_CASE("a sequence places its records in turn, each with its own amplitude") 
   REQUIRE(motion);
   CHECK(motion->start_time() == 0.0);
   CHECK(motion->end_time() == doctest::Approx(4.5).epsilon(1e-15));
-  // Each record scaled to its own target: the peak over A's span 0.5 g, over B's 0.2 g, and
-  // nothing in the rest between them. (Scaled samples of a sine whose peak sample is 1.)
-  double peak_a = 0.0, peak_b = 0.0, rest = 0.0;
-  for (int i = 0; i <= 45000; ++i) {
-    const double t = i * 1e-4;
-    const double a = std::abs(motion->acceleration(t));
-    if (t <= 1.5) peak_a = std::max(peak_a, a);
-    if (t > 1.5 && t <= 3.5) rest = std::max(rest, a);
-    if (t > 3.5) peak_b = std::max(peak_b, a);
+  // Each record scaled to its own target (factor = target g / its peak sample, the scene's
+  // rule): over A's span the motion is A's own motion times A's factor, over B's span B's,
+  // delayed to 3.5 s, and nothing in the rest between them.
+  const nsb::models::Record ra = samples(0.01, 150), rb = samples(0.005, 200);
+  const nsb::models::GroundMotion unit_a(ra);
+  nsb::models::GroundMotionOptions ob;
+  ob.delay = 3.5;
+  const nsb::models::GroundMotion unit_b(rb, ob);
+  const double fa = 0.5 * 9.81 / peak(ra), fb = 0.2 * 9.81 / peak(rb);
+  for (int i = 0; i <= 4500; ++i) {
+    const double t = i * 1e-3;
+    INFO("t = " << t);
+    const double a = motion->acceleration(t);
+    if (t <= 1.5) CHECK(a == doctest::Approx(fa * unit_a.acceleration(t)).epsilon(1e-9));
+    if (t > 1.5 && t <= 3.5) CHECK(a == 0.0);
+    if (t > 3.5) CHECK(a == doctest::Approx(fb * unit_b.acceleration(t)).epsilon(1e-9));
   }
-  CHECK(rest == 0.0);
-  CHECK(peak_a / 9.81 == doctest::Approx(0.5).epsilon(2e-2));
-  CHECK(peak_b / 9.81 == doctest::Approx(0.2).epsilon(2e-2));
 }
 
 TEST_CASE("a sequence's entries are read by key, with overrides") {
@@ -92,7 +120,7 @@ TEST_CASE("a bad sequence is refused at its file, line and key") {
   };
   // An empty sequence.
   std::string msg = tf::error_of("empty.toml", kBridge + "[model.excitation]\nsequence = []\n");
-  has(msg, "empty.toml:8:");
+  has(msg, "empty.toml:10:");
   has(msg, "model.excitation.sequence");
   has(msg, "is empty");
   // A negative rest.
@@ -105,7 +133,7 @@ TEST_CASE("a bad sequence is refused at its file, line and key") {
   has(msg, "model.excitation.sequence[0].rest");
   // The single-record keys beside a sequence.
   msg = tf::error_of("mixed.toml", two_records("", "target_pga = 0.3\n"));
-  has(msg, "mixed.toml:8:");
+  has(msg, "mixed.toml:10:");
   has(msg, "model.excitation.target_pga");
   has(msg, "not both");
   // A key the sequence shares, given in an entry.

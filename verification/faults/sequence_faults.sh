@@ -35,26 +35,28 @@ bridge='[model]
 kind = "bridge"
 [[model.bents]]
 position = -8.0
+height = 2.0
 [[model.bents]]
 position = 8.0
+height = 2.0
 [model.excitation]'
 entry="[[model.excitation.sequence]]
 transverse_record = \"$rec\"
 rest = 1.0"
 
 printf '%s\nsequence = []\n' "$bridge" > empty.toml
-expect empty.toml 'empty\.toml:8:[0-9]+: model\.excitation\.sequence: is empty'
+expect empty.toml 'empty\.toml:10:[0-9]+: model\.excitation\.sequence: is empty'
 
 printf '%s\n%s\n%s\n' "$bridge" "$entry" "${entry/rest = 1.0/rest = -1.0}" > negative.toml
-expect negative.toml 'negative\.toml:13:[0-9]+: model\.excitation\.sequence\[1\]\.rest'
+expect negative.toml 'negative\.toml:15:[0-9]+: model\.excitation\.sequence\[1\]\.rest'
 printf '%s\n%s\n%s\n' "$bridge" "$entry" "$entry" > good.toml
 expect good.toml 'model\.excitation\.sequence\[0\]\.rest \(override\)' --set model.excitation.sequence.0.rest=-2
 
 printf '%s\ntarget_pga = 0.5\n%s\n' "$bridge" "$entry" > mixed.toml
-expect mixed.toml 'mixed\.toml:8:[0-9]+: model\.excitation\.target_pga: .*not both'
+expect mixed.toml 'mixed\.toml:10:[0-9]+: model\.excitation\.target_pga: .*not both'
 
 printf '%s\n%s\ntime_scale = 0.5\n' "$bridge" "$entry" > shared.toml
-expect shared.toml 'shared\.toml:11:[0-9]+: model\.excitation\.sequence\[0\]\.time_scale: is shared'
+expect shared.toml 'shared\.toml:13:[0-9]+: model\.excitation\.sequence\[0\]\.time_scale: is shared'
 
 printf '%s\n[[model.excitation.sequence]]\nrest = 1.0\n' "$bridge" > none.toml
 expect none.toml 'none\.toml.*model\.excitation\.sequence\[0\].*names no record'
