@@ -211,7 +211,7 @@ double coordinate_difference(const ni::Recorder& a, const ni::Recorder& b, doubl
 
 }  // namespace
 
-TEST_CASE("a sequence under Moreau-Jean equals record A then a restart under record B, bit for bit") {
+TEST_CASE("a sequence under Moreau-Jean is record A, then a restart under record B, bit for bit") {
   const std::string seq_file = sequence_scene(), first_file = first_scene();
   const ni::Recorder sequence = run(seq_file, "moreau", kEnd);
 
@@ -300,7 +300,8 @@ TEST_CASE("a sequence under event-driven and compliance carries the state across
     REQUIRE(k + 1 < sequence.rows());
     const double dt = sequence.at(k + 1, 0) - sequence.at(k, 0);
     for (std::size_t c = 0; c < 3; ++c) {
-      const double speed = std::max(std::abs(sequence.at(k, 4 + c)), std::abs(sequence.at(k + 1, 4 + c)));
+      const double speed =
+          std::max(std::abs(sequence.at(k, 4 + c)), std::abs(sequence.at(k + 1, 4 + c)));
       CHECK(std::abs(sequence.at(k + 1, 1 + c) - sequence.at(k, 1 + c)) <=
             kContinuityMargin * speed * dt + 1e-15);
     }

@@ -214,7 +214,8 @@ TEST_CASE("ground motion: a sequence's parts are checked") {
   GroundMotionOptions early;
   early.delay = 0.5;  // B would start before A ends (1 s)
   const GroundMotion mb(burst(0.2, 2.0, 5, 0.01, "B"), early);
-  expect_error([&] { (void)GroundMotion::sequence({ma, mb}, true); }, {"'B'", "before the end of 'A'"});
+  expect_error([&] { (void)GroundMotion::sequence({ma, mb}, true); },
+               {"'B'", "before the end of 'A'"});
   expect_error([&] { (void)GroundMotion::sequence({}, true); }, {"no part"});
   // One part, or parts with empty ones among them, is that part: the same motion.
   const GroundMotion one = GroundMotion::sequence({GroundMotion(), ma}, true);

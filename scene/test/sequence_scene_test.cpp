@@ -24,7 +24,8 @@ std::string record(const std::string& name, double dt, int samples) {
   std::string text;
   for (int i = 0; i <= samples; ++i) {
     char line[64];
-    std::snprintf(line, sizeof line, "%.3f %.17g\n", i * dt, std::sin(2.0 * std::numbers::pi * i * dt / 0.3));
+    std::snprintf(line, sizeof line, "%.3f %.17g\n", i * dt,
+                  std::sin(2.0 * std::numbers::pi * i * dt / 0.3));
     text += line;
   }
   return tf::write(name, text).string();
