@@ -495,6 +495,54 @@ bool same_bits(const integrators::Vector& a, const integrators::Vector& b) {
 
 }  // namespace
 
+void Assembly::use_motions_of(const Assembly& other) {
+  const auto fail = [](const std::string& what) {
+    throw std::invalid_argument("Assembly::use_motions_of: " + what + " differ");
+  };
+  if (other.parts_.bents.size() != parts_.bents.size() ||
+      other.parts_.prescribed.size() != parts_.prescribed.size() ||
+      other.parts_.links.size() != parts_.links.size() || other.dofs() != dofs()) {
+    fail("the parts");
+  }
+  // Equal indices into equally long tables: every support reads the motion at the same place.
+  if (other.motions_.size() != motions_.size()) fail("the numbers of distinct motions");
+  for (std::size_t i = 0; i < bents_.size(); ++i) {
+    if (other.bents_[i].ground_x != bents_[i].ground_x ||
+        other.bents_[i].ground_y != bents_[i].ground_y) {
+      fail("the bents' support motions");
+    }
+  }
+  for (std::size_t p = 0; p < seat_index_.size(); ++p) {
+    const SeatIndex &a = seat_index_[p], &b = other.seat_index_[p];
+    if (a.x != b.x || a.y != b.y || a.phi != b.phi) fail("the seats' motions");
+  }
+  for (std::size_t l = 0; l < parts_.links.size(); ++l) {
+    const parts::GroundLink &a = parts_.links[l], &b = other.parts_.links[l];
+    if (!a.ground_longitudinal != !b.ground_longitudinal ||
+        !a.ground_transverse != !b.ground_transverse) {
+      fail("the ground links' motions");
+    }
+  }
+  for (std::size_t j = 0; j < parts_.bents.size(); ++j) {
+    parts_.bents[j].ground_longitudinal = other.parts_.bents[j].ground_longitudinal;
+    parts_.bents[j].ground_transverse = other.parts_.bents[j].ground_transverse;
+  }
+  for (std::size_t p = 0; p < parts_.prescribed.size(); ++p) {
+    parts_.prescribed[p].longitudinal = other.parts_.prescribed[p].longitudinal;
+    parts_.prescribed[p].transverse = other.parts_.prescribed[p].transverse;
+    parts_.prescribed[p].rotation = other.parts_.prescribed[p].rotation;
+  }
+  for (std::size_t l = 0; l < parts_.links.size(); ++l) {
+    parts_.links[l].ground_longitudinal = other.parts_.links[l].ground_longitudinal;
+    parts_.links[l].ground_transverse = other.parts_.links[l].ground_transverse;
+  }
+  // The evaluations cached at a time were of the old motions.
+  motions_ = other.motions_;
+  motions_.invalidate();
+  seats_time_ = std::numeric_limits<double>::quiet_NaN();
+  normals_.t = std::numeric_limits<double>::quiet_NaN();
+}
+
 bool Assembly::normals_at(double t, const integrators::Vector& q,
                           const integrators::Vector& u) const {
   return std::memcmp(&t, &normals_.t, sizeof t) == 0 && same_bits(q, normals_.q) &&

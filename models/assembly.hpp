@@ -70,6 +70,13 @@ class Assembly final : public integrators::SystemBase {
   explicit Assembly(Parts parts);
 
   const Parts& parts() const { return parts_; }
+  // The ground motions of `other` from now on, this assembly's state kept (q and u are the
+  // integrator's): a system saved at t_b restarted under another excitation, e.g. the next
+  // record of a sequence (docs/ground-motions.md, "Sequences"). `other` is an assembly of the
+  // same parts built from other records: the same bents, seats and ground links, each support
+  // moving (or fixed) as here and sharing its motion with the same supports; otherwise
+  // std::invalid_argument naming what differs.
+  void use_motions_of(const Assembly& other);
   // C = a0 M + a1 K0 and the assembled K0, dofs() x dofs() (zero without damping or bents).
   integrators::Matrix damping_matrix() const;
   integrators::Matrix initial_stiffness() const;

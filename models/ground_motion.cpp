@@ -25,6 +25,9 @@ constexpr int kPowers = kLastPower - kFirstPower + 1;
 // Knots within this fraction of a sampling step of the uniform grid count as uniformly
 // sampled: the direct interval guess is then off by at most one knot (GroundMotion::Data).
 constexpr double kUniformSlack = 0.1;
+// Relative round-off by which a part of a sequence may start before the end of the one before
+// it (GroundMotion::sequence): a few ulps of the sums that place them.
+constexpr double kSequenceSlack = 1e-12;
 
 struct SplineDeleter {
   void operator()(gsl_spline* s) const { gsl_spline_free(s); }
@@ -238,6 +241,14 @@ void check_finite(const GroundMotion::Data& d, const Record& r) {
 
 }  // namespace
 
+struct GroundMotion::Parts {
+  std::vector<GroundMotion> motions;  // >= 2, each a record's, in order of start time
+  std::vector<double> start;          // start_time() of each [s]
+  std::vector<double> carried;        // displacement each starts from [m]
+  double pga = 0.0;                   // [m/s^2]
+  std::string source;
+};
+
 GroundMotion::GroundMotion(const Record& r, const GroundMotionOptions& o) {
   validate_record(r);
   o.validate();
@@ -253,6 +264,7 @@ GroundMotion::GroundMotion(const Record& r, const GroundMotionOptions& o) {
 }
 
 double GroundMotion::acceleration(double t) const {
+  if (parts_) return sequence_values(t).acceleration;
   if (!data_) return 0.0;
   const Data& d = *data_;
   const double tr = t - d.delay;
@@ -265,6 +277,7 @@ double GroundMotion::acceleration(double t) const {
 }
 
 double GroundMotion::velocity(double t) const {
+  if (parts_) return sequence_values(t).velocity;
   if (!data_) return 0.0;
   const Data& d = *data_;
   const double tr = t - d.delay;
@@ -278,6 +291,7 @@ double GroundMotion::velocity(double t) const {
 }
 
 double GroundMotion::displacement(double t) const {
+  if (parts_) return sequence_values(t).displacement;
   if (!data_) return 0.0;
   const Data& d = *data_;
   double tr = t - d.delay;
@@ -293,6 +307,7 @@ double GroundMotion::displacement(double t) const {
 }
 
 GroundMotion::Values GroundMotion::values(double t) const {
+  if (parts_) return sequence_values(t);
   Values v;
   if (!data_) return v;
   const Data& d = *data_;
@@ -318,14 +333,76 @@ GroundMotion::Values GroundMotion::values(double t) const {
   return v;
 }
 
-double GroundMotion::duration() const { return data_ ? data_->t1 - data_->t0 : 0.0; }
-double GroundMotion::pga() const { return data_ ? data_->pga : 0.0; }
-double GroundMotion::start_time() const { return data_ ? data_->t0 + data_->delay : 0.0; }
-double GroundMotion::end_time() const { return data_ ? data_->t1 + data_->delay : 0.0; }
+double GroundMotion::duration() const {
+  if (parts_) return end_time() - start_time();
+  return data_ ? data_->t1 - data_->t0 : 0.0;
+}
+double GroundMotion::pga() const {
+  if (parts_) return parts_->pga;
+  return data_ ? data_->pga : 0.0;
+}
+double GroundMotion::start_time() const {
+  if (parts_) return parts_->motions.front().start_time();
+  return data_ ? data_->t0 + data_->delay : 0.0;
+}
+double GroundMotion::end_time() const {
+  if (parts_) return parts_->motions.back().end_time();
+  return data_ ? data_->t1 + data_->delay : 0.0;
+}
 
 const std::string& GroundMotion::source() const {
   static const std::string kNone;
+  if (parts_) return parts_->source;
   return data_ ? data_->source : kNone;
+}
+
+GroundMotion GroundMotion::sequence(const std::vector<GroundMotion>& parts, bool ends_at_rest) {
+  auto p = std::make_shared<Parts>();
+  for (const GroundMotion& m : parts) {
+    if (m.empty()) continue;
+    if (m.parts_) throw std::invalid_argument("GroundMotion::sequence: a part is a sequence");
+    // A part placed at the end of the one before it may start a round-off earlier (its start
+    // and the end before it are sums of different terms).
+    const double end = p->motions.empty() ? 0.0 : p->motions.back().end_time();
+    if (!p->motions.empty() && !(m.start_time() >= end - kSequenceSlack * std::max(1.0, std::abs(end)))) {
+      throw std::invalid_argument("GroundMotion::sequence: part '" + m.source() + "' starts at " +
+                                  io::three_digits(m.start_time()) + " s, before the end of '" +
+                                  p->motions.back().source() + "' at " +
+                                  io::three_digits(p->motions.back().end_time()) + " s");
+    }
+    p->motions.push_back(m);
+  }
+  if (p->motions.empty()) throw std::invalid_argument("GroundMotion::sequence: no part");
+  if (p->motions.size() == 1) return p->motions.front();
+  double carried = 0.0;
+  for (std::size_t k = 0; k < p->motions.size(); ++k) {
+    const GroundMotion& m = p->motions[k];
+    p->start.push_back(m.start_time());
+    p->carried.push_back(carried);
+    // The displacement at which this part leaves the ground, held after its end.
+    if (!ends_at_rest) carried += m.displacement(m.end_time());
+    p->pga = std::max(p->pga, m.pga());
+    p->source += (k == 0 ? "" : " then ") + m.source();
+  }
+  GroundMotion out;
+  out.data_ = p->motions.front().data_;
+  out.parts_ = std::move(p);
+  return out;
+}
+
+// The last part started before t (the first before any): its values, from the displacement
+// the parts before it left. At the start time of a part the part before it still holds, so
+// that the motion up to and including that time is the earlier records' alone (a run that
+// ends there and one that goes on agree to that time, bit for bit). Adding a carried 0 is
+// skipped so that the values of a part are its own, bit for bit (x + 0.0 would turn a -0.0
+// into +0.0).
+GroundMotion::Values GroundMotion::sequence_values(double t) const {
+  const Parts& p = *parts_;
+  std::size_t k = p.start.size() - 1;
+  while (k > 0 && !(p.start[k] < t)) --k;
+  Values v = p.motions[k].values(t);
+  if (p.carried[k] != 0.0) v.displacement += p.carried[k];
+  return v;
 }
 
 void validate_record(const Record& r) {

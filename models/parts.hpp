@@ -282,6 +282,9 @@ class MotionTable {
     evaluate(t);
     return true;
   }
+  std::size_t size() const { return motions_.size(); }
+  // Forgets the values, so that the next update evaluates (after the motions were replaced).
+  void invalidate() { t_ = std::numeric_limits<double>::quiet_NaN(); }
   const Value& value(int index) const {
     static constexpr Value kZero{};
     return index == kNone ? kZero : values_[static_cast<std::size_t>(index)];

@@ -120,13 +120,15 @@ double peak(const Record& r) {
 class MotionSet {
  public:
   MotionSet() = default;
-  MotionSet(std::optional<Record> r, GroundMotionOptions o) : record_(std::move(r)), options_(o) {}
+  // offset: the record's place in a sequence [s], added to every delay (0: the record alone).
+  MotionSet(std::optional<Record> r, GroundMotionOptions o, double offset = 0.0)
+      : record_(std::move(r)), options_(o), offset_(offset) {}
   parts::Motion at_delay(double delay) {
     if (!record_) return nullptr;
     auto& m = cache_[delay];
     if (!m) {
       GroundMotionOptions o = options_;
-      o.delay = delay;
+      o.delay = offset_ == 0.0 ? delay : delay + offset_;
       m = std::make_shared<const GroundMotion>(*record_, o);
     }
     return m;
@@ -135,6 +137,7 @@ class MotionSet {
  private:
   std::optional<Record> record_;
   GroundMotionOptions options_;
+  double offset_ = 0.0;
   std::map<double, parts::Motion> cache_;
 };
 
@@ -477,82 +480,220 @@ void check_time_scale(const Section& s, const Record& r, double time_scale) {
   }
 }
 
-ExcitationRecords read_excitation(const Section& m, const FirstPeriod& first_period,
-                                  const SeatMotions& seats, double& time_scale) {
+// The records of one excitation (the single [model.excitation], or one entry of a sequence,
+// read from section s with its settings e): read, checked against the shared time scale, and
+// scaled.
+ExcitationRecords read_records(const Section& s, const ExcitationSettings& e,
+                               const FirstPeriod& first_period, const SeatMotions& seats,
+                               double time_scale, bool baseline_correction) {
   ExcitationRecords out;
-  ExcitationSettings e;
-  const auto s = read_table(m, "excitation", ExcitationSettings::fields(), e);
-  time_scale = e.time_scale;
-  if (!s) return out;
   const RecordKeys keys =
-      record_keys(*s, "record_unit", e.record_unit, "record_dt", e.record_dt, false);
+      record_keys(s, "record_unit", e.record_unit, "record_dt", e.record_dt, false);
   if (!e.longitudinal_record.empty()) {
-    out.longitudinal = read_record(*s, "longitudinal_record", e.longitudinal_record, keys);
+    out.longitudinal = read_record(s, "longitudinal_record", e.longitudinal_record, keys);
   }
   if (!e.transverse_record.empty()) {
-    out.transverse = read_record(*s, "transverse_record", e.transverse_record, keys);
+    out.transverse = read_record(s, "transverse_record", e.transverse_record, keys);
   }
   for (const std::optional<Record>* r : std::array<const std::optional<Record>*, 4>{
            &out.longitudinal, &out.transverse, &seats.rotation[0], &seats.rotation[1]}) {
-    if (*r) check_time_scale(*s, **r, e.time_scale);
+    if (*r) check_time_scale(s, **r, time_scale);
   }
-  out.options.time_scale = e.time_scale;
-  out.options.baseline_correction = e.baseline_correction;
+  out.options.time_scale = time_scale;
+  out.options.baseline_correction = baseline_correction;
   out.scale_to = e.scale_to;
   out.sa_damping = e.sa_damping;
   if (e.scale_to == ScaleTo::kSa) {
-    scale_to_spectra(*s, e, first_period, out);
+    scale_to_spectra(s, e, first_period, out);
   } else {
-    if (s->has("target_sa") || s->has("longitudinal_sa")) {
-      s->fail(s->has("target_sa") ? "target_sa" : "longitudinal_sa", "needs scale_to = \"sa\"");
+    if (s.has("target_sa") || s.has("longitudinal_sa")) {
+      s.fail(s.has("target_sa") ? "target_sa" : "longitudinal_sa", "needs scale_to = \"sa\"");
     }
-    if (s->has("sa_period")) out.sa_period = e.sa_period;
+    if (s.has("sa_period")) out.sa_period = e.sa_period;
     if (!out.longitudinal && !out.transverse) {
       // An amplitude with nothing to scale would run the scene without ground motion.
       for (const char* key : {"target_pga", "longitudinal_pga", "scale"}) {
-        if (s->has(key)) {
-          s->fail(key, "needs a record to scale: give longitudinal_record or transverse_record "
-                       "in [model.excitation], or remove " + std::string(key));
+        if (s.has(key)) {
+          s.fail(key, "needs a record to scale: give longitudinal_record or transverse_record "
+                      "in [" + s.path() + "], or remove " + std::string(key));
         }
       }
     }
-    scale_to_targets(*s, e, out);
+    scale_to_targets(s, e, out);
   }
   out.options.target_pga = 0.0;
   return out;
 }
 
-// The support motions of every bent and seat, and the end of the longest bent motion [s].
-// ground: the zero-delay motions (x, y) of the connectors to the ground.
-BridgeDesign::Excitation support_motions(const ExcitationRecords& e, const SeatMotions& seats,
-                                   const std::vector<double>& bent_delays, double& end,
-                                   std::array<parts::Motion, 2>& ground) {
-  GroundMotionOptions ox = e.options, oy = e.options;
-  ox.scale = e.longitudinal_factor;
-  oy.scale = e.transverse_factor;
-  MotionSet mx(e.longitudinal, ox), my(e.transverse, oy);
-  GroundMotionOptions rot = e.options;
-  rot.scale = seats.rotation_scale;
+// [model.excitation]: one excitation, or a sequence of them with a rest after each.
+struct Excitation {
+  std::vector<ExcitationRecords> records;  // none without [model.excitation]; one; or the
+                                           //   sequence's, in order
+  std::vector<double> rest;                // [s] after each record (0 for a single one)
+  bool sequence = false;
+  bool baseline_correction = true;
+};
+
+// [[model.excitation.sequence]]: its entries, each with the record keys of [model.excitation]
+// but the shared time_scale and baseline_correction, and its rest.
+void read_sequence(const Section& s, const ExcitationSettings& shared,
+                   const FirstPeriod& first_period, const SeatMotions& seats, Excitation& out) {
+  for (const auto& f : ExcitationSettings::fields()) {
+    const bool is_shared = std::find(kSequenceSharedKeys.begin(), kSequenceSharedKeys.end(),
+                                     f.key) != kSequenceSharedKeys.end();
+    if (!is_shared && s.has(f.key)) {
+      s.fail(f.key, "belongs to each [[" + s.key_path("sequence") +
+                        "]] entry when the excitation is a sequence: give the records either "
+                        "in [" + s.path() + "] or in its sequence, not both");
+    }
+  }
+  const toml::node* node = s.table().get("sequence");
+  if (const toml::array* a = node->as_array(); a != nullptr && a->empty()) {
+    s.fail("sequence", "is empty: give one [[" + s.key_path("sequence") +
+                           "]] entry per record, in order");
+  }
+  const toml::array* entries = s.array_of_tables("sequence");
+  std::vector<std::string_view> keys;
+  for (const auto& f : ExcitationSettings::fields()) {
+    if (std::find(kSequenceSharedKeys.begin(), kSequenceSharedKeys.end(), f.key) ==
+        kSequenceSharedKeys.end()) {
+      keys.push_back(f.key);
+    }
+  }
+  for (const auto& k : keys_of(SequenceSettings::fields())) keys.push_back(k);
+  for (std::size_t k = 0; k < entries->size(); ++k) {
+    Section entry(s.context(), *(*entries)[k].as_table(),
+                  s.key_path("sequence") + "[" + std::to_string(k) + "]");
+    for (const std::string_view key : kSequenceSharedKeys) {
+      if (entry.has(key)) {
+        entry.fail(key, "is shared by the records of a sequence: give it in [" + s.path() + "]");
+      }
+    }
+    entry.only(keys);
+    ExcitationSettings e;
+    entry.read_all(ExcitationSettings::fields(), e);
+    SequenceSettings r;
+    entry.read_all(SequenceSettings::fields(), r);
+    if (e.longitudinal_record.empty() && e.transverse_record.empty()) {
+      entry.fail_table("names no record: give longitudinal_record or transverse_record");
+    }
+    out.records.push_back(read_records(entry, e, first_period, seats, shared.time_scale,
+                                       shared.baseline_correction));
+    out.rest.push_back(r.rest);
+  }
+}
+
+Excitation read_excitation(const Section& m, const FirstPeriod& first_period,
+                           const SeatMotions& seats, double& time_scale) {
+  Excitation out;
+  ExcitationSettings e;
+  const auto* t = m.subtable("excitation");
+  if (t == nullptr) return out;
+  Section s(m.context(), *t, m.key_path("excitation"));
+  std::vector<std::string_view> keys = keys_of(ExcitationSettings::fields());
+  keys.push_back("sequence");
+  s.only(keys);
+  s.read_all(ExcitationSettings::fields(), e);
+  time_scale = e.time_scale;
+  out.baseline_correction = e.baseline_correction;
+  if (s.has("sequence")) {
+    out.sequence = true;
+    read_sequence(s, e, first_period, seats, out);
+    return out;
+  }
+  out.records.push_back(
+      read_records(s, e, first_period, seats, e.time_scale, e.baseline_correction));
+  out.rest.push_back(0.0);
+  return out;
+}
+
+// The end of a record pair's samples after time scaling [s] (the later component's).
+double records_end(const ExcitationRecords& e) {
+  double end = 0.0;
+  for (const std::optional<Record>* r : {&e.longitudinal, &e.transverse}) {
+    if (*r) end = std::max(end, e.options.time_scale * (*r)->t.back());
+  }
+  return end;
+}
+
+// The motions of one direction of an excitation at each delay: of its one record, or of its
+// sequence, each record delayed by its place in the sequence (models::GroundMotion::sequence),
+// one object per distinct delay (shared by the supports).
+class SequenceSet {
+ public:
+  SequenceSet(const Excitation& e, std::optional<Record> ExcitationRecords::* record,
+              double ExcitationRecords::* factor)
+      : ends_at_rest_(e.baseline_correction) {
+    double offset = 0.0;  // the time origin of record k in the sequence [s]
+    for (std::size_t k = 0; k < e.records.size(); ++k) {
+      const ExcitationRecords& r = e.records[k];
+      GroundMotionOptions o = r.options;
+      o.scale = r.*factor;
+      sets_.emplace_back(r.*record, o, offset);
+      offset += records_end(r) + e.rest[k];
+    }
+  }
+  parts::Motion at_delay(double delay) {
+    if (sets_.size() == 1) return sets_.front().at_delay(delay);
+    auto& m = cache_[delay];
+    if (!m) {
+      std::vector<GroundMotion> parts;
+      for (MotionSet& set : sets_) {
+        if (const parts::Motion part = set.at_delay(delay)) parts.push_back(*part);
+      }
+      if (parts.empty()) return nullptr;
+      m = std::make_shared<const GroundMotion>(GroundMotion::sequence(parts, ends_at_rest_));
+    }
+    return m;
+  }
+
+ private:
+  std::vector<MotionSet> sets_;
+  bool ends_at_rest_ = true;
+  std::map<double, parts::Motion> cache_;
+};
+
+// The support motions of every bent and seat, and the end of the longest bent motion [s]
+// (of a sequence, with the rest after its last record). ground: the zero-delay motions (x, y)
+// of the connectors to the ground.
+BridgeDesign::Excitation support_motions(const Excitation& e, const SeatMotions& seats,
+                                         const std::vector<double>& bent_delays, double& end,
+                                         std::array<parts::Motion, 2>& ground) {
   BridgeDesign::Excitation exc;
-  ground = {mx.at_delay(0.0), my.at_delay(0.0)};
-  for (double delay : bent_delays) {
-    exc.bents.push_back({mx.at_delay(delay), my.at_delay(delay), nullptr});
+  end = 0.0;
+  if (e.records.empty()) {
+    for (std::size_t j = 0; j < bent_delays.size(); ++j) exc.bents.push_back({});
+    ground = {nullptr, nullptr};
+  }
+  ExcitationRecords none;
+  const ExcitationRecords& first = e.records.empty() ? none : e.records.front();
+  SequenceSet mx(e, &ExcitationRecords::longitudinal, &ExcitationRecords::longitudinal_factor);
+  SequenceSet my(e, &ExcitationRecords::transverse, &ExcitationRecords::transverse_factor);
+  GroundMotionOptions rot = first.options;
+  rot.scale = seats.rotation_scale;
+  if (!e.records.empty()) {
+    ground = {mx.at_delay(0.0), my.at_delay(0.0)};
+    for (double delay : bent_delays) {
+      exc.bents.push_back({mx.at_delay(delay), my.at_delay(delay), nullptr});
+    }
   }
   for (std::size_t a = 0; a < 2; ++a) {
-    exc.seats[a].longitudinal = mx.at_delay(seats.delays[a]);
-    if (seats.transverse) exc.seats[a].transverse = my.at_delay(seats.delays[a]);
+    if (!e.records.empty()) {
+      exc.seats[a].longitudinal = mx.at_delay(seats.delays[a]);
+      if (seats.transverse) exc.seats[a].transverse = my.at_delay(seats.delays[a]);
+    }
     if (seats.rotation[a]) {
       GroundMotionOptions o = rot;
       o.delay = seats.delays[a];
       exc.seats[a].rotation = std::make_shared<const GroundMotion>(*seats.rotation[a], o);
     }
   }
-  end = 0.0;
   for (const auto& b : exc.bents) {
     for (const auto& mo : {b.longitudinal, b.transverse}) {
       if (mo) end = std::max(end, mo->end_time());
     }
   }
+  if (e.sequence && end > 0) end += e.rest.back();
   return exc;
 }
 
@@ -718,7 +859,7 @@ BridgeScene build_bridge(Section& m) {
     const std::vector<double> periods = integrators::natural_periods(*make({}));
     return periods.empty() ? NAN : periods.front();
   };
-  const ExcitationRecords excitation = read_excitation(m, first_period, seats, out.time_scale);
+  const Excitation excitation = read_excitation(m, first_period, seats, out.time_scale);
   // A record whose motion cannot be built (its velocity or displacement overflows) is
   // reported at [model.excitation], the table that names the records and their time scale.
   BridgeDesign::Excitation motions;
@@ -728,7 +869,10 @@ BridgeScene build_bridge(Section& m) {
     m.fail(m.has("excitation") ? "excitation" : "seats", e.what());
   }
   out.system = make(std::move(motions));
-  out.input = describe_excitation(excitation, *out.system);
+  // A sequence reports its last record: the aftershock a sequence study varies.
+  if (!excitation.records.empty()) {
+    out.input = describe_excitation(excitation.records.back(), *out.system);
+  }
   if (!segmented) out.design = p;
   return out;
 }

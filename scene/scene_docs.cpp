@@ -47,6 +47,7 @@ void add_bridge_tables(std::vector<DocTable>& out) {
                  joined(keys(bridge_seat_fields()), keys(SeatMotionSettings::fields()))});
   out.push_back(table("model.excitation", ExcitationSettings::fields(), ExcitationSettings{},
                       {{"record_dt", "none"}}));
+  out.push_back(table("model.excitation.sequence", SequenceSettings::fields(), SequenceSettings{}));
   // A deck in several bodies: the bridge's [[model.segments]] and [[model.hinges]], the deck
   // chain's [[model.decks]] and [[model.joints]] (the same keys).
   out.push_back(table("model.layout", LayoutSettings::fields(), LayoutSettings{}));

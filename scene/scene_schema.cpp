@@ -19,6 +19,9 @@ namespace {
 // exceeds the work a run may take.
 constexpr double kMaxTarget = 20.0;    // [g]
 constexpr double kMaxFactor = 1000.0;  // [-]
+// A rest between records of a sequence beyond a day is no aftershock sequence a run models
+// (the damping has long brought the bridge to rest), and it bounds the run's length.
+constexpr double kMaxRest = 86400.0;   // [s]
 
 // A choice among names known at run time (a std::string member), for lists that are not enums.
 template <class S>
@@ -223,6 +226,18 @@ std::span<const c::Field<ExcitationSettings>> ExcitationSettings::fields() {
                                "absent: the bridge's first natural period (K₀ φ = ω² M φ)"),
       c::number<&S::sa_damping>("sa_damping", "-", c::closed_open(0, 1),
                                 "oscillator damping ratio ζ of target_sa and the reported Sa"),
+  };
+  return f;
+}
+
+std::span<const c::Field<SequenceSettings>> SequenceSettings::fields() {
+  using S = SequenceSettings;
+  static const c::Field<S> f[] = {
+      c::number<&S::rest>("rest", "s", c::closed(0, kMaxRest),
+                          "rest interval after the record: zero ground acceleration, the bridge "
+                          "moving freely; the next record starts this long after the last "
+                          "sample of this one (after the last record, the run goes on this "
+                          "long by default)"),
   };
   return f;
 }

@@ -104,6 +104,19 @@ struct ExcitationSettings {
   static std::span<const config::Field<ExcitationSettings>> fields();
 };
 
+// [[model.excitation.sequence]]: a sequence of records (a mainshock and its aftershocks), each
+// entry with the record keys of [model.excitation] (all but time_scale and
+// baseline_correction, which the sequence shares) and the rest after it (docs/ground-motions.md,
+// "Sequences").
+struct SequenceSettings {
+  double rest = 0.0;  // [s], >= 0: zero ground acceleration after the record
+  static std::span<const config::Field<SequenceSettings>> fields();
+};
+
+// The keys of [model.excitation] that a sequence shares; its other keys belong to the entries.
+inline constexpr std::array<std::string_view, 2> kSequenceSharedKeys{"time_scale",
+                                                                     "baseline_correction"};
+
 // [model] keys of a deck in several bodies (a bridge in [[model.segments]], a deck chain):
 // the skew of every end face.
 struct LayoutSettings {

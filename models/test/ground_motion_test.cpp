@@ -129,3 +129,95 @@ TEST_CASE("ground motion: options and records are validated") {
   o.target_pga = 1.0;
   expect_error([&] { GroundMotion(make_record({0, 1, 2}, {0, 0, 0}), o); }, {"target_pga"});
 }
+
+namespace {
+
+// A sine burst of `cycles` cycles of period T [s] and amplitude A [m/s^2], sampled at dt from
+// t = 0: a short synthetic record.
+Record burst(double T, double A, int cycles, double dt, const std::string& name) {
+  Record r;
+  r.source = name;
+  const int n = static_cast<int>(std::lround(cycles * T / dt));
+  for (int i = 0; i <= n; ++i) {
+    r.t.push_back(i * dt);
+    r.a.push_back(A * std::sin(2.0 * std::numbers::pi * i * dt / T));
+  }
+  return r;
+}
+
+// The times at which the sequence tests compare: a fine grid over [0, end], with the parts'
+// own start and end times.
+std::vector<double> probe_times(double end, std::vector<double> extra) {
+  std::vector<double> t = std::move(extra);
+  for (int i = 0; i <= 4000; ++i) t.push_back(end * i / 4000.0);
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("ground motion: a sequence is its records in turn, each the record's own motion") {
+  // A from 0 to 1 s, rest 0.5 s, B placed at 1.5 s (its delay): before and at B's start the
+  // sequence is A's motion (held after its end), after it B's, bit for bit (baseline
+  // corrected records end at rest at their origin, so B starts from displacement 0).
+  const Record a = burst(0.25, 3.0, 4, 0.01, "A"), b = burst(0.2, 2.0, 5, 0.01, "B");
+  const GroundMotion ma(a);
+  GroundMotionOptions ob;
+  ob.delay = 1.5;
+  ob.scale = 0.7;
+  const GroundMotion mb(b, ob);
+  const GroundMotion seq = GroundMotion::sequence({ma, mb}, true);
+  CHECK(seq.start_time() == 0.0);
+  CHECK(seq.end_time() == mb.end_time());
+  CHECK(seq.pga() == std::max(ma.pga(), mb.pga()));
+  CHECK(seq.source() == "A then B");
+  for (double t : probe_times(3.0, {1.0, 1.5, std::nextafter(1.5, 2.0), mb.end_time()})) {
+    const GroundMotion& own = t <= 1.5 ? ma : mb;
+    const GroundMotion::Values s = seq.values(t), o = own.values(t);
+    INFO("t = " << t);
+    CHECK(s.displacement == o.displacement);
+    CHECK(s.velocity == o.velocity);
+    CHECK(s.acceleration == o.acceleration);
+    CHECK(seq.displacement(t) == o.displacement);
+    CHECK(seq.velocity(t) == o.velocity);
+    CHECK(seq.acceleration(t) == o.acceleration);
+  }
+  // In the rest interval the ground is at rest: zero acceleration and velocity.
+  CHECK(seq.acceleration(1.25) == 0.0);
+  CHECK(seq.velocity(1.25) == 0.0);
+}
+
+TEST_CASE("ground motion: a sequence without baseline correction carries the displacement on") {
+  // Without correction a record ends displaced (a sine burst of whole cycles ends at
+  // d = A T t1 / (2 pi), a drift of constant velocity A T / (2 pi) held from its start); the
+  // next record starts from there: the displacement is continuous at its start and is the
+  // record's own plus that offset after it.
+  GroundMotionOptions oa;
+  oa.baseline_correction = false;
+  const GroundMotion ma(burst(0.25, 3.0, 4, 0.01, "A"), oa);
+  GroundMotionOptions ob = oa;
+  ob.delay = 1.2;
+  const GroundMotion mb(burst(0.2, 2.0, 5, 0.01, "B"), ob);
+  const GroundMotion seq = GroundMotion::sequence({ma, mb}, false);
+  const double held = ma.displacement(ma.end_time());
+  CHECK(std::abs(held) > 0.01);
+  CHECK(seq.displacement(1.2) == held);
+  CHECK(seq.displacement(std::nextafter(1.2, 2.0)) == doctest::Approx(held).epsilon(1e-12));
+  for (double t : {1.3, 1.7, 2.2, 3.0}) {
+    INFO("t = " << t);
+    CHECK(seq.displacement(t) == mb.displacement(t) + held);
+    CHECK(seq.velocity(t) == mb.velocity(t));
+  }
+}
+
+TEST_CASE("ground motion: a sequence's parts are checked") {
+  const GroundMotion ma(burst(0.25, 3.0, 4, 0.01, "A"));
+  GroundMotionOptions early;
+  early.delay = 0.5;  // B would start before A ends (1 s)
+  const GroundMotion mb(burst(0.2, 2.0, 5, 0.01, "B"), early);
+  expect_error([&] { (void)GroundMotion::sequence({ma, mb}, true); },
+               {"'B'", "before the end of 'A'"});
+  expect_error([&] { (void)GroundMotion::sequence({}, true); }, {"no part"});
+  // One part, or parts with empty ones among them, is that part: the same motion.
+  const GroundMotion one = GroundMotion::sequence({GroundMotion(), ma}, true);
+  for (double t : {0.1, 0.55, 1.0, 2.0}) CHECK(one.displacement(t) == ma.displacement(t));
+}

@@ -45,6 +45,7 @@ SCENES_OF = {
     "model.bents": [("bridge-exc7.toml", "model.bents.0.", [])],
     "model.seats": [("bridge-exc7.toml", "model.seats.", [])],
     "model.excitation": [("bridge-exc7.toml", "model.excitation.", [])],
+    "model.excitation.sequence": [("bridge-aftershock.toml", "model.excitation.sequence.1.", [])],
     "model.shear_keys": [("bridge-shear-keys.toml", "model.shear_keys.", [])],
     "model.layout": [("bridge-two-frame.toml", "model.", [])],
     "model.segments": [("bridge-two-frame.toml", "model.segments.0.", []),
