@@ -1,6 +1,7 @@
 // nsbridge run SCENE.toml [--out DIR] [--method moreau|event_driven|compliance]
 //                         [--set key=value ...] [--quiet] [--strict] [--dump-lcp DIR]
 //                         [--plot]
+//                         [--cross-check moreau|event_driven|compliance]
 //
 // Loads a scene (with overrides) and checks its initial state (runs::prepare), checks the
 // output directory (creating nothing), then integrates the scene with the chosen method
@@ -10,6 +11,8 @@
 // so), or with --strict when a warning says the run is not to be trusted (docs/cli.md).
 // --dump-lcp DIR writes every contact problem of the run to DIR in Siconos's .dat format, with
 // DIR/manifest.csv (runs/lcp_dump.hpp); a DIR that cannot be created is refused before the run.
+// --cross-check METHOD runs the same scene under METHOD too and compares the peaks
+// (summary.json "cross_check"; a disagreement beyond the estimates warns "cross_check: ...").
 // A place that cannot be written, before the run or while writing (a full disk), is bad input:
 // exit 2 naming the option. Ctrl-C interrupts the run: nothing is written, exit 130.
 // --plot draws DIR/response.png once the files are written (app/run_plot.hpp); a drawing
@@ -52,6 +55,7 @@ struct RunArgs {
   std::string dump_lcp;
   bool dump_lcp_given = false;  // --dump-lcp was on the command line (possibly as "")
   bool plot = false;            // draw <out>/response.png after the run
+  std::string cross_check;
 };
 
 // A progress bar on stderr, drawn only when stderr is a terminal and only once the run has
@@ -153,7 +157,29 @@ void print_estimate(const runs::Digest& d) {
   const runs::Accuracy& a = d.accuracy;
   std::cout << "accuracy   " << three_digits(100.0 * a.target) << " % "
             << (a.met ? "met" : "not met") << " (largest: |" << a.worst << "| "
-            << three_digits(100.0 * a.worst_relative) << " %)\n";
+            << three_digits(100.0 * a.worst_relative) << " %)";
+  if (d.adaptation.enabled) {
+    std::cout << "; adapted in " << d.adaptation.attempts.size() << " runs to " << e.setting
+              << ' ' << three_digits(e.value) << ", " << three_digits(d.adaptation.cpu_seconds)
+              << " CPU s";
+  }
+  std::cout << '\n';
+}
+
+// The cross-check: the other method's peaks with their errors and the differences.
+void print_cross_check(const runs::Digest& d) {
+  const runs::CrossCheck& x = d.cross_check;
+  std::cout << "cross      " << x.method << ": ";
+  if (!x.compared) {
+    std::cout << "ended " << x.status << ", not compared\n";
+    return;
+  }
+  for (const runs::CrossPeak& p : x.coordinates) {
+    std::cout << '|' << p.name << "| " << three_digits(p.peak);
+    if (!std::isnan(p.error)) std::cout << " ± " << one_digit(p.error);
+    std::cout << (p.agrees ? " (agrees) " : " (differs) ");
+  }
+  std::cout << "impacts " << x.impacts << '\n';
 }
 
 // The watched limit states (docs/limit-states.md): how many, and each exceeded one with when.
@@ -206,6 +232,7 @@ void print_summary(const runs::RunRecord& record, const std::filesystem::path& o
   }
   std::cout << '\n';
   print_estimate(d);
+  if (!d.cross_check.method.empty()) print_cross_check(d);
   // A diverged run's balance is not a number: say so rather than print "nan".
   std::cout << "energy     balance error "
             << (std::isfinite(d.energy.error) ? six_digits(d.energy.error)
@@ -233,6 +260,7 @@ void run(const RunArgs& args) {
   }
   runs::RunRequest request{args.scene, args.overrides, args.method, {}, args.dump_lcp};
   request.stop = &stop_on_interrupt();
+  request.cross_check = args.cross_check;
   runs::PreparedRun prepared;
   try {
     prepared = runs::prepare(request);
@@ -320,6 +348,10 @@ void add_run_command(CLI::App& app) {
   auto* dump = cmd->add_option("--dump-lcp", args->dump_lcp,
                                "Write every contact problem to this directory (Siconos .dat "
                                "files and manifest.csv)");
+  cmd->add_option("--cross-check", args->cross_check,
+                  "Run the scene under this method too and compare the peaks "
+                  "(docs/error-estimates.md)")
+      ->check(CLI::IsMember({"moreau", "event_driven", "compliance"}));
   cmd->callback([args, out, dump] {
     args->out_given = out->count() > 0;
     args->dump_lcp_given = dump->count() > 0;

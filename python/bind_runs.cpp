@@ -300,11 +300,12 @@ class Result {
   py::object summary_, history_, events_;  // null until first asked for
 };
 
-// run(scene_or_path, method, overrides, progress): the request (a Scene's table, or a path),
-// then runs::prepare and runs::run with the GIL released, so that other Python threads run
-// meanwhile.
+// run(scene_or_path, method, overrides, progress, cross_check): the request (a Scene's table,
+// or a path), then runs::prepare and runs::run with the GIL released, so that other Python
+// threads run meanwhile.
 Result run(const py::object& scene, const std::optional<std::string>& method,
-           const py::object& overrides, const py::object& progress) {
+           const py::object& overrides, const py::object& progress,
+           const std::optional<std::string>& cross_check) {
   runs::RunRequest request;
   if (py::isinstance<PyScene>(scene)) {
     request.scene = scene.cast<const PyScene&>().table;
@@ -315,6 +316,7 @@ Result run(const py::object& scene, const std::optional<std::string>& method,
   }
   request.typed_overrides = to_overrides(overrides);
   request.method = method.value_or("");
+  request.cross_check = cross_check.value_or("");
   ProgressReport report(progress);
   request.stop = report.stop();
   std::optional<runs::RunRecord> record;
@@ -397,7 +399,16 @@ void bind_result(py::module_& m) {
       .def_property_readonly(
           "accuracy", [](Result& r) -> py::object { return r.summary()["accuracy"]; },
           "summary.json's accuracy: {target, met, step or tolerance, worst, "
-          "worst_relative_error}; met is None without an estimate")
+          "worst_relative_error}; met is None without an estimate; with solver.adapt also "
+          "adapt, attempts and total_cpu_seconds")
+      .def_property_readonly(
+          "cross_check",
+          [](Result& r) -> py::object {
+            const py::dict s = r.summary().cast<py::dict>();
+            return s.contains("cross_check") ? py::object(s["cross_check"]) : py::none();
+          },
+          "summary.json's cross_check: the other method's peaks with their errors and the "
+          "differences, its impacts and first impact (None without a cross-check)")
       .def_property_readonly("history", &Result::history,
                              "history.csv's columns: name -> numpy float64 array")
       .def_property_readonly("events", &Result::events,
@@ -418,9 +429,12 @@ void bind_runs(py::module_& m) {
   bind_result(m);
   m.def("run", &run, py::arg("scene_or_path"), py::arg("method") = py::none(),
         py::arg("overrides") = py::none(), py::arg("progress") = false,
+        py::arg("cross_check") = py::none(),
         "Runs a scene (a Scene or a path) with `nsbridge run`'s pipeline, the GIL released; "
         "method overrides solver.method; progress: False, True (a line on stderr) or a "
-        "callable f(t). A numerical failure is Result.status, bad input raises InputError");
+        "callable f(t); cross_check: a second method the scene is run under and compared with "
+        "(Result.cross_check). A numerical failure is Result.status, bad input raises "
+        "InputError");
 }
 
 }  // namespace nsb::python

@@ -69,6 +69,56 @@ struct Accuracy {
   double worst_relative = std::numeric_limits<double>::quiet_NaN();  // its error / peak
 };
 
+// One step or tolerance tried by a run that chooses its own (solver.adapt,
+// runs/estimate.hpp): its value, the estimate it gave, and what it cost.
+struct AdaptAttempt {
+  double value = 0.0;  // solver.step [s] or solver.tolerance [-] of the attempt
+  double worst_relative = std::numeric_limits<double>::quiet_NaN();  // its largest estimated
+                                                                     //   error / peak; NaN:
+                                                                     //   no estimate
+  bool met = false;             // worst_relative <= solver.accuracy
+  std::string status;           // the attempt's RunStatus name
+  double cpu_seconds = 0.0;     // CPU time of the attempt: run and companion [s]
+};
+
+// A run that chooses its own step or tolerance to meet solver.accuracy (solver.adapt = true):
+// every attempt in order; the record is the last one's.
+struct Adaptation {
+  bool enabled = false;               // solver.adapt
+  std::vector<AdaptAttempt> attempts;
+  double cpu_seconds = 0.0;           // the attempts' total [s]
+};
+
+// One generalized coordinate's peak under the cross-check's method beside the run's.
+struct CrossPeak {
+  std::string name;  // the coordinate
+  double peak = std::numeric_limits<double>::quiet_NaN();   // the other method's |q|max
+  double error = std::numeric_limits<double>::quiet_NaN();  // its estimated error; NaN: none
+  double difference = std::numeric_limits<double>::quiet_NaN();  // run's peak - peak
+  double allowed = std::numeric_limits<double>::quiet_NaN();     // the run's error + error +
+                                                                 //   the floor (NaN errors: 0)
+  bool agrees = true;                                            // |difference| <= allowed
+};
+
+// The same scene under a second method (runs::RunRequest::cross_check), run through the same
+// pipeline, and how far its numbers are from the run's (docs/error-estimates.md,
+// "Cross-checks").
+struct CrossCheck {
+  std::string method;  // the other method; empty: no cross-check
+  std::string status;  // its RunStatus name
+  bool compared = false;  // the other run is a result and its numbers were compared
+  std::vector<CrossPeak> coordinates;  // every generalized coordinate, in order
+  std::int64_t impacts = 0;            // its impact count
+  double impacts_error = std::numeric_limits<double>::quiet_NaN();
+  double first_impact = std::numeric_limits<double>::quiet_NaN();  // [s]; NaN: none
+  double first_impact_error = std::numeric_limits<double>::quiet_NaN();
+  double impacts_difference = 0.0;  // the run's impact count - the other's
+  double first_impact_difference = std::numeric_limits<double>::quiet_NaN();  // [s]
+  double floor = 0.0;                  // the relative floor of agreement (solver.accuracy)
+  std::vector<std::string> warnings;   // the other run's own warnings
+  double cpu_seconds = 0.0;            // its cost: build, run and estimate [s]
+};
+
 // Event counts of one contact, per kind in the order of integrators::kEventKindNames.
 struct ContactEvents {
   int contact = 0;  // 1-based
@@ -108,6 +158,9 @@ struct Digest {
   // summary.json "error_estimate" and "accuracy": set by runs::run (runs/estimate.hpp).
   ErrorEstimate estimate;
   Accuracy accuracy;
+  // summary.json "accuracy" "attempts" (solver.adapt) and "cross_check": set by runs::run.
+  Adaptation adaptation;
+  CrossCheck cross_check;
 
   std::int64_t count(integrators::EventKind kind) const;  // events of a kind, in total
 };

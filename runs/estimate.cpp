@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <type_traits>
+#include <vector>
 
 namespace nsb::runs {
 
@@ -124,6 +125,74 @@ Accuracy judge_accuracy(const Digest& digest, double target) {
     }
   }
   return a;
+}
+
+double refined_value(const std::string& setting, double value, double worst_relative,
+                     double target) {
+  if (setting != "step") return value / kAdaptToleranceDivisor;
+  // rel(h) ≈ rel(h0) (h / h0)^p: the step at which the estimate would be kAdaptSafety x target.
+  double ratio = kAdaptMaxStepRatio;
+  if (std::isfinite(worst_relative) && worst_relative > 0.0) {
+    ratio = std::pow(kAdaptSafety * target / worst_relative, 1.0 / kMoreauOrder);
+  }
+  return value * std::clamp(ratio, kAdaptMinStepRatio, kAdaptMaxStepRatio);
+}
+
+CrossCheck compare_runs(const Digest& run, const Digest& other, double run_first_impact,
+                        double other_first_impact, const std::string& other_method,
+                        const std::string& other_status, double accuracy) {
+  CrossCheck x;
+  x.method = other_method;
+  x.status = other_status;
+  x.floor = accuracy;
+  // An error that is not estimated counts as zero: the floor alone then decides.
+  const auto known = [](double e) { return std::isfinite(e) ? e : 0.0; };
+  for (std::size_t c = 0; c < run.coordinates.size(); ++c) {
+    const CoordinatePeak& mine = run.coordinates[c];
+    CrossPeak p;
+    p.name = mine.name;
+    if (c < other.coordinates.size()) {
+      p.peak = other.coordinates[c].peak;
+      p.error = other.coordinates[c].error;
+    }
+    p.difference = mine.peak - p.peak;
+    p.allowed = known(mine.error) + known(p.error) + accuracy * std::abs(mine.peak);
+    p.agrees = std::abs(p.difference) <= p.allowed;
+    x.coordinates.push_back(std::move(p));
+  }
+  x.impacts = other.count(integrators::EventKind::kImpact);
+  x.impacts_difference = static_cast<double>(run.count(integrators::EventKind::kImpact) - x.impacts);
+  x.impacts_error = other.estimate.impacts_error;
+  x.first_impact = other_first_impact;
+  x.first_impact_error = other.estimate.first_impact_error;
+  x.first_impact_difference = run_first_impact - other_first_impact;
+  x.compared = true;
+  return x;
+}
+
+std::vector<std::string> cross_check_warnings(const Digest& run, const std::string& run_method,
+                                              const CrossCheck& check) {
+  std::vector<std::string> w;
+  if (check.method.empty()) return w;
+  if (!check.compared) {
+    w.push_back("cross_check: the run under " + check.method + " ended " + check.status +
+                "; the peaks are not cross-checked");
+    return w;
+  }
+  const auto known = [](double e) { return std::isfinite(e) ? e : 0.0; };
+  for (std::size_t c = 0; c < check.coordinates.size() && c < run.coordinates.size(); ++c) {
+    const CoordinatePeak& mine = run.coordinates[c];
+    const CrossPeak& other = check.coordinates[c];
+    if (other.agrees) continue;
+    w.push_back("cross_check: the peak |" + mine.name + "| is " + io::three_digits(mine.peak) +
+                " under " + run_method + " and " + io::three_digits(other.peak) + " under " +
+                check.method + ", a difference of " +
+                io::three_digits(std::abs(other.difference)) + " beyond the two estimates (" +
+                io::three_digits(known(mine.error)) + " and " + io::three_digits(known(other.error)) +
+                ") and the floor " + io::three_digits(check.floor * std::abs(mine.peak)) +
+                " (solver.accuracy x the peak)");
+  }
+  return w;
 }
 
 std::string accuracy_warning(const Digest& digest) {

@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace nsb::runs {
 
@@ -33,6 +34,26 @@ inline constexpr double kEventDrivenOrder = 0.88;
 // itself (factor 1, the order ln 2 / ln 100 ≈ 0.15 that makes 100^p - 1 = 1): it assumes only
 // that the run's error is at most half the companion's.
 inline constexpr double kComplianceOrder = 0.150514997831990598;  // ln 2 / ln 100
+
+// solver.adapt (docs/error-estimates.md, "Choosing the step"): a run is repeated with a finer
+// step or a tighter tolerance while its estimate exceeds solver.accuracy, at most
+// kAdaptAttempts times in all. Moreau–Jean's next step is the one the estimate predicts at
+// the order kMoreauOrder, with the safety factor kAdaptSafety on the target, kept between
+// kAdaptMinStepRatio and kAdaptMaxStepRatio times the step (one estimate can be off by a
+// factor of ten, so one attempt never refines by more than 4; at least by 2, so that every
+// attempt makes progress and all of them cost at most twice the last); the adaptive methods divide
+// their tolerance by kAdaptToleranceDivisor (the compliance method's order in its tolerance is
+// not measured, and event-driven's error goes as tol^0.9: one decade of tolerance is about
+// one decade of error).
+inline constexpr int kAdaptAttempts = 6;
+inline constexpr double kAdaptSafety = 0.5;
+inline constexpr double kAdaptMinStepRatio = 0.25;
+inline constexpr double kAdaptMaxStepRatio = 0.5;
+inline constexpr double kAdaptToleranceDivisor = 10.0;
+
+// The relative floor below which two methods' peaks agree whatever their estimates: the
+// run's solver.accuracy times the run's peak (a difference the user's own target accepts).
+// The cross-check's warning is for |difference| > error_run + error_other + floor.
 
 // What the companion run changes.
 struct CompanionPlan {
@@ -66,6 +87,28 @@ Accuracy judge_accuracy(const Digest& digest, double target);
 
 // The first impact's time in a history's events [s]; NaN without an impact.
 double first_impact_time(const integrators::Recorder& history);
+
+// The next step or tolerance of an adapting run (solver.adapt) after an attempt with
+// `value` whose largest relative error estimate was worst_relative (NaN: no estimate, or the
+// attempt was not a result) against the relative target; setting: "step" or "tolerance".
+double refined_value(const std::string& setting, double value, double worst_relative,
+                     double target);
+
+// The cross-check of a run against the same scene under another method: each coordinate's
+// peak of `other` beside the run's, their difference, and whether it is within the two
+// estimates plus floor = accuracy x the run's peak; the other run's impact count and first
+// impact with their errors. Sets method, status (from other_status), coordinates, impacts,
+// first_impact and floor; the caller sets warnings and cpu_seconds.
+// run_first_impact, other_first_impact: the two runs' first impact times (first_impact_time).
+CrossCheck compare_runs(const Digest& run, const Digest& other, double run_first_impact,
+                        double other_first_impact, const std::string& other_method,
+                        const std::string& other_status, double accuracy);
+
+// The "cross_check: ..." warnings of a cross-check: one per coordinate whose difference
+// exceeds what the estimates allow, naming both peaks; one when the other run is not a result.
+// run_method: the run's own method.
+std::vector<std::string> cross_check_warnings(const Digest& run, const std::string& run_method,
+                                              const CrossCheck& check);
 
 // The "accuracy: ..." warning of a run whose estimate exceeds its target, or of a run whose
 // estimate could not be made (the companion did not reach a result); empty otherwise.

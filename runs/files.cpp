@@ -260,7 +260,73 @@ void write_accuracy(JsonText& j, const Digest& d) {
   io::append_json_number(j.o, d.estimate.value);
   j.o += ", \"worst\": " + io::json_string(a.worst) + ", \"worst_relative_error\": ";
   io::append_json_number(j.o, a.worst_relative);
-  j.o += "}\n";
+  const Adaptation& ad = d.adaptation;
+  if (ad.enabled) {
+    // solver.adapt: every attempt's step or tolerance, its estimate and its cost.
+    j.o += ", \"adapt\": true, \"attempts\": [";
+    for (std::size_t i = 0; i < ad.attempts.size(); ++i) {
+      const AdaptAttempt& t = ad.attempts[i];
+      j.o += i ? ",\n      {" : "\n      {";
+      j.o += io::json_string(d.estimate.setting) + ": ";
+      io::append_json_number(j.o, t.value);
+      j.o += ", \"worst_relative_error\": ";
+      io::append_json_number(j.o, t.worst_relative);
+      j.o += ", \"met\": ";
+      j.o += t.met ? "true" : "false";
+      j.o += ", \"status\": " + io::json_string(t.status) + ", \"cpu_seconds\": ";
+      io::append_json_number(j.o, t.cpu_seconds);
+      j.o += "}";
+    }
+    j.o += "],\n    \"total_cpu_seconds\": ";
+    io::append_json_number(j.o, ad.cpu_seconds);
+  }
+  j.o += "}";
+}
+
+// The cross-check (runs::RunRequest::cross_check): the other method, its status, each
+// coordinate's peak and error under it with the difference from the run's and what the
+// estimates allow, its impact count and first impact with the differences, the floor, its
+// own warnings and its cost.
+void write_cross_check(JsonText& j, const Digest& d) {
+  const CrossCheck& x = d.cross_check;
+  j.key("cross_check");
+  j.o += "{\"method\": " + io::json_string(x.method) + ", \"status\": " +
+         io::json_string(x.status) + ", \"compared\": ";
+  j.o += x.compared ? "true" : "false";
+  j.o += ", \"floor\": ";
+  io::append_json_number(j.o, x.floor);
+  j.o += ",\n    \"peaks\": {";
+  for (std::size_t c = 0; c < x.coordinates.size(); ++c) {
+    const CrossPeak& p = x.coordinates[c];
+    j.o += c ? ",\n      " : "\n      ";
+    j.o += io::json_string(p.name) + ": {\"abs_max\": ";
+    io::append_json_number(j.o, p.peak);
+    j.o += ", \"error\": ";
+    io::append_json_number(j.o, p.error);
+    j.o += ", \"difference\": ";
+    io::append_json_number(j.o, p.difference);
+    j.o += ", \"allowed\": ";
+    io::append_json_number(j.o, p.allowed);
+    j.o += ", \"agrees\": ";
+    j.o += p.agrees ? "true" : "false";
+    j.o += "}";
+  }
+  j.o += "},\n    ";
+  append_object(j.o, "impacts", {{"count", static_cast<double>(x.impacts)},
+                                 {"error", x.impacts_error},
+                                 {"difference", x.impacts_difference}});
+  j.o += ", ";
+  append_object(j.o, "first_impact", {{"time", x.first_impact},
+                                      {"error", x.first_impact_error},
+                                      {"difference", x.first_impact_difference}});
+  j.o += ",\n    \"warnings\": [";
+  for (std::size_t i = 0; i < x.warnings.size(); ++i) {
+    j.o += i ? ", " : "";
+    j.o += io::json_string(x.warnings[i]);
+  }
+  j.o += "], \"cpu_seconds\": ";
+  io::append_json_number(j.o, x.cpu_seconds);
+  j.o += "}";
 }
 
 }  // namespace
@@ -318,7 +384,11 @@ std::string summary_json(const RunRecord& record) {
   j.o += "],\n";
   write_estimate(j, record.digest);
   write_accuracy(j, record.digest);
-  j.o += "}\n";
+  if (!record.digest.cross_check.method.empty()) {
+    j.o += ",\n";
+    write_cross_check(j, record.digest);
+  }
+  j.o += "\n}\n";
   return std::move(j.o);
 }
 

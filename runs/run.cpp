@@ -7,7 +7,10 @@
 #include "runs/lcp_dump.hpp"
 #include "runs/trust.hpp"
 
+#include <algorithm>
 #include <ctime>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <tuple>
 #include <stdexcept>
@@ -89,38 +92,17 @@ bool estimate_errors(const scene::Scene& scene, const integrators::Recorder& his
   return true;
 }
 
-}  // namespace
+// A scene integrated once, its digest and error estimate made and judged, with its CPU cost.
+struct Attempt {
+  integrators::RunResult result;
+  integrators::Recorder history;
+  Digest digest;
+  double cpu_seconds = 0.0;  // the run and its companion [s]
+};
 
-PreparedRun prepare(const RunRequest& request) {
-  PreparedRun p{scene::build_scene(scene_table(request)), {}};
-  const std::string file = p.scene.table.origin.name;
-  if (!p.scene.system) throw std::invalid_argument(file + ": the scene built no system");
-  try {
-    check_initial_state(*p.scene.system);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(file + ": " + e.what());
-  }
-  p.warnings = step_warnings(*p.scene.system, p.scene.run, p.scene.record_step);
-  if (!request.dump_lcp.empty()) {
-    try {
-      io::check_output_dir(request.dump_lcp);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("dump_lcp " + request.dump_lcp.string() + ": " + e.what());
-    }
-    p.dump_lcp = request.dump_lcp;
-  }
-  p.stop = request.stop;
-  return p;
-}
-
-RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
-  scene::Scene& scene = prepared.scene;
+Attempt integrate_once(scene::Scene& scene, const integrators::Progress& progress,
+                       const integrators::RunHooks& hooks, LcpDump* dump) {
   integrators::Recorder history(*scene.system, scene.output.sample_dt);
-  std::optional<LcpDump> dump;
-  if (!prepared.dump_lcp.empty()) dump.emplace(prepared.dump_lcp);
-  integrators::RunHooks hooks;
-  if (dump) hooks.contact_observer = &*dump;
-  hooks.stop = prepared.stop;
   const double start = thread_cpu_seconds();
   integrators::RunResult result =
       integrators::integrate(*scene.system, scene.run, history, progress, hooks);
@@ -134,15 +116,163 @@ RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
     result.status = integrators::RunStatus::kInterrupted;
   }
   // An interrupted run (or estimate) writes nothing: its dump is dropped with `dump`.
-  if (dump && result.status != integrators::RunStatus::kInterrupted) dump->write_manifest();
+  if (dump != nullptr && result.status != integrators::RunStatus::kInterrupted) {
+    dump->write_manifest();
+  }
   digest.estimate.run_cpu_seconds = run_cpu_seconds;
   std::tie(digest.estimate.setting, digest.estimate.value) = accuracy_setting(scene.run);
   digest.accuracy = judge_accuracy(digest, scene.estimate.accuracy);
+  const double cpu = thread_cpu_seconds() - start;
+  return Attempt{std::move(result), std::move(history), std::move(digest), cpu};
+}
+
+AdaptAttempt attempt_entry(const Attempt& a) {
+  AdaptAttempt e;
+  e.value = a.digest.estimate.value;
+  e.worst_relative = a.digest.accuracy.judged ? a.digest.accuracy.worst_relative
+                                              : std::numeric_limits<double>::quiet_NaN();
+  e.met = a.digest.accuracy.judged && a.digest.accuracy.met;
+  e.status = std::string(integrators::to_string(a.result.status));
+  e.cpu_seconds = a.cpu_seconds;
+  return e;
+}
+
+// solver.adapt: the scene integrated from its own step or tolerance, then again with a
+// refined one (refined_value) while the estimate exceeds solver.accuracy, at most
+// kAdaptAttempts runs. Returns the last attempt; `scene` becomes its scene and `warnings` its
+// step warnings. A refined value that the scene refuses (the bound on a run's work) ends the
+// search with the attempt before it.
+Attempt adapt(scene::Scene& scene, std::vector<std::string>& warnings,
+              const integrators::Progress& progress, const integrators::RunHooks& hooks,
+              Adaptation& adaptation) {
+  adaptation.enabled = true;
+  Attempt last = integrate_once(scene, progress, hooks, nullptr);
+  adaptation.attempts.push_back(attempt_entry(last));
+  for (int k = 1; k < kAdaptAttempts; ++k) {
+    if (last.result.status == integrators::RunStatus::kInterrupted) break;
+    if (last.digest.accuracy.judged && last.digest.accuracy.met) break;
+    const auto [setting, value] = accuracy_setting(scene.run);
+    const double worst = integrators::is_result(last.result.status) && last.digest.accuracy.judged
+                             ? last.digest.accuracy.worst_relative
+                             : std::numeric_limits<double>::quiet_NaN();
+    const double next = refined_value(setting, value, worst, scene.estimate.accuracy);
+    scene::SceneTable table = scene.table;
+    scene::apply_overrides(table, std::vector<scene::Override>{{"solver." + setting, next}});
+    scene::Scene refined;
+    try {
+      refined = scene::build_scene(table);
+    } catch (const std::invalid_argument&) {
+      break;  // beyond the work a run may take: the last attempt stands
+    }
+    std::vector<std::string> refined_warnings =
+        step_warnings(*refined.system, refined.run, refined.record_step);
+    Attempt next_attempt = integrate_once(refined, progress, hooks, nullptr);
+    adaptation.attempts.push_back(attempt_entry(next_attempt));
+    scene = std::move(refined);
+    warnings = std::move(refined_warnings);
+    last = std::move(next_attempt);
+  }
+  for (const AdaptAttempt& a : adaptation.attempts) adaptation.cpu_seconds += a.cpu_seconds;
+  return last;
+}
+
+// The cross-check (RunRequest::cross_check): the other method's run through run(), its
+// progress reported as the run's end (as the companion's), compared with the run's digest.
+// Returns false when it was interrupted.
+bool cross_check(PreparedRun other, const std::string& run_method,
+                 const integrators::Recorder& history, const integrators::Progress& progress,
+                 Digest& digest, double accuracy, std::vector<std::string>& warnings) {
+  const double start = thread_cpu_seconds();
+  const double t_end = integrators::end_time(other.scene.run);
+  integrators::Progress at_end;
+  if (progress) at_end = [&progress, t_end](double) { progress(t_end); };
+  const std::string method(integrators::method_name(other.scene.run));
+  const RunRecord record = run(std::move(other), at_end);
+  if (record.result.status == integrators::RunStatus::kInterrupted) return false;
+  const std::string status(integrators::to_string(record.result.status));
+  CrossCheck x;
+  if (integrators::is_result(record.result.status)) {
+    x = compare_runs(digest, record.digest, first_impact_time(history),
+                     first_impact_time(record.history), method, status, accuracy);
+  } else {
+    x.method = method;
+    x.status = status;
+  }
+  x.warnings = record.digest.warnings;
+  x.cpu_seconds = thread_cpu_seconds() - start;
+  digest.cross_check = std::move(x);
+  for (auto& w : cross_check_warnings(digest, run_method, digest.cross_check)) {
+    warnings.push_back(std::move(w));
+  }
+  return true;
+}
+
+}  // namespace
+
+PreparedRun prepare(const RunRequest& request) {
+  PreparedRun p{scene::build_scene(scene_table(request)), {}};
+  const std::string file = p.scene.table.origin.name;
+  if (!p.scene.system) throw std::invalid_argument(file + ": the scene built no system");
+  try {
+    check_initial_state(*p.scene.system);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(file + ": " + e.what());
+  }
+  p.warnings = step_warnings(*p.scene.system, p.scene.run, p.scene.record_step);
+  if (!request.dump_lcp.empty()) {
+    if (p.scene.estimate.adapt) {
+      throw std::invalid_argument("dump_lcp " + request.dump_lcp.string() +
+                                  ": not with solver.adapt = true, whose run is several runs");
+    }
+    try {
+      io::check_output_dir(request.dump_lcp);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("dump_lcp " + request.dump_lcp.string() + ": " + e.what());
+    }
+    p.dump_lcp = request.dump_lcp;
+  }
+  p.stop = request.stop;
+  if (!request.cross_check.empty()) {
+    const auto& names = integrators::method_names();
+    if (std::find(names.begin(), names.end(), request.cross_check) == names.end()) {
+      std::string choices;
+      for (const auto n : names) choices += (choices.empty() ? "" : ", ") + std::string(n);
+      throw std::invalid_argument("cross_check: unknown method \"" + request.cross_check +
+                                  "\"; expected one of " + choices);
+    }
+    RunRequest other;
+    other.scene = p.scene.table;
+    other.method = request.cross_check;
+    other.stop = request.stop;
+    p.cross_check = std::make_shared<PreparedRun>(prepare(other));
+  }
+  return p;
+}
+
+RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
+  scene::Scene& scene = prepared.scene;
+  std::optional<LcpDump> dump;
+  if (!prepared.dump_lcp.empty()) dump.emplace(prepared.dump_lcp);
+  integrators::RunHooks hooks;
+  if (dump) hooks.contact_observer = &*dump;
+  hooks.stop = prepared.stop;
   std::vector<std::string> warnings = std::move(prepared.warnings);
-  for (auto& w : result_warnings(history, digest, result)) warnings.push_back(std::move(w));
+  Adaptation adaptation;
+  Attempt a = scene.estimate.adapt
+                  ? adapt(scene, warnings, progress, hooks, adaptation)
+                  : integrate_once(scene, progress, hooks, dump ? &*dump : nullptr);
+  integrators::RunResult& result = a.result;
+  Digest& digest = a.digest;
+  digest.adaptation = std::move(adaptation);
+  for (auto& w : result_warnings(a.history, digest, result)) warnings.push_back(std::move(w));
+  if (prepared.cross_check && result.status != integrators::RunStatus::kInterrupted &&
+      !cross_check(std::move(*prepared.cross_check), result.method, a.history, progress, digest,
+                   scene.estimate.accuracy, warnings)) {
+    result.status = integrators::RunStatus::kInterrupted;
+  }
   result.warnings.insert(result.warnings.end(), warnings.begin(), warnings.end());
   digest.warnings.insert(digest.warnings.end(), warnings.begin(), warnings.end());
-  return RunRecord{scene.name, scene.kind, std::move(result), std::move(history),
+  return RunRecord{scene.name, scene.kind, std::move(result), std::move(a.history),
                    std::move(digest)};
 }
 

@@ -20,6 +20,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <variant>
 #include <vector>
@@ -41,6 +42,9 @@ struct RunRequest {
   const std::atomic<bool>* stop = nullptr;  // a stop request (integrators::RunHooks::stop):
                                             //   once true, the run ends as interrupted;
                                             //   not owned; nullptr: never stopped
+  std::string cross_check{};  // an integrators::method_names() entry: the same scene is run
+                              //   again under it and compared (Digest::cross_check); empty:
+                              //   none
 };
 
 struct RunRecord {
@@ -56,20 +60,29 @@ struct PreparedRun {
   std::vector<std::string> warnings;  // step warnings (runs/trust.hpp), found before the run
   std::filesystem::path dump_lcp{};    // RunRequest::dump_lcp, checked writable (not created)
   const std::atomic<bool>* stop = nullptr;  // RunRequest::stop
+  // The cross-check's run (RunRequest::cross_check), prepared from the same scene table with
+  // solver.method set to the other method; null without a cross-check.
+  std::shared_ptr<PreparedRun> cross_check{};
 };
 
 // Reads the scene file (or copies the scene value), applies the overrides, then the typed
 // overrides (and "solver.method=<method>" last when a method is given), builds and checks the
 // scene (scene::build_scene), checks its initial state and finds the step warnings, and
 // checks that the dump_lcp folder, when one is asked for, can be written (io::check_output_dir;
-// nothing is created before the run). A scene value gives the scene its file
+// nothing is created before the run), and prepares the cross-check's run, when one is asked
+// for, from the same table under the other method (an unknown method throws naming
+// cross_check). A scene value gives the scene its file
 // gives, bit for bit. Throws std::invalid_argument for bad input, naming the file (a value's
 // origin name) and key ("<file>:<line>:<col>: <key>: ...") or the folder, before any
 // integration.
 PreparedRun prepare(const RunRequest& request);
 
 // Integrates a prepared scene and digests the run: the trust checks' warnings follow the
-// integrator's own in result.warnings and digest.warnings. A numerical failure is the
+// integrator's own in result.warnings and digest.warnings. With solver.adapt the scene is
+// integrated again with a finer step or tighter tolerance while its estimate exceeds
+// solver.accuracy (runs/estimate.hpp, refined_value), and the record is the last attempt's,
+// with every attempt in digest.adaptation. With a cross-check, the other method's run follows
+// (through this same function) and digest.cross_check compares the two, its warnings last. A numerical failure is the
 // record's result.status, never an exception; a stop request (prepared.stop) ends it as
 // RunStatus::kInterrupted. With prepared.dump_lcp, every contact problem is written beside
 // that folder as it is solved, and the problems with manifest.csv move into it as one set

@@ -90,6 +90,11 @@ std::span<const c::Field<EstimateSettings>> EstimateSettings::fields() {
           "accuracy", "-", c::open(0.0, 1.0),
           "relative accuracy target: a run whose estimated error of a coordinate's peak exceeds "
           "accuracy times the peak warns \"accuracy: ...\" (exit 1 under --strict)"),
+      c::boolean<&S::adapt>(
+          "adapt",
+          "choose the step (Moreau–Jean) or the tolerance (event-driven, compliance) to meet "
+          "accuracy: from the scene's, refined while the estimate exceeds accuracy, at most 6 "
+          "runs (docs/error-estimates.md, \"Choosing the step\"); needs error_estimate"),
   };
   return f;
 }

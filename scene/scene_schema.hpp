@@ -31,12 +31,13 @@ struct MethodSetting {
   static std::span<const config::Field<MethodSetting>> fields();
 };
 
-// [solver] error_estimate, accuracy: the numerical error estimate of every peak of a run and
+// [solver] error_estimate, accuracy, adapt: the numerical error estimate of every peak of a run and
 // the accuracy it is judged against (runs/estimate.hpp, docs/error-estimates.md). Keys of
 // every method, read by the run pipeline, not by an integrator.
 struct EstimateSettings {
   bool error_estimate = true;  // estimate each peak's error by a companion run
   double accuracy = 1e-2;      // relative accuracy target of the coordinates' peaks, in (0, 1)
+  bool adapt = false;          // refine solver.step or solver.tolerance until accuracy is met
   static std::span<const config::Field<EstimateSettings>> fields();
   void validate() const;       // throws std::invalid_argument naming the key
 };

@@ -61,6 +61,9 @@ RunConfig read_solver(Section& s, EstimateSettings& estimate) {
   MethodSetting chosen;
   s.read_all(MethodSetting::fields(), chosen);
   s.read_all(EstimateSettings::fields(), estimate);
+  if (estimate.adapt && !estimate.error_estimate) {
+    s.fail("adapt", "needs solver.error_estimate = true: the estimate decides each refinement");
+  }
   RunConfig config = integrators::default_config(chosen.method);
   std::visit(
       [&s](auto& options) {

@@ -1,5 +1,6 @@
 #include "sweep/design.hpp"
 
+#include "integrators/run.hpp"
 #include "io/csv.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_reader.hpp"
@@ -374,6 +375,8 @@ std::string design_hash(const Design& d) {
     }
   }
   for (const auto& input : d.inputs) text += '\x1e' + input.name + '\x1f' + input.hash;
+  // A design without a cross-check hashes as it did before the key existed.
+  if (!d.cross_check.empty()) text += "\x1e" "cross_check\x1f" + d.cross_check;
   return content_hash(text);
 }
 
@@ -572,6 +575,20 @@ void read_mode(const scene::Source& c, const toml::table& root, Design& d) {
   if (d.mode != Mode::kList && runs != nullptr) c.fail(runs, "runs", "only for mode = \"list\"");
 }
 
+// `cross_check`: a method under which every run is run again and compared.
+void read_cross_check(const scene::Source& c, const toml::table& root, Design& d) {
+  const auto* node = root.get("cross_check");
+  if (node == nullptr) return;
+  const auto& names = integrators::method_names();
+  const std::string method = node->value<std::string>().value_or("");
+  if (!node->is_string() || std::find(names.begin(), names.end(), method) == names.end()) {
+    std::string choices;
+    for (const auto n : names) choices += (choices.empty() ? "\"" : ", \"") + std::string(n) + "\"";
+    c.fail(node, "cross_check", "must be one of " + choices);
+  }
+  d.cross_check = method;
+}
+
 void read_factors(const scene::Source& c, const toml::table& root, Design& d) {
   const auto* factors = root.get("factor");
   if (factors == nullptr) return;
@@ -621,12 +638,13 @@ Design load_design(const fs::path& file, const std::vector<std::string>& extra_s
   const toml::table root = parse_design(file);
   check_keys(c, root, "",
              {"description", "scene", "set", "mode", "samples", "seed", "runs", "factor",
-              "fragility", "output"});
+              "fragility", "output", "cross_check"});
   Design d;
   d.file = fs::absolute(file).lexically_normal();
   read_scene(c, root, extra_set, d);
   read_mode(c, root, d);
   read_output(c, root, d);
+  read_cross_check(c, root, d);
   read_factors(c, root, d);
   expand(c, root, d);
   load_base_scene(d);

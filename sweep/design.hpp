@@ -94,6 +94,8 @@ struct Design {
                                          //   by name
   std::string hash;  // 16 hex digits; changes whenever a run would change: the runs' labels
                      //   and overrides and the content of every input
+  std::string cross_check;  // `cross_check`: every run is cross-checked under this method
+                            //   (runs::RunRequest::cross_check); empty: none
   std::optional<FragilitySpec> fragility;  // the [fragility] section, when the design has one;
                                            //   not part of the hash (it changes no run)
   OutputSpec output;                       // the [output] section; not part of the hash either

@@ -93,7 +93,8 @@ const LimitCell* find_limit(const Row& row, const std::string& name) {
 // peaks, residual, the fixed fields and wall_s.
 std::vector<Column> base_columns(const std::vector<std::string>& factors,
                                  const std::vector<ValueKind>& factor_kinds,
-                                 const std::vector<std::string>& coordinates) {
+                                 const std::vector<std::string>& coordinates,
+                                 bool cross_check = false) {
   std::vector<Column> c{{"run", Field::kRun, 0, ValueKind::kText}};
   for (std::size_t k = 0; k < factors.size(); ++k)
     c.push_back({factors[k], Field::kFactor, k, factor_kinds[k]});
@@ -105,6 +106,16 @@ std::vector<Column> base_columns(const std::vector<std::string>& factors,
   if (!coordinates.empty())
     c.push_back({"residual_" + coordinates.back(), Field::kResidual, 0, ValueKind::kReal});
   for (const Fixed& f : kFixed) c.push_back({f.name, f.field, 0, f.kind});
+  if (cross_check) {
+    c.push_back({"cross_check_status", Field::kCrossStatus, 0, ValueKind::kText});
+    for (std::size_t k = 0; k < coordinates.size(); ++k) {
+      c.push_back({"cross_check_peak_" + coordinates[k], Field::kCrossPeak, k, ValueKind::kReal});
+      c.push_back({"cross_check_peak_" + coordinates[k] + "_error", Field::kCrossPeakError, k,
+                   ValueKind::kReal});
+    }
+    c.push_back({"cross_check_impacts", Field::kCrossImpacts, 0, ValueKind::kInteger});
+    c.push_back({"cross_check_agrees", Field::kCrossAgrees, 0, ValueKind::kBoolean});
+  }
   c.push_back({"wall_s", Field::kWall, 0, ValueKind::kReal});
   return c;
 }
@@ -152,6 +163,13 @@ void read_cell(Row& row, const Column& c, const std::string& text,
       break;
     }
     case Field::kWall: row.wall_s = real_of(text); break;
+    case Field::kCrossStatus: row.cross_status = text; break;
+    case Field::kCrossPeak: row.cross_peaks.at(c.index) = real_of(text); break;
+    case Field::kCrossPeakError: row.cross_peak_errors.at(c.index) = real_of(text); break;
+    case Field::kCrossImpacts: row.cross_impacts = count_of(text); break;
+    case Field::kCrossAgrees:
+      if (!text.empty()) row.cross_agrees = text == "1";
+      break;
   }
 }
 
@@ -216,6 +234,25 @@ Row make_row(const Design& d, std::size_t index, const runs::RunRecord& record, 
   for (const auto& l : digest.limit_states)
     row.limit_states.push_back({l.name, l.exceeded, l.margin});
   row.wall_s = wall;
+  const runs::CrossCheck& x = digest.cross_check;
+  row.cross_peaks.assign(coordinates.size(), kNotANumber);
+  row.cross_peak_errors = row.cross_peaks;
+  if (!x.method.empty()) {
+    row.cross_status = x.status;
+    if (x.compared) {
+      bool agrees = true;
+      for (std::size_t k = 0; k < coordinates.size(); ++k) {
+        for (const auto& p : x.coordinates) {
+          if (p.name != coordinates[k]) continue;
+          row.cross_peaks[k] = p.peak;
+          row.cross_peak_errors[k] = p.error;
+        }
+      }
+      for (const auto& p : x.coordinates) agrees = agrees && p.agrees;
+      row.cross_impacts = x.impacts;
+      row.cross_agrees = agrees;
+    }
+  }
   return row;
 }
 
@@ -226,6 +263,8 @@ Row rejected_row(const Design& d, std::size_t index, const std::string& message,
   row.status = "rejected";
   row.peaks.assign(base_coordinates(d).size(), kNotANumber);
   row.peak_errors = row.peaks;
+  row.cross_peaks = row.peaks;
+  row.cross_peak_errors = row.peaks;
   row.message = message;
   row.wall_s = wall;
   return row;
@@ -271,6 +310,13 @@ std::optional<double> Results::number(const Row& row, std::size_t column) const 
       return l ? finite(l->margin) : std::nullopt;
     }
     case Field::kWall: return finite(row.wall_s);
+    case Field::kCrossStatus: return std::nullopt;
+    case Field::kCrossPeak: return finite(row.cross_peaks.at(c.index));
+    case Field::kCrossPeakError: return finite(row.cross_peak_errors.at(c.index));
+    case Field::kCrossImpacts: return finite(row.cross_impacts);
+    case Field::kCrossAgrees:
+      return row.cross_agrees ? std::optional<double>(*row.cross_agrees ? 1.0 : 0.0)
+                              : std::nullopt;
   }
   return std::nullopt;
 }
@@ -303,6 +349,11 @@ std::string Results::cell(const Row& row, std::size_t column) const {
       return l ? io::csv_number(l->margin) : "";
     }
     case Field::kWall: return io::csv_number(row.wall_s);
+    case Field::kCrossStatus: return row.cross_status;
+    case Field::kCrossPeak: return io::csv_number(row.cross_peaks.at(c.index));
+    case Field::kCrossPeakError: return io::csv_number(row.cross_peak_errors.at(c.index));
+    case Field::kCrossImpacts: return count_text(row.cross_impacts);
+    case Field::kCrossAgrees: return row.cross_agrees ? (*row.cross_agrees ? "1" : "0") : "";
   }
   return {};
 }
@@ -327,7 +378,7 @@ Results design_table(const Design& d) {
     kinds.push_back(factor_kind(f));
   }
   r.coordinates = base_coordinates(d);
-  r.columns = base_columns(r.factors, kinds, r.coordinates);
+  r.columns = base_columns(r.factors, kinds, r.coordinates, !d.cross_check.empty());
   return r;
 }
 
@@ -384,6 +435,23 @@ Results results_of(const Table& t) {
                                     [&h](const Column& x) { return x.name == h; });
         f != fixed.end() && f->field != Field::kRun && f->field != Field::kStatus) {
       c = *f;
+    } else if (h == "cross_check_status" || h == "cross_check_impacts" ||
+               h == "cross_check_agrees") {
+      c.field = h == "cross_check_status"    ? Field::kCrossStatus
+                : h == "cross_check_impacts" ? Field::kCrossImpacts
+                                             : Field::kCrossAgrees;
+      c.kind = h == "cross_check_status"    ? ValueKind::kText
+               : h == "cross_check_impacts" ? ValueKind::kInteger
+                                            : ValueKind::kBoolean;
+    } else if (h.rfind("cross_check_peak_", 0) == 0) {
+      // cross_check_peak_<q>[_error], after every peak_<q>: the coordinate by its name.
+      const bool error = ends("_error");
+      const std::string q = h.substr(17, h.size() - 17 - (error ? 6 : 0));
+      const auto at = std::find(r.coordinates.begin(), r.coordinates.end(), q);
+      if (at == r.coordinates.end())
+        throw std::invalid_argument("results: \"" + h + "\" names no peak_ column's coordinate");
+      c.field = error ? Field::kCrossPeakError : Field::kCrossPeak;
+      c.index = static_cast<std::size_t>(at - r.coordinates.begin());
     } else if (h.rfind("peak_", 0) == 0 && ends("_error")) {
       // peak_<q>_error follows peak_<q>: the coordinate is the last one read.
       c.field = Field::kPeakError;
@@ -417,6 +485,8 @@ Results results_of(const Table& t) {
     row.labels.resize(r.factors.size());
     row.peaks.assign(r.coordinates.size(), kNotANumber);
     row.peak_errors = row.peaks;
+    row.cross_peaks = row.peaks;
+    row.cross_peak_errors = row.peaks;
     for (std::size_t k = 0; k < r.columns.size(); ++k)
       read_cell(row, r.columns[k], fields.at(k), r.limit_states);
     r.rows.push_back(std::move(row));
@@ -450,6 +520,8 @@ std::optional<Row> parse_row(const Design& d, std::size_t index, const std::stri
   row.labels.resize(r.factors.size());
   row.peaks.assign(r.coordinates.size(), kNotANumber);
   row.peak_errors = row.peaks;
+  row.cross_peaks = row.peaks;
+  row.cross_peak_errors = row.peaks;
   for (std::size_t k = 0; k < r.columns.size(); ++k) read_cell(row, r.columns[k], fields[k], {});
   // The design's own labels, not their text read back (csv_fields trims unquoted blanks).
   row.labels = run.labels;

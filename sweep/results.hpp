@@ -53,6 +53,13 @@ struct Row {
   std::string message;                // why the run stopped early or was rejected
   std::vector<LimitCell> limit_states;  // the run's, in the system's order
   double wall_s = kNotANumber;          // wall time of the run [s]
+  // The design's cross-check (Design::cross_check), empty without one: the other method's
+  // status, its peak and peak error per coordinate, its impacts, and whether every peak agrees
+  // within the estimates (runs::CrossCheck).
+  std::string cross_status;
+  std::vector<double> cross_peaks, cross_peak_errors;
+  std::optional<std::int64_t> cross_impacts;
+  std::optional<bool> cross_agrees;
 };
 
 // The row of a finished run: the design's labels of run `index`, and the record's status,
@@ -79,7 +86,7 @@ std::vector<std::string> result_columns(const std::vector<std::string>& coordina
 enum class Field {
   kRun, kFactor, kStatus, kPeak, kPeakError, kResidual, kImpacts, kMaxPenetration, kEnergyError, kEndTime,
   kSteps, kLcpSolves, kLcpFallbacks, kLcpUnsolved, kFailureTime, kMessage, kExceeded, kMargin,
-  kWall,
+  kWall, kCrossStatus, kCrossPeak, kCrossPeakError, kCrossImpacts, kCrossAgrees,
 };
 
 struct Column {
@@ -99,7 +106,9 @@ ValueKind factor_kind(const Factor& factor);
 // The rows of a sweep in run order, and results.csv's columns: run, the factors, status,
 // peak_<q> and peak_<q>_error for every coordinate q, residual_<q> of the last, impacts through
 // message, then
-// <name>_exceeded and <name>_margin for every limit state some run has (in the order each
+// with a cross-check (Design::cross_check) cross_check_status, cross_check_peak_<q> and
+// cross_check_peak_<q>_error for every coordinate, cross_check_impacts and cross_check_agrees,
+// then <name>_exceeded and <name>_margin for every limit state some run has (in the order each
 // first appears in run order), and wall_s last.
 struct Results {
   std::vector<std::string> factors;       // factor keys, in the design's order

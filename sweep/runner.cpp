@@ -88,6 +88,7 @@ RunOutcome run_one(const Design& d, std::size_t index, const fs::path& out,
     request.scene = d.base;
     request.typed_overrides = run.overrides;
     request.stop = stop;
+    request.cross_check = d.cross_check;
     const runs::RunRecord record = runs::execute(request);
     if (record.result.status == integrators::RunStatus::kInterrupted) {
       outcome.interrupted = true;

@@ -174,6 +174,17 @@ expect 0 'step_period: solver\.step = 0\.5 s resolves the shortest natural perio
   -- run "$root/scenes/impact-oscillator.toml" --set solver.step=0.5 --out "$tmp/x"
 check "h = 0.3 s resolves T = 6.28 s by 20.9 steps: no step_period warning" bash -c \
   "! '$nsb' run '$root/scenes/impact-oscillator.toml' --set solver.step=0.3 --out '$tmp/x' 2>&1 | grep -q step_period"
+# --cross-check (docs/error-estimates.md, "Cross-checks"): the compliance method at 1e-4 of its
+# contact stiffness lets excitation 7's deck rotate 27 % more than Moreau-Jean in the first
+# 4.5 s; the warning names both peaks, exit 0, and 1 under --strict. An unknown method: exit 2.
+soft=("$root/scenes/bridge-exc7.toml" --method compliance --set solver.end_time=4.5
+      --set solver.stiffness_factor=1e-4 --cross-check moreau --out "$tmp/cross")
+expect 0 'warning: cross_check: the peak \|theta\| is 0\.00171 under compliance and 0\.00134 under moreau' \
+  -- run "${soft[@]}"
+check "summary.json records the cross-check" grep -q '"cross_check": {"method": "moreau"' \
+  "$tmp/cross/summary.json"
+expect 1 'strict: 3 warning\(s\)' -- run "${soft[@]}" --strict
+expect 2 'cross-check' -- run "$root/scenes/bridge-exc7.toml" --cross-check rk4 --out "$tmp/x"
 # Every shipped scene, with its own settings, is trusted.
 for s in bouncing-ball impact-oscillator sliding-block rigid-deck-skew rigid-deck-straight bridge-exc7; do
   expect 0 'warnings   0$' -- run "$root/scenes/$s.toml" --out "$tmp/x" --strict

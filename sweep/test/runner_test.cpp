@@ -107,6 +107,41 @@ TEST_CASE("a row equals an independent single run of the same scene") {
   CHECK(std::stod(cell(t, 0, "energy_error")) == result.energy.error);
 }
 
+TEST_CASE("cross_check: the other method's peaks beside each row, read back on resume") {
+  const fs::path dir = scratch("cross");
+  const fs::path design = dir / "d.toml";
+  std::ofstream(design) << "scene = \"" << kScenes << "/bridge-exc5.toml\"\n"
+                        << "set = [\"solver.end_time=3\"]\ncross_check = \"event_driven\"\n"
+                        << "[[factor]]\nkey = \"model.excitation.target_pga\"\nvalues = [1.0]\n";
+  SweepOptions o;
+  o.out = dir / "out";
+  o.progress = false;
+  (void)run_sweep(design, o);
+  const Table t = read_csv(o.out / "results.csv");
+  const std::string first = without_wall_time(o.out / "results.csv");
+  // The same scene run under event-driven by hand, as `nsbridge run --method event_driven`.
+  auto scene = nsb::scene::load_scene(kScenes + "/bridge-exc5.toml",
+                                       {"solver.end_time=3", "model.excitation.target_pga=1.0",
+                                        "solver.method=event_driven"});
+  nsb::integrators::Recorder recorder(*scene.system, 0.0);
+  (void)nsb::integrators::integrate(*scene.system, scene.run, recorder);
+  CHECK(std::stod(cell(t, 0, "cross_check_peak_theta")) == recorder.extremes()[2].magnitude);
+  CHECK(cell(t, 0, "cross_check_status") == "completed");
+  CHECK(cell(t, 0, "cross_check_agrees") == "1");
+  CHECK(!cell(t, 0, "cross_check_peak_theta_error").empty());
+  // The columns sit before wall_s, and a resumed sweep gives the same table.
+  CHECK(t.header.back() == "wall_s");
+  fs::remove(o.out / "results.csv");
+  CHECK(run_sweep(design, o).already_done == 1);
+  CHECK(without_wall_time(o.out / "results.csv") == first);
+  // An unknown method is refused at the key.
+  std::ofstream(design) << "scene = \"" << kScenes << "/bridge-exc5.toml\"\n"
+                        << "cross_check = \"rk4\"\n"
+                        << "[[factor]]\nkey = \"model.excitation.target_pga\"\nvalues = [1.0]\n";
+  CHECK_THROWS_WITH_AS(run_sweep(design, o), doctest::Contains("cross_check: must be one of"),
+                       std::invalid_argument);
+}
+
 TEST_CASE("results.csv does not depend on the number of workers") {
   const fs::path dir = scratch("jobs");
   const fs::path design = dir / "d.toml";
