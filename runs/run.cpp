@@ -55,7 +55,9 @@ bool estimate_errors(const scene::Scene& scene, const integrators::Recorder& his
   if (!plan) return true;
   const double start = thread_cpu_seconds();
   scene::Scene twin = scene::build_scene(scene.table);
-  integrators::Recorder companion_history(*twin.system, integrators::end_time(plan->config) - t0);
+  // The companion carries the same output groups, so that their columns' peaks get errors.
+  integrators::Recorder companion_history(*twin.system, integrators::end_time(plan->config) - t0,
+                                          integrators::OutputGroups::parse(twin.output.groups));
   integrators::RunHooks hooks;
   hooks.stop = run_hooks.stop;
   const double t_end = integrators::end_time(scene.run);
@@ -99,7 +101,8 @@ PreparedRun prepare(const RunRequest& request) {
 
 RunRecord run(PreparedRun prepared, const integrators::Progress& progress) {
   scene::Scene& scene = prepared.scene;
-  integrators::Recorder history(*scene.system, scene.output.sample_dt);
+  integrators::Recorder history(*scene.system, scene.output.sample_dt,
+                                integrators::OutputGroups::parse(scene.output.groups));
   std::optional<LcpDump> dump;
   if (!prepared.dump_lcp.empty()) dump.emplace(prepared.dump_lcp);
   integrators::RunHooks hooks;
