@@ -106,6 +106,9 @@ class Core {
   int n_, m_;
   Matrix minv_;
   Vector q_, u_, f_, acc_;
+  // The smooth force f alone (evaluate() adds the contact forces to f_), kept only when it
+  // has a size: the recorder's output group "forces" reads it (empty otherwise, no work).
+  Vector f_smooth_;
   Matrix K_, C_, Jq_, Ju_;
   std::vector<ContactData> contacts_, probes_;
   Vector lambda_n_, lambda_t_, damping_part_;
@@ -131,9 +134,10 @@ class ComplianceRun {
         n_(core_.dofs()), m_(core_.contacts()),
         closed_(static_cast<std::size_t>(m_), 0), pending_(static_cast<std::size_t>(m_), 0),
         stepper_(core_, 2 * core_.dofs(), options.tolerance, options.tolerance, options.max_step) {
-    // core_.f_ is f at every recorded state: each is evaluated (Core::evaluate) before it is
-    // handed to the recorder.
-    recorder_.watch(&energy_, &core_.f_);
+    // core_.f_smooth_ is f at every recorded state: each is evaluated (Core::evaluate) before
+    // it is handed to the recorder.
+    if (recorder.groups().has(OutputGroup::kForces)) core_.f_smooth_ = Vector::Zero(n_);
+    recorder_.watch(&energy_, &core_.f_smooth_);
     if (recorder.groups().has(OutputGroup::kImpulses)) {
       episode_event_.assign(static_cast<std::size_t>(m_), -1);
       episode_ends_.assign(static_cast<std::size_t>(m_), 0);
