@@ -166,7 +166,7 @@ TEST_CASE("the group impulses: the ball's first impact carries m (1 + e) v under
     CHECK(first.front().kind == (method == "compliance" ? integrators::EventKind::kClose
                                                          : integrators::EventKind::kImpact));
     CHECK(first.front().impulse_normal == doctest::Approx(expected).epsilon(tolerance));
-    const std::string events = events_csv(r);
+    const std::string events = events_csv(r.history);
     CHECK(events.rfind("t,contact,kind,note,impulse_N,impulse_T\n", 0) == 0);
   }
 }
