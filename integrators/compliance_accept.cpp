@@ -32,10 +32,28 @@ bool ComplianceRun::accept_step(double t_new, bool landed, bool close_at_start) 
   return false;
 }
 
+// The impulses of each contact episode (OutputGroup::kImpulses): the integral of the law's
+// forces from the "close" to the "open" (the step in which it opens included: the force is
+// zero once the gap is open), written on the "close" event as it grows.
+void ComplianceRun::add_episode_impulses(double h) {
+  for (int i = 0; i < m_; ++i) {
+    const auto ii = static_cast<std::size_t>(i);
+    if (episode_event_[ii] >= 0) {
+      episode_normal_[i] += impulse_[i];
+      episode_tangent_[i] += 0.5 * h * (lambda_t_start_[i] + core_.lambda_t_[i]);
+      recorder_.set_impulses(static_cast<std::size_t>(episode_event_[ii]), episode_normal_[i],
+                             episode_tangent_[i]);
+      if (episode_ends_[ii]) episode_event_[ii] = -1;
+    }
+    lambda_t_start_[i] = core_.lambda_t_[i];
+  }
+}
+
 StepVerdict ComplianceRun::watch(double h) {
   for (int i = 0; i < m_; ++i) {
     impulse_[i] = 0.5 * h * (lambda_start_[i] + core_.lambda_n_[i]);
   }
+  if (!episode_event_.empty()) add_episode_impulses(h);
   accepted_.t = t_;
   accepted_.h = h;
   const StepVerdict verdict = system_.accept_step(accepted_);

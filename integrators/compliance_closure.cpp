@@ -12,6 +12,13 @@ void ComplianceRun::close_contact(int i, double time) {
   const ContactData& c = core_.contacts_[static_cast<std::size_t>(i)];
   closed_[static_cast<std::size_t>(i)] = 1;
   core_.v_minus_[i] = std::max(-c.gap_rate(core_.u_), options_.min_impact_velocity);
+  if (!episode_event_.empty()) {
+    const auto ii = static_cast<std::size_t>(i);
+    episode_event_[ii] = static_cast<std::ptrdiff_t>(recorder_.events().size());
+    episode_ends_[ii] = 0;
+    episode_normal_[i] = 0.0;
+    episode_tangent_[i] = 0.0;
+  }
   recorder_.event(time, i + 1, EventKind::kClose);
 }
 
@@ -97,6 +104,7 @@ void ComplianceRun::record_openings(double t_new) {
       (core_.gaps_at(t_, x_, t_new, xnew_, mid)[ii].gap_normal > 0.0 ? hi : lo) = mid;
     }
     closed_[ii] = 0;
+    if (!episode_ends_.empty()) episode_ends_[ii] = 1;
     recorder_.event(t_ + hi * h, i + 1, EventKind::kOpen);
   }
 }

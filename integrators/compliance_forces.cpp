@@ -32,6 +32,7 @@ void Core::evaluate(double t, const State& x, bool derivatives,
   q_ = x.head(n_);
   u_ = x.tail(n_);
   sys_.forces(t, q_, u_, f_);
+  if (f_smooth_.size() != 0) f_smooth_ = f_;
   load_contacts(t, data);
   if (derivatives) {
     Jq_.setZero();

@@ -106,6 +106,9 @@ class Core {
   int n_, m_;
   Matrix minv_;
   Vector q_, u_, f_, acc_;
+  // The smooth force f alone (evaluate() adds the contact forces to f_), kept only when it
+  // has a size: the recorder's output group "forces" reads it (empty otherwise, no work).
+  Vector f_smooth_;
   Matrix K_, C_, Jq_, Ju_;
   std::vector<ContactData> contacts_, probes_;
   Vector lambda_n_, lambda_t_, damping_part_;
@@ -130,7 +133,19 @@ class ComplianceRun {
         core_(system, options),
         n_(core_.dofs()), m_(core_.contacts()),
         closed_(static_cast<std::size_t>(m_), 0), pending_(static_cast<std::size_t>(m_), 0),
-        stepper_(core_, 2 * core_.dofs(), options.tolerance, options.tolerance, options.max_step) {}
+        stepper_(core_, 2 * core_.dofs(), options.tolerance, options.tolerance, options.max_step) {
+    // core_.f_smooth_ is f at every recorded state: each is evaluated (Core::evaluate) before
+    // it is handed to the recorder.
+    if (recorder.groups().has(OutputGroup::kForces)) core_.f_smooth_ = Vector::Zero(n_);
+    recorder_.watch(&energy_, &core_.f_smooth_);
+    if (recorder.groups().has(OutputGroup::kImpulses)) {
+      episode_event_.assign(static_cast<std::size_t>(m_), -1);
+      episode_ends_.assign(static_cast<std::size_t>(m_), 0);
+      episode_normal_ = Vector::Zero(m_);
+      episode_tangent_ = Vector::Zero(m_);
+      lambda_t_start_ = Vector::Zero(m_);
+    }
+  }
 
   // Reads stop (may be nullptr) at every accepted step: RunBookkeeping::watch.
   void watch(const std::atomic<bool>* stop) { book_.watch(stop); }
@@ -218,6 +233,14 @@ class ComplianceRun {
   Vector momentum_;
   // The step's normal impulses [kN s] and lambda_N at the step's start [kN] (watch()).
   Vector impulse_, lambda_start_;
+  // OutputGroup::kImpulses (empty otherwise): per contact, the index in the recorder's events
+  // of the "close" that began its contact episode (-1: none), whether the episode ended in
+  // the step being accepted, the episode's normal and tangential impulses so far [kN s]
+  // (trapezoidal rule over the accepted steps, as impulse_) and lambda_T at the step's start.
+  std::vector<std::ptrdiff_t> episode_event_;
+  std::vector<char> episode_ends_;
+  Vector episode_normal_, episode_tangent_, lambda_t_start_;
+  void add_episode_impulses(double h);
   Vector start_gap_, start_rate_;  // gaps [m] and gap rates [m/s] at t_ (remember_start())
   AcceptedStep accepted_;
 };

@@ -38,6 +38,8 @@ EventDriven::EventDriven(System& system, const EventDrivenOptions& options, Reco
       book_(EventDrivenOptions::kMethod, progress, kProgressInterval),
       roots_(options.event_time_tolerance) {
   book_.watch(hooks.stop);
+  // Every recorded state passes through indicators() (f_ there) and balance_error() (energy_).
+  rec_.watch(&energy_, &f_);
   n_ = sys_.dofs();
   m_ = sys_.contacts();
   const double tol = opt_.tolerance;

@@ -220,8 +220,12 @@ bool EventDriven::impact_problem(double t, Vector& u, bool forced, int trigger_c
   u_plus_ = u;
   stage_.apply(u_plus_);
   book_stage_impulses(touching_, u, u_plus_);
-  for (int i : touching_) {
-    if (cbuf_[idx(i)].gap_rate(u) < -closing_velocity_) rec_.event(t, i + 1, EventKind::kImpact);
+  for (std::size_t j = 0; j < touching_.size(); ++j) {
+    const int i = touching_[j];
+    const int jj = static_cast<int>(j);
+    if (cbuf_[idx(i)].gap_rate(u) < -closing_velocity_) {
+      rec_.impact(t, i + 1, stage_.lambda_n(jj), stage_.lambda_t(jj));
+    }
   }
   u = u_plus_;
   return true;

@@ -180,6 +180,8 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
   options.validate();
   book_.watch(hooks.stop);
   checked_inverse_mass(system, "moreau_jean");
+  // f_k_ holds f(t_k, q_k, u_k) at every recorded state (accept() evaluates it at t_k+1).
+  recorder_.watch(&energy_, &f_k_);
   t_ = system.initial_time();
   q_ = system.initial_position();
   u_ = system.initial_velocity();
@@ -532,7 +534,7 @@ void MoreauJean::update_events(double t1) {
       // A resting contact under a moving obstacle meets a small approach velocity every
       // step (the obstacle's acceleration times h): that is contact, not an impact.
       if (before == ContactState::kOpen && contacts_[ui].gap_rate(u_) < -v_tol) {
-        recorder_.event(t1, i + 1, EventKind::kImpact);
+        recorder_.impact(t1, i + 1, lambda_n_[i], lambda_t_[i]);
       }
       if (resting) {
         const double slip = c.slip_rate(u_new_);

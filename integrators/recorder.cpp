@@ -70,8 +70,66 @@ void EnergyBalance::close() {
   error = std::abs(lhs - rhs) / scale;
 }
 
-Recorder::Recorder(const System& system, double sample_dt)
-    : ndof_(system.dofs()), ncontacts_(system.contacts()), sample_dt_(sample_dt) {
+std::string OutputGroups::names() const {
+  std::string out;
+  for (const auto& n : kOutputGroupNames) {
+    if (!has(n.value)) continue;
+    if (!out.empty()) out += ',';
+    out += n.name;
+  }
+  return out;
+}
+
+namespace {
+
+// Levenshtein distance, for the hint of an unknown group name.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+OutputGroups OutputGroups::parse(std::string_view list) {
+  OutputGroups g;
+  while (!list.empty()) {
+    const std::size_t comma = list.find(',');
+    std::string_view name = list.substr(0, comma);
+    list = comma == std::string_view::npos ? std::string_view{} : list.substr(comma + 1);
+    while (!name.empty() && name.front() == ' ') name.remove_prefix(1);
+    while (!name.empty() && name.back() == ' ') name.remove_suffix(1);
+    if (name.empty()) continue;
+    if (const auto v = config::value_of(kOutputGroupNames, name)) {
+      g.add(*v);
+      continue;
+    }
+    std::string allowed, best;
+    std::size_t best_distance = std::max<std::size_t>(1, name.size() / 3) + 1;
+    for (const auto& n : kOutputGroupNames) {
+      allowed += (allowed.empty() ? "" : ", ") + std::string(n.name);
+      const std::size_t d = edit_distance(name, n.name);
+      if (d < best_distance) best = n.name, best_distance = d;
+    }
+    throw std::invalid_argument("unknown output group '" + std::string(name) + "'" +
+                                (best.empty() ? "" : "; did you mean `" + best + "`?") +
+                                " (allowed: " + allowed + ")");
+  }
+  return g;
+}
+
+Recorder::Recorder(const System& system, double sample_dt, OutputGroups groups)
+    : system_(&system), groups_(groups), ndof_(system.dofs()), ncontacts_(system.contacts()),
+      sample_dt_(sample_dt) {
   if (!(sample_dt >= 0.0) || !std::isfinite(sample_dt)) {
     throw std::invalid_argument("output.sample_dt must be a finite number >= 0 [s]");
   }
@@ -88,9 +146,81 @@ Recorder::Recorder(const System& system, double sample_dt)
     column_info_.push_back({"lambdaT" + number, ColumnKind::kTangentForce, c});
   }
   column_info_.push_back({"energy_error", ColumnKind::kEnergyError, 0});
+  int g = 0;
+  auto add_group_column = [&](std::string name) {
+    column_info_.push_back({std::move(name), ColumnKind::kGroup, g++});
+  };
+  for (OutputGroup sg : {OutputGroup::kBents, OutputGroup::kRelative, OutputGroup::kGround}) {
+    std::vector<std::string> names;
+    if (groups_.has(sg)) names = system.output_columns(sg);
+    system_columns_.push_back(names.size());
+    for (auto& n : names) add_group_column(std::move(n));
+  }
+  if (groups_.has(OutputGroup::kEnergy)) {
+    for (const char* n : {"energy_kinetic", "energy_elastic", "energy_hysteretic",
+                          "energy_damping", "energy_contact", "energy_input"}) {
+      add_group_column(n);
+    }
+  }
+  if (groups_.has(OutputGroup::kForces)) {
+    for (int c = 0; c < ncontacts_; ++c) {
+      add_group_column("fN" + std::to_string(c + 1));
+      add_group_column("fT" + std::to_string(c + 1));
+    }
+    for (const auto& n : system.coordinate_names()) add_group_column("fsmooth_" + n);
+    for (const auto& n : system.coordinate_names()) add_group_column("fcontact_" + n);
+    last_impact_.assign(static_cast<std::size_t>(ncontacts_),
+                        std::numeric_limits<double>::quiet_NaN());
+    group_contacts_ = system.make_contact_buffer();
+    mass_ = system.mass();
+  }
+  group_values_.assign(static_cast<std::size_t>(g), std::numeric_limits<double>::quiet_NaN());
   for (const auto& c : column_info_) columns_.push_back(c.name);
   extremes_.resize(columns_.size() - 1);
   gap_until_removal_.resize(static_cast<std::size_t>(ncontacts_));
+}
+
+void Recorder::evaluate_groups(double t, const Vector& q, const Vector& u, const Vector& lambda_n,
+                               const Vector& lambda_t) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  double* out = group_values_.data();
+  const OutputGroup system_groups[] = {OutputGroup::kBents, OutputGroup::kRelative,
+                                       OutputGroup::kGround};
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (system_columns_[k] == 0) continue;
+    system_->output_values(system_groups[k], t, q, u, out);
+    out += system_columns_[k];
+  }
+  if (groups_.has(OutputGroup::kEnergy)) {
+    // The balance's terms grouped so that (docs/outputs.md, "energy")
+    //   kinetic + elastic + hysteretic + damping + contact - input = lhs - rhs
+    // of EnergyBalance, whose magnitude is energy_error times its scale.
+    const EnergyBalance* e = energy_;
+    *out++ = e ? e->kinetic : kNaN;
+    *out++ = e ? e->stored : kNaN;
+    *out++ = e ? e->hysteretic : kNaN;
+    *out++ = e ? e->damping : kNaN;
+    *out++ = e ? -(e->impacts + e->friction) : kNaN;
+    *out++ = e ? e->initial + e->external + e->ground : kNaN;
+  }
+  if (groups_.has(OutputGroup::kForces)) {
+    // The contact force without the impulsive part: zero at a contact whose impact ended at
+    // this state (Moreau-Jean's step impulse then holds a percussion; events.csv carries it).
+    Vector fc = Vector::Zero(ndof_);
+    system_->contact_data(t, q, u, group_contacts_);
+    for (int i = 0; i < ncontacts_; ++i) {
+      const auto ci = static_cast<std::size_t>(i);
+      const bool impulsive = last_impact_[ci] == t;
+      const double fn = impulsive ? 0.0 : (i < lambda_n.size() ? lambda_n[i] : 0.0);
+      const double ft = impulsive ? 0.0 : (i < lambda_t.size() ? lambda_t[i] : 0.0);
+      *out++ = fn;
+      *out++ = ft;
+      if (fn != 0.0) fc += fn * group_contacts_[ci].w_normal;
+      if (ft != 0.0) fc += ft * group_contacts_[ci].w_tangent;
+    }
+    for (int k = 0; k < ndof_; ++k) *out++ = smooth_force_ ? (*smooth_force_)[k] : kNaN;
+    for (int k = 0; k < ndof_; ++k) *out++ = fc[k];
+  }
 }
 
 namespace {
@@ -113,21 +243,35 @@ void write_row(std::vector<double>& data, int ndof, int ncontacts, double t, con
 
 }  // namespace
 
+void Recorder::record(double t, const Vector& q, const Vector& u,
+                      const std::vector<ContactData>& c, const Vector& lambda_n,
+                      const Vector& lambda_t, double energy_error, bool evaluate) {
+  write_row(data_, ndof_, ncontacts_, t, q, u, c, lambda_n, lambda_t, energy_error);
+  if (!group_values_.empty()) {
+    if (evaluate) evaluate_groups(t, q, u, lambda_n, lambda_t);
+    data_.insert(data_.end(), group_values_.begin(), group_values_.end());
+  }
+}
+
+void Recorder::advance_sampling(double t) {
+  next_sample_ = (sample_dt_ > 0.0) ? (std::floor(t / sample_dt_ + 1e-9) + 1.0) * sample_dt_
+                                    : -1e300;
+}
+
 void Recorder::sample(double t, const Vector& q, const Vector& u,
                       const std::vector<ContactData>& c, const Vector& lambda_n,
                       const Vector& lambda_t, double energy_error) {
   // A small slack keeps round-off in t from skipping a sample.
-  if (t + 1e-9 * std::max(1.0, sample_dt_) < next_sample_) return;
-  write_row(data_, ndof_, ncontacts_, t, q, u, c, lambda_n, lambda_t, energy_error);
-  next_sample_ = (sample_dt_ > 0.0) ? (std::floor(t / sample_dt_ + 1e-9) + 1.0) * sample_dt_
-                                    : -1e300;
+  if (!due(t)) return;
+  record(t, q, u, c, lambda_n, lambda_t, energy_error, true);
+  advance_sampling(t);
 }
 
 void Recorder::sample_now(double t, const Vector& q, const Vector& u,
                           const std::vector<ContactData>& c, const Vector& lambda_n,
                           const Vector& lambda_t, double energy_error) {
-  write_row(data_, ndof_, ncontacts_, t, q, u, c, lambda_n, lambda_t, energy_error);
   observe(t, q, u, c, lambda_n, lambda_t, energy_error);
+  record(t, q, u, c, lambda_n, lambda_t, energy_error, false);
 }
 
 void Recorder::observe(double t, const Vector& q, const Vector& u,
@@ -145,11 +289,31 @@ void Recorder::observe(double t, const Vector& q, const Vector& u,
     extremes_[k++].fold(i < lambda_n.size() ? lambda_n[i] : 0.0, t);
     extremes_[k++].fold(i < lambda_t.size() ? lambda_t[i] : 0.0, t);
   }
-  extremes_[k].fold(energy_error, t);
+  extremes_[k++].fold(energy_error, t);
+  if (group_values_.empty()) return;
+  evaluate_groups(t, q, u, lambda_n, lambda_t);
+  for (double v : group_values_) extremes_[k++].fold(v, t);
 }
 
 void Recorder::event(double t, int contact, EventKind kind, std::string note) {
   events_.push_back(Event{t, contact, kind, std::move(note)});
+}
+
+void Recorder::impact(double t, int contact, double impulse_normal, double impulse_tangent) {
+  Event e{t, contact, EventKind::kImpact, {}};
+  if (groups_.has(OutputGroup::kImpulses)) {
+    e.impulse_normal = impulse_normal;
+    e.impulse_tangent = impulse_tangent;
+  }
+  if (!last_impact_.empty() && contact >= 1) {
+    last_impact_[static_cast<std::size_t>(contact - 1)] = t;
+  }
+  events_.push_back(std::move(e));
+}
+
+void Recorder::set_impulses(std::size_t index, double impulse_normal, double impulse_tangent) {
+  events_.at(index).impulse_normal = impulse_normal;
+  events_.at(index).impulse_tangent = impulse_tangent;
 }
 
 std::size_t Recorder::column(std::string_view name) const {

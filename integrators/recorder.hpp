@@ -45,6 +45,37 @@ struct Event {
   int contact = 0;    // 1-based contact index; 0 when the event concerns no single contact
   EventKind kind = EventKind::kImpact;
   std::string note;   // free text, used by warnings
+  // The impulses of an impact [kN s] (OutputGroup::kImpulses, docs/outputs.md, "impulses");
+  // NaN for every other event and when the group is not asked for.
+  double impulse_normal = std::numeric_limits<double>::quiet_NaN();
+  double impulse_tangent = std::numeric_limits<double>::quiet_NaN();
+};
+
+// The one list of output group names (`[output] groups`), in the order their columns follow
+// energy_error in history.csv (kImpulses adds none: its columns are events.csv's).
+inline constexpr std::array<config::Name<OutputGroup>, 6> kOutputGroupNames{
+    {{"bents", OutputGroup::kBents},
+     {"relative", OutputGroup::kRelative},
+     {"ground", OutputGroup::kGround},
+     {"energy", OutputGroup::kEnergy},
+     {"forces", OutputGroup::kForces},
+     {"impulses", OutputGroup::kImpulses}}};
+// The groups a run asks for, a set of OutputGroup.
+class OutputGroups {
+ public:
+  OutputGroups() = default;
+  bool has(OutputGroup g) const { return (bits_ & bit(g)) != 0; }
+  bool empty() const { return bits_ == 0; }
+  void add(OutputGroup g) { bits_ |= bit(g); }
+  // The names of the groups in the order of kOutputGroupNames, comma-separated.
+  std::string names() const;
+  // The set of a comma-separated list of names (spaces ignored, empty: none); throws
+  // std::invalid_argument "unknown output group 'x'; did you mean `y`? (allowed: ...)".
+  static OutputGroups parse(std::string_view list);
+
+ private:
+  static unsigned bit(OutputGroup g) { return 1U << static_cast<unsigned>(g); }
+  unsigned bits_ = 0;
 };
 
 // Energy balance [kJ], accumulated from t0:
@@ -154,6 +185,7 @@ enum class ColumnKind {
   kNormalForce,  // lambda_N of a contact [kN]
   kTangentForce, // lambda_T of a contact [kN]
   kEnergyError,  // the relative energy-balance error
+  kGroup,        // a column of an output group (OutputGroups), after energy_error
 };
 struct Column {
   std::string name;
@@ -184,7 +216,8 @@ struct StepExtremes {
 // Collects the time history at a fixed sampling interval, every event, and the extremes of
 // every column over every accepted step, recorded or not.
 // Columns: t, <coordinate names>, <velocity names>, then per contact i = 1..m
-// gN<i>, lambdaN<i>, lambdaT<i>, then energy_error.
+// gN<i>, lambdaN<i>, lambdaT<i>, then energy_error, then the columns of the output groups
+// asked for (docs/outputs.md), group by group in the order of kOutputGroupNames.
 //
 // Every integrator hands every accepted step's state (the initial and the final state
 // included) to step(), observe() or sample_now(), so the peaks of a run (extremes()) are those
@@ -193,8 +226,20 @@ struct StepExtremes {
 // do not count.
 class Recorder {
  public:
-  // sample_dt [s] >= 0; 0 records every call to sample().
-  Recorder(const System& system, double sample_dt);
+  // sample_dt [s] >= 0; 0 records every call to sample(). groups: the optional columns
+  // (none: the default files, and no work per step for them).
+  Recorder(const System& system, double sample_dt, OutputGroups groups = {});
+
+  // What the groups kEnergy and kForces read at every recorded state, kept up to date by the
+  // integrator (both must hold the values at the state handed to step(), observe(),
+  // sample() or sample_now(), and outlive the recorder's use): the run's energy balance
+  // (closed at that state) and the smooth generalized force f(t, q, u) there. Until an
+  // integrator calls it, those columns are NaN.
+  void watch(const EnergyBalance* energy, const Vector* smooth_force) {
+    energy_ = energy;
+    smooth_force_ = smooth_force;
+  }
+  const OutputGroups& groups() const { return groups_; }
 
   // Records a row if t has reached the next sampling time (always the first call).
   // lambda_n, lambda_t are contact *forces* [kN] (impulse / step for time-stepping).
@@ -212,9 +257,17 @@ class Recorder {
   void step(double t, const Vector& q, const Vector& u, const std::vector<ContactData>& c,
             const Vector& lambda_n, const Vector& lambda_t, double energy_error) {
     observe(t, q, u, c, lambda_n, lambda_t, energy_error);
-    sample(t, q, u, c, lambda_n, lambda_t, energy_error);
+    if (!due(t)) return;
+    record(t, q, u, c, lambda_n, lambda_t, energy_error, false);
+    advance_sampling(t);
   }
   void event(double t, int contact, EventKind kind, std::string note = {});
+  // An impact at a contact (1-based) with its normal and tangential impulse [kN s]; the
+  // impulses are kept only under OutputGroup::kImpulses.
+  void impact(double t, int contact, double impulse_normal, double impulse_tangent);
+  // Sets the impulses of events()[index] (an event recorded before, whose impulses are known
+  // only later: a compliance contact episode's, at its end).
+  void set_impulses(std::size_t index, double impulse_normal, double impulse_tangent);
   // True when sample(t, ...) would record a row, so that an integrator computes what only a
   // recorded row needs (e.g. the energy balance) only then. Same rule as sample().
   bool due(double t) const { return !(t + 1e-9 * std::max(1.0, sample_dt_) < next_sample_); }
@@ -233,6 +286,9 @@ class Recorder {
   // One column as a vector.
   std::vector<double> series(std::string_view name) const;
   const std::vector<Event>& events() const { return events_; }
+  // The mass matrix of the system, kept under OutputGroup::kForces (summary.json "mass");
+  // empty otherwise.
+  const Matrix& mass() const { return mass_; }
   // Contact i (0-based) is gone from t on (System::accept_step removed it: a broken shear
   // key); its gap columns after t are no contact's (record_removed_contacts).
   void remove_contact(int i, double t) { removed_at_[static_cast<std::size_t>(i)] = t; }
@@ -249,6 +305,25 @@ class Recorder {
   }
 
  private:
+  // The output groups' values at a state into group_values_ (size: the group columns).
+  void evaluate_groups(double t, const Vector& q, const Vector& u, const Vector& lambda_n,
+                       const Vector& lambda_t);
+  // Appends a row; evaluate: the group values are not yet those of this state (observe()
+  // evaluated them otherwise).
+  void record(double t, const Vector& q, const Vector& u, const std::vector<ContactData>& c,
+              const Vector& lambda_n, const Vector& lambda_t, double energy_error, bool evaluate);
+  // The next sampling time after a row sampled at t (sample(), step(); not sample_now()).
+  void advance_sampling(double t);
+
+  const System* system_ = nullptr;
+  OutputGroups groups_;
+  const EnergyBalance* energy_ = nullptr;
+  const Vector* smooth_force_ = nullptr;
+  std::vector<std::size_t> system_columns_;  // per system group (bents, relative, ground)
+  std::vector<double> group_values_;         // the group columns of the state last evaluated
+  std::vector<double> last_impact_;          // per contact: time of its last impact [s]
+  std::vector<ContactData> group_contacts_;  // kForces: the full contact data at a state
+  Matrix mass_;                              // kForces: M
   int ndof_ = 0;
   int ncontacts_ = 0;
   double sample_dt_ = 0.0;

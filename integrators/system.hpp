@@ -23,6 +23,18 @@ namespace nsb::integrators {
 using Matrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
 
+// The optional groups of history columns a run may ask for (`[output] groups`,
+// docs/outputs.md). Without any, history.csv and events.csv are the default files and the
+// recorder does no work for them.
+enum class OutputGroup {
+  kBents,     // per bent: deformation and force, both directions (the system's)
+  kRelative,  // each body's centre and deck corners relative to the ground (the system's)
+  kGround,    // the supports' ground displacement, velocity and acceleration (the system's)
+  kEnergy,    // the energy balance's components over time (the recorder's)
+  kForces,    // contact forces without the impulsive part, and the generalized forces
+  kImpulses,  // events.csv: each impact's normal and tangential impulse
+};
+
 // What a system says about one potential contact at (t, q, u).
 struct ContactData {
   double gap_normal = 0.0;     // g_N [m]; > 0 open, < 0 penetrated
@@ -141,6 +153,15 @@ class System {
   virtual StepVerdict accept_step(const AcceptedStep& /*step*/) { return StepVerdict::kContinue; }
   // The limit states as they stand (after a run: over the whole run). The default: none.
   virtual std::vector<LimitStateValue> limit_states() const { return {}; }
+
+  // The history columns the system adds for an output group (kBents, kRelative, kGround; none
+  // for the others), and their values at a recorded state (t, q, u) written to
+  // out[0, output_columns(g).size()). Called after commit(), so the committed internal state
+  // is the state of the last accepted step. Must not change what the integration computes.
+  // The default adds none.
+  virtual std::vector<std::string> output_columns(OutputGroup /*g*/) const { return {}; }
+  virtual void output_values(OutputGroup /*g*/, double /*t*/, const Vector& /*q*/,
+                             const Vector& /*u*/, double* /*out*/) const {}
 
   // Energy bookkeeping at the trial state.
   virtual PowerTerms power(double t, const Vector& q, const Vector& u) const = 0;

@@ -111,6 +111,23 @@ class Assembly final : public integrators::SystemBase {
   // stored: elastic energy of the bents; hysteretic: dissipated by them (trial state).
   integrators::EnergyState energy(double t, const integrators::Vector& q) const override;
 
+  // The output groups' columns (models/assembly_outputs.cpp, docs/outputs.md):
+  //   kBents: per bent i (1-based, in the order of Parts::bents) bent<i>_ux, bent<i>_uy (its
+  //     deformation: the body's displacement at the bent relative to the bent's ground, as
+  //     its springs see it) and bent<i>_fx, bent<i>_fy (the force its springs exert on the
+  //     body, -F of its Takeda springs at the committed state, moved to the row's deformation);
+  //   kRelative: per body b x<b>_rel, y<b>_rel (its centre relative to the reference ground
+  //     displacement) and corner<b>_<k>_x_rel, corner<b>_<k>_y_rel, k = 1..4 in the order of
+  //     models/deck_geometry.hpp (left end +W/2, left end -W/2, right end +W/2, right end -W/2);
+  //   kGround: ground_ux, ground_uy, ground_vx, ground_vy, ground_ax, ground_ay of the
+  //     reference support (reference_ground()).
+  std::vector<std::string> output_columns(integrators::OutputGroup g) const override;
+  void output_values(integrators::OutputGroup g, double t, const integrators::Vector& q,
+                     const integrators::Vector& u, double* out) const override;
+  // The support whose motion the groups kRelative and kGround report: the first bent's with a
+  // ground motion, else the first prescribed body's (the left seat), else none (zero).
+  std::pair<parts::Motion, parts::Motion> reference_ground() const;
+
   // The shear keys (models/shear_keys.cpp): watch_keys updates each key's peak mean force
   // over the accepted step (normal impulse / h) and breaks it when that exceeds its capacity
   // (kContactsRemoved: the key's contact is far from then on); key_limit_states() reports one

@@ -351,7 +351,9 @@ std::string history_csv(const integrators::Recorder& history) {
 }
 
 std::string events_csv(const integrators::Recorder& history) {
-  std::string out = "t,contact,kind,note\n";
+  // Under the group "impulses", two more columns: an impact's impulses, empty elsewhere.
+  const bool impulses = history.groups().has(integrators::OutputGroup::kImpulses);
+  std::string out = impulses ? "t,contact,kind,note,impulse_N,impulse_T\n" : "t,contact,kind,note\n";
   for (const integrators::Event& e : history.events()) {
     io::append_csv_number(out, e.t);
     out += ',';
@@ -360,6 +362,12 @@ std::string events_csv(const integrators::Recorder& history) {
     out += integrators::to_string(e.kind);
     out += ',';
     out += io::csv_quote(e.note);
+    if (impulses) {
+      out += ',';
+      io::append_csv_number(out, e.impulse_normal);
+      out += ',';
+      io::append_csv_number(out, e.impulse_tangent);
+    }
     out += '\n';
   }
   return out;
@@ -387,6 +395,22 @@ std::string summary_json(const RunRecord& record) {
   if (!record.digest.cross_check.method.empty()) {
     j.o += ",\n";
     write_cross_check(j, record.digest);
+  }
+  // Under the group "forces": the mass matrix, row by row, for the equilibrium check from
+  // the files (docs/outputs.md, "forces").
+  if (const auto& m = record.history.mass(); m.size() > 0) {
+    j.o += ",\n";
+    j.key("mass");
+    j.o += "[";
+    for (Eigen::Index r = 0; r < m.rows(); ++r) {
+      j.o += r ? ", [" : "[";
+      for (Eigen::Index c = 0; c < m.cols(); ++c) {
+        if (c) j.o += ", ";
+        io::append_json_number(j.o, m(r, c));
+      }
+      j.o += "]";
+    }
+    j.o += "]";
   }
   j.o += "\n}\n";
   return std::move(j.o);

@@ -74,7 +74,9 @@ bool estimate_errors(const scene::Scene& scene, const integrators::Recorder& his
   if (!plan) return true;
   const double start = thread_cpu_seconds();
   scene::Scene twin = scene::build_scene(scene.table);
-  integrators::Recorder companion_history(*twin.system, integrators::end_time(plan->config) - t0);
+  // The companion carries the same output groups, so that their columns' peaks get errors.
+  integrators::Recorder companion_history(*twin.system, integrators::end_time(plan->config) - t0,
+                                          integrators::OutputGroups::parse(twin.output.groups));
   integrators::RunHooks hooks;
   hooks.stop = run_hooks.stop;
   const double t_end = integrators::end_time(scene.run);
@@ -102,7 +104,8 @@ struct Attempt {
 
 Attempt integrate_once(scene::Scene& scene, const integrators::Progress& progress,
                        const integrators::RunHooks& hooks, LcpDump* dump) {
-  integrators::Recorder history(*scene.system, scene.output.sample_dt);
+  integrators::Recorder history(*scene.system, scene.output.sample_dt,
+                                integrators::OutputGroups::parse(scene.output.groups));
   const double start = thread_cpu_seconds();
   integrators::RunResult result =
       integrators::integrate(*scene.system, scene.run, history, progress, hooks);

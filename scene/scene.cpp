@@ -50,6 +50,30 @@ toml::table parse_scene_file(const fs::path& file, const Source& ctx) {
 }
 
 // [model] kind, which must be present.
+// [output] groups: an array of group names (or, from an override, one string of names
+// separated by commas), checked against integrators::kOutputGroupNames; the canonical list.
+std::string read_output_groups(const Section& output) {
+  const toml::node* node = output.table().get("groups");
+  if (node == nullptr) return {};
+  std::string list;
+  if (const toml::array* a = node->as_array()) {
+    for (const toml::node& e : *a) {
+      const auto name = e.value<std::string>();
+      if (!name) output.fail("groups", "must be an array of group names (strings)");
+      list += (list.empty() ? "" : ",") + *name;
+    }
+  } else if (const auto text = node->value<std::string>()) {
+    list = *text;
+  } else {
+    output.fail("groups", "must be an array of group names (strings)");
+  }
+  try {
+    return integrators::OutputGroups::parse(list).names();
+  } catch (const std::invalid_argument& e) {
+    output.fail("groups", e.what());
+  }
+}
+
 std::string read_kind(const Section& m) {
   if (!m.has("kind")) {
     std::string list;
@@ -110,7 +134,10 @@ Scene build_scene(const SceneTable& source) {
   scene.kind = read_kind(m);
   scene.run = read_solver(solver, scene.estimate);
   output.only(keys_of(OutputSettings::fields()));
-  output.read_all(OutputSettings::fields(), scene.output);
+  for (const auto& f : OutputSettings::fields()) {
+    if (f.key != "groups") output.read(f, scene.output);
+  }
+  scene.output.groups = read_output_groups(output);
 
   if (scene.kind == "bridge") {
     BridgeScene bridge = build_bridge(m);

@@ -108,6 +108,9 @@ std::span<const c::Field<OutputSettings>> OutputSettings::fields() {
   static const c::Field<S> f[] = {
       c::number<&S::sample_dt>("sample_dt", "s", c::non_negative(),
                                "sampling interval of history.csv; 0 records every step"),
+      c::text<&S::groups>("groups",
+                          "optional column groups, an array of names: bents, relative, ground, "
+                          "energy, forces, impulses (docs/outputs.md); [] the default files"),
   };
   return f;
 }

@@ -45,6 +45,9 @@ struct EstimateSettings {
 // [output]
 struct OutputSettings {
   double sample_dt = 0.0;  // sampling interval of the history [s], >= 0; 0 = every step
+  // The optional output groups (integrators::kOutputGroupNames), comma-separated in the order
+  // of that list; empty: the default files (docs/outputs.md, "Optional groups").
+  std::string groups;
   static std::span<const config::Field<OutputSettings>> fields();
   void validate() const;   // throws std::invalid_argument naming the key
 };

@@ -505,3 +505,12 @@ TEST_CASE("an unknown [solver] key names every key the methods declare") {
                     "event_velocity_tolerance, tolerance, event_time_tolerance"));
   CHECK(contains(e, "contact_stiffness, stiffness_factor, damping_law"));
 }
+
+TEST_CASE("[output] groups: names checked at the key, with the closest name") {
+  CHECK(error_of("groups.toml", kBall + "[output]\ngroups = [\"energy\", \"forces\"]\n").empty());
+  CHECK(contains(error_of("groups2.toml", kBall + "[output]\ngroups = [\"energie\"]\n"),
+                 "groups2.toml:7:10: output.groups: unknown output group 'energie'; did you mean "
+                 "`energy`? (allowed: bents, relative, ground, energy, forces, impulses)"));
+  CHECK(contains(error_of("groups3.toml", kBall + "[output]\ngroups = [1]\n"),
+                 "groups3.toml:7:10: output.groups: must be an array of group names"));
+}
