@@ -90,13 +90,35 @@ void Assembly::output_values(OutputGroup g, double t, const integrators::Vector&
       for (std::size_t j = 0; j < parts_.bents.size(); ++j) {
         const BentState& b = bents_[bent_slot_[j]];
         const int o = b.offset;
-        // The deformation its springs see (forces_of), and the force they exert on the body.
-        const double dx = q(o) - motions_.value(b.ground_x).d;
-        const double dy = q(o + 1) + b.position * q(o + 2) - motions_.value(b.ground_y).d;
-        *out++ = dx;
-        *out++ = dy;
-        *out++ = -spring_force(b.x, dx);
-        *out++ = -spring_force(b.y, dy);
+        const double gx = motions_.value(b.ground_x).d, gy = motions_.value(b.ground_y).d;
+        if (!b.general) {
+          // The deformation its springs see (forces_of), and the force they exert on the body.
+          const double dx = q(o) - gx;
+          const double dy = q(o + 1) + b.position * q(o + 2) - gy;
+          *out++ = dx;
+          *out++ = dy;
+          *out++ = -spring_force(b.x, dx);
+          *out++ = -spring_force(b.y, dy);
+          continue;
+        }
+        // A bent with columns, in its own axes (normal to its line and along it): the mean of
+        // its columns' deformations and the sum of their forces, so that force against
+        // deformation is the bent's loop (equal columns deform alike without twist).
+        const std::size_t n = bent_columns_[j];
+        double dx = 0.0, dy = 0.0, fx = 0.0, fy = 0.0;
+        for (std::size_t c = 0; c < n; ++c) {
+          const BentState& column = bents_[bent_slot_[j] + c];
+          const double cx = column.deformation_x(q, o, gx, gy);
+          const double cy = column.deformation_y(q, o, gx, gy);
+          dx += cx;
+          dy += cy;
+          fx += spring_force(column.x, cx);
+          fy += spring_force(column.y, cy);
+        }
+        *out++ = dx / static_cast<double>(n);
+        *out++ = dy / static_cast<double>(n);
+        *out++ = -fx;
+        *out++ = -fy;
       }
       break;
     }
