@@ -3,6 +3,7 @@
 
     maps.py plot OUT    one map per sweep OUT/<map>/ : OUT/<map>.csv and OUT/<map>.{png,svg}
     maps.py check OUT [--energy-threshold E] [--penetration-threshold P]
+                      [--compliance-penetration-threshold C]
 
 Every point of a map is one run of `nsbridge sweep`; its numbers come from the sweep's
 results.csv (status, energy_error, max_penetration, lcp_fallbacks) and the run's summary.json
@@ -14,7 +15,8 @@ A point is untrustworthy when (docs/cli.md, "Warnings"; runs::TrustLimits):
   pen      a rigid-contact method (Moreau-Jean, event-driven) lets a contact penetrate deeper
            than P (default 0.01) of its range of gaps over the run, and deeper than 1e-9 m
            (the round-off of a closed gap); the compliance method's penetration is its Hertz
-           deformation and is not a violation;
+           deformation, a violation only when it exceeds C (default 0.5) of the contact's gap
+           at t0 (history.csv's first row; a contact closed at t0 is not checked);
   failed   the status is not completed or completed_with_fallbacks (diverged, stalled,
            contact_unsolved, rejected).
 The criteria are computed here from the run's numbers, independently of runs/trust.cpp; the
@@ -56,6 +58,25 @@ def penetration_share(summary):
     return share
 
 
+def compliance_penetration_share(summary, history_file):
+    """Largest depth / gap at t0 over the contacts open at t0, 0 when none or no history."""
+    if not os.path.exists(history_file):
+        return 0.0
+    with open(history_file, newline="") as f:
+        reader = csv.reader(f)
+        header = next(reader, [])
+        first = next(reader, [])
+    share = 0.0
+    for name, value in zip(header, first):
+        peak = summary.get("peaks", {}).get(name)
+        if not name.startswith("gN") or peak is None:
+            continue
+        gap = number(value)
+        if gap > ROUNDOFF_DEPTH:
+            share = max(share, -peak["min"] / gap)
+    return share
+
+
 def load_map(folder, limits):
     """The points of one sweep folder: dicts with the axes, the numbers and the verdicts."""
     with open(os.path.join(folder, "results.csv"), newline="") as f:
@@ -79,6 +100,10 @@ def load_map(folder, limits):
         if r["status"] != "rejected" and not (math.isfinite(energy) and energy <= limits.energy):
             reasons.append("energy")
         if method != "compliance" and share > limits.penetration:
+            reasons.append("pen")
+        if method == "compliance" and compliance_penetration_share(
+                summary, os.path.join(folder, "runs", r["run"], "history.csv")) > \
+                limits.compliance_penetration:
             reasons.append("pen")
         if r["status"] not in SUCCEEDED:
             reasons.append("failed")
@@ -243,6 +268,8 @@ def main():
     ap.add_argument("out", help="the folder of the sweeps (benchmarks/stability/run.sh OUT)")
     ap.add_argument("--energy-threshold", dest="energy", type=float, default=0.01)
     ap.add_argument("--penetration-threshold", dest="penetration", type=float, default=0.01)
+    ap.add_argument("--compliance-penetration-threshold", dest="compliance_penetration",
+                    type=float, default=0.5)
     LIMITS = ap.parse_args()
     if LIMITS.action == "plot":
         plot(LIMITS.out)
