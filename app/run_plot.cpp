@@ -484,7 +484,9 @@ void contact_panels(const RunFolder& run, const Columns& cols, const std::string
 std::vector<Panel> response_panels(const RunFolder& run, const Columns& cols) {
   std::vector<Panel> panels;
   body_panels(cols, panels);
-  contact_panels(run, cols, "lambdaN", "normal contact force", "kN", panels);
+  // Gaps rather than forces: a sampled row rarely holds an impact (an impulse within one step),
+  // while the gap shows every closing, how near and how deep, under every method.
+  contact_panels(run, cols, "gN", "normal gap", "m", panels);
   if (panels.empty()) {
     throw InputError(run.history.string() +
                      ": no coordinates (x, y, theta) and no contact columns to draw");

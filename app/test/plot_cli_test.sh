@@ -24,12 +24,12 @@ for m in moreau event_driven compliance; do
   check "$m: run --plot draws a PNG" png "$run/response.png"
   expect 0 "$run/r.svg" -- plot "$run" --out "$run/r.svg"
   check "$m: response SVG" svg "$run/r.svg"
-  # x, y, theta; lambdaN1-4 (abutments), lambdaN5-8 (shear keys): 11 curves.
-  check "$m: response has 11 curves" test "$(curves "$run/r.svg")" -eq 11
+  # x, y, theta; gN1-4 (abutments), gN5-8 (shear keys), each family's dashed g = 0: 13 curves.
+  check "$m: response has 13 curves" test "$(curves "$run/r.svg")" -eq 13
   check "$m: the title names the method" grep -q "bridge-shear-keys: response, ${title[$m]}" "$run/r.svg"
   check "$m: abutments and shear keys are separate panels" \
     test "$(grep -cE '>(abutments|shear keys)<' "$run/r.svg")" -eq 2
-  check "$m: contacts are named" grep -q 'lambdaN5: shear_key_left_plus' "$run/r.svg"
+  check "$m: contacts are named" grep -q 'gN5: shear_key_left_plus' "$run/r.svg"
   expect 0 "g.svg" -- plot "$run" --what gaps --out "$run/g.svg"
   # gN1-4 and gN5-8, each family's panel with its dashed line g = 0: 10 curves.
   check "$m: gaps has 10 curves" test "$(curves "$run/g.svg")" -eq 10

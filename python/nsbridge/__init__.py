@@ -223,7 +223,7 @@ def _plot_panels(result, what):
             panels.append(("displacements", "t [s]", "displacement [m]", disp))
         if rot:
             panels.append(("rotations", "t [s]", "rotation [rad]", rot))
-        contact_panels("lambdaN", "normal contact force [kN]")
+        contact_panels("gN", "normal gap [m]")
     elif what == "gaps":
         contact_panels("gN", "normal gap [m]")
     elif what == "bents":
@@ -250,7 +250,7 @@ def _plot_panels(result, what):
 
 def _plot(self, what="response", ax=None):
     """Draws the run with matplotlib as `nsbridge plot --what WHAT` does (docs/plots.md):
-    "response" (displacements, rotations, normal contact forces by contact family), "gaps",
+    "response" (displacements, rotations, normal gaps by contact family), "gaps",
     "bents" (hysteresis loops; needs [output] groups = ["bents"]), "energy" or "events".
     Without `ax` a new matplotlib Figure (no pyplot, so any backend, Agg included) holds one
     axes per panel; with `ax` (an Axes, or a sequence of them) the panels are drawn into those,
