@@ -34,12 +34,13 @@ struct Json {
   Type type = Type::kNull;
   std::string text;  // a string's value
   double number = 0.0;
-  std::vector<Json> items;                           // an array's
-  std::vector<std::pair<std::string, Json>> members;  // an object's, in order
+  std::vector<Json> items;         // an array's
+  std::vector<std::string> keys;   // an object's keys, in order, and their values (a vector
+  std::vector<Json> values;        //   of pairs would hold Json while it is incomplete)
 
   const Json* find(std::string_view key) const {
-    for (const auto& [k, v] : members) {
-      if (k == key) return &v;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if (keys[i] == key) return &values[i];
     }
     return nullptr;
   }
@@ -97,7 +98,8 @@ class JsonReader {
         space();
         std::string key = string();
         expect(':');
-        v.members.emplace_back(std::move(key), value(depth + 1));
+        v.values.push_back(value(depth + 1));
+        v.keys.push_back(std::move(key));
       } while (eat(','));
       expect('}');
     } else if (c == '[') {

@@ -238,10 +238,13 @@ TEST_CASE("the group impulses: the ball's first impact carries m (1 + e) v under
   // = 0.028 kN s, 0.34 %); compliance's episode integral holds gravity's m g over the contact
   // and the law's own restitution (measured below 1 % off).
   const double expected = 1.9 * std::sqrt(2.0 * 9.81 * 1.0);
-  for (const auto& [method, tolerance] :
+  for (const auto& method_tolerance :
        std::vector<std::pair<std::string, double>>{{"event_driven", 1e-6},
                                                    {"moreau", 5e-3},
                                                    {"compliance", 1e-2}}) {
+    // Named copies, not structured bindings: INFO captures its argument in a lambda.
+    const std::string& method = method_tolerance.first;
+    const double tolerance = method_tolerance.second;
     INFO(method);
     const RunRecord r = execute({kScenes + "/bouncing-ball.toml",
                                  {"solver.end_time=0.6", "output.groups=impulses",
