@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -123,4 +124,48 @@ TEST_CASE("bents with columns: one offset per column, named at the key") {
                "columns = 2") != std::string::npos);
   const std::string k = error_of("skew.toml", scene("skew_deg = 85.0\n"));
   CHECK(k.find("model.bents[0].skew_deg") != std::string::npos);
+}
+
+TEST_CASE("bents with columns: the bents group reports each bent's mean deformation and summed "
+          "force, as computed by hand") {
+  // Two columns at e = -3 and +3 m, no skew (beta = 0): column c of the bent at s sits at
+  // r_c = (s, e_c) and deforms along x by delta_x = x - e_c theta and along y by
+  // delta_y = y + s theta (models/parts.hpp, Bent, with n = (1, 0), t = (0, 1)); it carries
+  // half of each spring, k_x/2 = 20000 kN/m and k_y/2 = 30000 kN/m, elastic here (every
+  // column force below 40 kN, the column yield forces 200 and 300 kN).
+  // State: x = 1e-4 m, y = -2e-4 m, theta = 2e-5 rad; the columns, by hand:
+  //   both bents, e = -3: delta_x = 1e-4 + 6e-5 = 1.6e-4, F_x = 20000 * 1.6e-4 = 3.2 kN;
+  //               e = +3: delta_x = 1e-4 - 6e-5 = 4e-5,   F_x = 0.8 kN;
+  //   bent 1 (s = -22.5): delta_y = -2e-4 - 4.5e-4 = -6.5e-4, F_y = -19.5 kN per column;
+  //   bent 2 (s = +22.5): delta_y = -2e-4 + 4.5e-4 = 2.5e-4,  F_y = 7.5 kN per column.
+  // The bent's columns: ux, uy the mean deformations, fx, fy minus the summed forces (the
+  // force on the deck):
+  //   bent 1: ux = 1e-4, uy = -6.5e-4, fx = -(3.2 + 0.8) = -4, fy = +39;
+  //   bent 2: ux = 1e-4, uy = 2.5e-4,  fx = -4,               fy = -15.
+  auto s = load_scene(write("hand.toml", scene("column_offsets = [-3.0, 3.0]\n")));
+  auto* a = dynamic_cast<nsb::models::Assembly*>(s.system.get());
+  REQUIRE(a != nullptr);
+  using nsb::integrators::OutputGroup;
+  const std::vector<std::string> names = a->output_columns(OutputGroup::kBents);
+  REQUIRE(names == std::vector<std::string>{"bent1_ux", "bent1_uy", "bent1_fx", "bent1_fy",
+                                            "bent2_ux", "bent2_uy", "bent2_fx", "bent2_fy"});
+  nsb::integrators::Vector q(3), u = nsb::integrators::Vector::Zero(3), f(3);
+  q << 1e-4, -2e-4, 2e-5;
+  std::vector<double> out(names.size());
+  a->output_values(OutputGroup::kBents, 0.0, q, u, out.data());
+  const double expected[] = {1e-4, -6.5e-4, -4.0, 39.0, 1e-4, 2.5e-4, -4.0, -15.0};
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    INFO(names[k]);
+    // 1e-12 relative: a handful of products and sums of numbers of order one.
+    CHECK(out[k] == doctest::Approx(expected[k]).epsilon(1e-12).scale(1e-6));
+  }
+  // Each column's own force, seen in the moment on the deck: f_theta = -sum_c F_c J_c,theta
+  // with J_x,theta = -e_c and J_y,theta = s, so
+  //   sum F J = 2 bents x (3.2 * 3 + 0.8 * (-3)) + 2 x (-19.5)(-22.5) + 2 x 7.5 x 22.5
+  //           = 14.4 + 877.5 + 337.5 = 1229.4 kN m,
+  // where equal columns (no offsets) would give the x springs no moment.
+  a->forces(0.0, q, u, f);
+  CHECK(f(2) == doctest::Approx(-1229.4).epsilon(1e-12));
+  CHECK(f(0) == doctest::Approx(-8.0).epsilon(1e-12));
+  CHECK(f(1) == doctest::Approx(39.0 - 15.0).epsilon(1e-12));
 }
