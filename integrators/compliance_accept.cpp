@@ -34,15 +34,19 @@ bool ComplianceRun::accept_step(double t_new, bool landed, bool close_at_start) 
 
 // The impulses of each contact episode (OutputGroup::kImpulses): the integral of the law's
 // forces from the "close" to the "open" (the step in which it opens included: the force is
-// zero once the gap is open), written on the "close" event as it grows.
+// zero once the gap is open), written on the "close" event as it grows, and on the "impact"
+// row just before it when the episode is an impact.
 void ComplianceRun::add_episode_impulses(double h) {
   for (int i = 0; i < m_; ++i) {
     const auto ii = static_cast<std::size_t>(i);
     if (episode_event_[ii] >= 0) {
       episode_normal_[i] += impulse_[i];
       episode_tangent_[i] += 0.5 * h * (lambda_t_start_[i] + core_.lambda_t_[i]);
-      recorder_.set_impulses(static_cast<std::size_t>(episode_event_[ii]), episode_normal_[i],
-                             episode_tangent_[i]);
+      const auto close_row = static_cast<std::size_t>(episode_event_[ii]);
+      recorder_.set_impulses(close_row, episode_normal_[i], episode_tangent_[i]);
+      if (episode_impact_[ii]) {
+        recorder_.set_impulses(close_row - 1, episode_normal_[i], episode_tangent_[i]);
+      }
       if (episode_ends_[ii]) episode_event_[ii] = -1;
     }
     lambda_t_start_[i] = core_.lambda_t_[i];

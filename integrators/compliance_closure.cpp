@@ -11,10 +11,17 @@ namespace nsb::integrators::compliance_detail {
 void ComplianceRun::close_contact(int i, double time) {
   const ContactData& c = core_.contacts_[static_cast<std::size_t>(i)];
   closed_[static_cast<std::size_t>(i)] = 1;
-  core_.v_minus_[i] = std::max(-c.gap_rate(core_.u_), options_.min_impact_velocity);
+  const double closing_speed = -c.gap_rate(core_.u_);
+  core_.v_minus_[i] = std::max(closing_speed, options_.min_impact_velocity);
+  // The episode is an impact (an "impact" row before its "close", docs/outputs.md, "One event
+  // vocabulary") when the law of eq. (9) sees its closing speed: above min_impact_velocity,
+  // below which v_minus is floored and the law treats the closure as a contact from rest.
+  const bool impact = closing_speed > options_.min_impact_velocity;
+  if (impact) recorder_.event(time, i + 1, EventKind::kImpact);
   if (!episode_event_.empty()) {
     const auto ii = static_cast<std::size_t>(i);
     episode_event_[ii] = static_cast<std::ptrdiff_t>(recorder_.events().size());
+    episode_impact_[ii] = impact ? 1 : 0;
     episode_ends_[ii] = 0;
     episode_normal_[i] = 0.0;
     episode_tangent_[i] = 0.0;

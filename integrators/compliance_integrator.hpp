@@ -141,6 +141,7 @@ class ComplianceRun {
     if (recorder.groups().has(OutputGroup::kImpulses)) {
       episode_event_.assign(static_cast<std::size_t>(m_), -1);
       episode_ends_.assign(static_cast<std::size_t>(m_), 0);
+      episode_impact_.assign(static_cast<std::size_t>(m_), 0);
       episode_normal_ = Vector::Zero(m_);
       episode_tangent_ = Vector::Zero(m_);
       lambda_t_start_ = Vector::Zero(m_);
@@ -234,10 +235,12 @@ class ComplianceRun {
   // The step's normal impulses [kN s] and lambda_N at the step's start [kN] (watch()).
   Vector impulse_, lambda_start_;
   // OutputGroup::kImpulses (empty otherwise): per contact, the index in the recorder's events
-  // of the "close" that began its contact episode (-1: none), whether the episode ended in
-  // the step being accepted, the episode's normal and tangential impulses so far [kN s]
+  // of the "close" that began its contact episode (-1: none), whether an "impact" row
+  // precedes that "close" (the episode is an impact), whether the episode ended in the step
+  // being accepted, the episode's normal and tangential impulses so far [kN s]
   // (trapezoidal rule over the accepted steps, as impulse_) and lambda_T at the step's start.
   std::vector<std::ptrdiff_t> episode_event_;
+  std::vector<char> episode_impact_;
   std::vector<char> episode_ends_;
   Vector episode_normal_, episode_tangent_, lambda_t_start_;
   void add_episode_impulses(double h);

@@ -73,7 +73,10 @@ Impact central_impact(DampingLaw law, double e, double k, double m1 = kDeckMass,
   const double rel_after = rec.series("v2").back() - rec.series("v1").back();
   r.e_effective = rel_after / (v1 - v2);
   double t_close = 0, t_open = 0;
-  for (const auto& ev : rec.events()) (ev.kind == EventKind::kClose ? t_close : t_open) = ev.t;
+  for (const auto& ev : rec.events()) {
+    if (ev.kind == EventKind::kClose) t_close = ev.t;
+    if (ev.kind == EventKind::kOpen) t_open = ev.t;
+  }
   r.duration = t_open - t_close;
   for (double f : rec.series("lambdaN1")) r.peak_force = std::max(r.peak_force, f);
   for (double g : rec.series("gN1")) r.max_penetration = std::max(r.max_penetration, -g);

@@ -209,10 +209,15 @@ TEST_CASE("compliance: undamped Hertz impact duration and peak force (Goldsmith 
   REQUIRE(st.completed);
   REQUIRE(rec.count(EventKind::kClose) == 1);
   REQUIRE(rec.count(EventKind::kOpen) == 1);
-  double t_close = 0, t_open = 0;
+  // The episode closes at 0.8 m/s, above min_impact_velocity: an impact, logged at its onset.
+  REQUIRE(rec.count(EventKind::kImpact) == 1);
+  double t_close = 0, t_open = 0, t_impact = -1;
   for (const auto& ev : rec.events()) {
-    (ev.kind == EventKind::kClose ? t_close : t_open) = ev.t;
+    if (ev.kind == EventKind::kClose) t_close = ev.t;
+    if (ev.kind == EventKind::kOpen) t_open = ev.t;
+    if (ev.kind == EventKind::kImpact) t_impact = ev.t;
   }
+  CHECK(t_impact == t_close);
   // Event times are located on the step interpolant to ~1e-12 of a step.
   CHECK(t_close == doctest::Approx(1e-3 / v0).epsilon(1e-9));
   CHECK(t_open - t_close == doctest::Approx(tc).epsilon(1e-6));
@@ -271,6 +276,43 @@ TEST_CASE("compliance: a closure is never stepped over, however large max_step")
   // One commit at the start and one per accepted step.
   CHECK(s.commits == st.steps + 1);
   CHECK(st.factorizations == st.steps + st.rejected_steps);
+}
+
+TEST_CASE("compliance: an episode is an impact when it closes faster than min_impact_velocity") {
+  // docs/outputs.md, "One event vocabulary": below min_impact_velocity (1e-3 m/s) the law of
+  // eq. (9) floors v_minus and treats the closure as a contact from rest ("close" alone);
+  // above it the episode is an impact, an "impact" row at the onset before the "close", both
+  // carrying the episode's impulse (group impulses).
+  for (const double v0 : {0.5e-3, 2e-3}) {
+    CAPTURE(v0);
+    ts::SpringMass s(against_wall(1.0, 1e-4, -v0, 0.5));
+    ComplianceOptions o;
+    o.stiffness = 1e7;
+    o.tolerance = kTightTolerance;
+    // Onset at 1e-4 / v0; the episode lasts 2.94 delta_max / v0 < 0.03 s (Goldsmith, above).
+    o.end_time = 1e-4 / v0 + 0.1;
+    nsb::integrators::OutputGroups groups;
+    groups.add(nsb::integrators::OutputGroup::kImpulses);
+    Recorder rec(s, 0.0, groups);
+    REQUIRE(compliance(s, o, rec).completed);
+    REQUIRE(rec.count(EventKind::kClose) == 1);
+    REQUIRE(rec.count(EventKind::kOpen) == 1);
+    const bool impact = v0 > o.min_impact_velocity;
+    REQUIRE(rec.count(EventKind::kImpact) == (impact ? 1U : 0U));
+    const auto& ev = rec.events();
+    const std::size_t close = impact ? 1 : 0;
+    CHECK(ev[close].kind == EventKind::kClose);
+    // The impulse is the momentum the wall gave the body, m (u_end + v0); the trapezoidal
+    // rule over the episode's steps (max_step 1e-3 s, some 25 a contact) stands for the
+    // integral: measured 7.1e-5 (v0 = 0.5e-3) and 2.0e-5 relative, 2e-4 allowed.
+    const double momentum = rec.series("vx").back() + v0;
+    CHECK(ev[close].impulse_normal == doctest::Approx(momentum).epsilon(2e-4).scale(0.0));
+    if (impact) {
+      CHECK(ev[0].kind == EventKind::kImpact);
+      CHECK(ev[0].t == ev[close].t);
+      CHECK(ev[0].impulse_normal == ev[close].impulse_normal);
+    }
+  }
 }
 
 TEST_CASE("compliance: the gap bound never clears a cubic gap that goes negative") {
