@@ -5,9 +5,10 @@ usage: outputs_equilibrium.py RUN_DIR [--tolerance TOL]
        outputs_equilibrium.py --nsbridge BIN (--scene SCENE | --scenes DIR) --end-time T
                               --tolerance moreau=TOL,event_driven=TOL,compliance=TOL
 
-The second form runs SCENE (or every bridge scene of DIR) up to T under each method named,
-with the groups and sampling the check needs, in a fresh temporary folder, and checks each
-run against its tolerance.
+The second form runs SCENE (or every scene of DIR, each of which has contacts) up to T, or
+to the scene's own end_time when that comes first, under each method named, with the groups
+and sampling the check needs, in a fresh temporary folder, and checks each run against its
+tolerance.
 
 RUN_DIR holds history.csv, events.csv and summary.json of a run made with
 [output] groups including "forces" and sample_dt = 0 (a row per accepted step). Between two
@@ -22,7 +23,9 @@ f_C,k+1 (its impulse over the step, at the step's end), for the other methods th
 trapezoidal mean (f_C,k + f_C,k+1) / 2 of the instantaneous forces. An interval that holds an
 event (impact, close, open, stick, slip: where a force or a velocity jumps) is left out.
 Each coordinate's residual is divided by its force scale, the largest
-|M du/dt| + |f_S| + |f_C| of that coordinate over the kept intervals.
+|M du/dt| + |f_S| + |f_C| of that coordinate over the kept intervals, and at least its
+largest momentum |M u| over the run's duration (the scale of a free deck's coordinate, which
+no force moves between impacts).
 
 Prints one line: method, kept and left-out intervals, the largest scaled residual and the
 coordinate and time where it occurs. Exit 0 when it is at most TOL (default: no check), 1
@@ -34,6 +37,7 @@ import pathlib
 import subprocess
 import sys
 import tempfile
+import tomllib
 
 import numpy as np
 
@@ -85,6 +89,12 @@ def check(run):
         print(f"{method}: no interval without an event")
         return float("inf")
     scale = np.max(np.abs(ma[kept]) + np.abs(fs_mean[kept]) + np.abs(fc_mean[kept]), axis=0)
+    # A coordinate that no force moves between events (a free deck, whose every force is an
+    # impact's percussion) would have a scale of round-off alone: its floor is the force that
+    # changes the coordinate's largest momentum over the run, max |M u| / duration.
+    duration = t[-1] - t[0]
+    if duration > 0.0:
+        scale = np.maximum(scale, np.max(np.abs(u @ mass.T), axis=0) / duration)
     scale = np.where(scale > 0.0, scale, 1.0)
     scaled = np.abs(r[kept]) / scale
     k, j = np.unravel_index(np.argmax(scaled), scaled.shape)
@@ -98,20 +108,21 @@ def run_scene(argv):
     args = dict(zip(argv[1::2], argv[2::2]))
     tolerances = dict(item.split("=") for item in args["--tolerance"].split(","))
     if "--scenes" in args:
-        # Every bridge scene of the folder (kind = "bridge": decks, frames, chains).
-        scenes = sorted(p for p in pathlib.Path(args["--scenes"]).glob("*.toml")
-                        if 'kind = "bridge"' in p.read_text())
+        scenes = sorted(pathlib.Path(args["--scenes"]).glob("*.toml"))
     else:
         scenes = [pathlib.Path(args["--scene"])]
     failed = False
     with tempfile.TemporaryDirectory() as tmp:
         for scene in scenes:
+            solver = tomllib.loads(scene.read_text()).get("solver", {})
+            end_time = min(float(args["--end-time"]),
+                           float(solver.get("end_time", args["--end-time"])))
             for method, tol in tolerances.items():
                 out = pathlib.Path(tmp) / scene.stem / method
                 cmd = [args["--nsbridge"], "run", str(scene), "--method", method, "--out",
                        str(out), "--quiet", "--set", "output.sample_dt=0", "--set",
                        "output.groups=forces", "--set",
-                       "solver.end_time=" + args["--end-time"], "--set",
+                       f"solver.end_time={end_time:g}", "--set",
                        "solver.error_estimate=false"]
                 rc = subprocess.run(cmd).returncode
                 print(f"{scene.stem} ", end="")
