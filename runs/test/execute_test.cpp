@@ -245,8 +245,10 @@ TEST_CASE("the full-scale bridge: the default stiffness scales with the deck; a 
   // 1500 t is k0 * 1500 / 140.5 (docs/compliance.md, "A default stiffness that scales with the
   // bridge"): the same run as with that k given to the seats and keys, while k0 itself (the
   // scaling off) penetrates deeper by about Goldsmith's (1500 / 140.5)^(2/5) = 2.58 (delta_max
-  // ~ k^(-2/5)); measured 2.71, the bents and the deck's turn acting during the contact, hence
-  // the 10 % tolerance. A factor 1e-4 lets the deck through the gap, and the run warns.
+  // ~ k^(-2/5), which holds for the damped law too: the impact scales out with (m v0^2 / k)^(2/5));
+  // measured 2.56, 0.7 % off, the bents and the deck's turn acting during the contact, hence
+  // a 3 % tolerance. The seats at 1e-4 k0 (the paper's softest factor) let the deck through
+  // its joint, and the run warns for both corners.
   const std::vector<std::string> base{"solver.end_time=0.3", "solver.error_estimate=false",
                                       "model.deck.initial_velocity=[-1.5, 0.0, 0.0]"};
   const auto with = [&](std::vector<std::string> more) {
@@ -265,18 +267,18 @@ TEST_CASE("the full-scale bridge: the default stiffness scales with the deck; a 
   const RunRecord given = with({"model.seats.compliance_stiffness=" + std::to_string(k),
                                 "model.shear_keys.compliance_stiffness=" + std::to_string(k)});
   const RunRecord fixed = with({"solver.reference_mass=0"});
-  const RunRecord soft = with({"solver.stiffness_factor=1e-4"});
+  const RunRecord soft = with({"model.seats.compliance_stiffness=2.747e3"});
   for (const RunRecord* r : {&scaled, &given, &fixed, &soft}) {
     REQUIRE(integrators::succeeded(r->result.status));
   }
   // std::to_string keeps 6 decimals of k ~ 2.9e8: the two k differ by < 1e-14 relative.
   CHECK(deepest(scaled) == doctest::Approx(deepest(given)).epsilon(1e-9));
   CHECK(deepest(fixed) / deepest(scaled) ==
-        doctest::Approx(std::pow(1500.0 / 140.5, 0.4)).epsilon(0.1));
-  // 5.1 mm of the 43.3 mm normal gap (12 %) at the default: trusted.
+        doctest::Approx(std::pow(1500.0 / 140.5, 0.4)).epsilon(0.03));
+  // 0.60 mm of the 43.3 mm normal gap (1.4 %) at the default: trusted.
   CHECK(deepest(scaled) < 0.5 * 0.05 * std::cos(std::numbers::pi / 6.0));
   CHECK(penetration_warnings(scaled) == 0);
-  CHECK(deepest(soft) > 0.05);
+  CHECK(deepest(soft) > 0.0433);  // measured 0.0472 m, beyond the whole gap
   CHECK(penetration_warnings(soft) == 2);
   const auto first =
       std::find_if(soft.digest.warnings.begin(), soft.digest.warnings.end(), is_penetration);
