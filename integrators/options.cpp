@@ -108,6 +108,12 @@ std::span<const c::Field<ComplianceOptions>> ComplianceOptions::fields() {
                                "2006)"),
       c::number<&O::stiffness_factor>("stiffness_factor", "-", c::positive(),
                                       "multiplies contact_stiffness (the paper's 1e-4 … 1e2)"),
+      c::number<&O::reference_mass>("reference_mass", "t", c::non_negative(),
+                                    "colliding mass at which a contact's default Hertz k is "
+                                    "contact_stiffness (the benchmark deck's m_d); a bridge "
+                                    "contact of colliding mass m_c gets contact_stiffness × "
+                                    "m_c / reference_mass (Goldsmith's Hertz impact of one "
+                                    "duration, docs/compliance.md); 0: no scaling"),
       c::choice<&kDampingLawNames, &O::law>("damping_law",
                                             "how χ of eq. (9) follows from the restitution "
                                             "(docs/compliance.md)"),

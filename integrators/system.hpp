@@ -47,8 +47,13 @@ struct ContactData {
   double restitution = 0.0;    // Newton's coefficient eps_i in [0, 1]
   double friction = 0.0;       // Coulomb's coefficient mu_i >= 0
   double stiffness = 0.0;      // the compliance method's Hertz k of this contact [kN/m^1.5],
-                               // > 0; 0: the run's solver.contact_stiffness (the rigid
+                               // > 0; 0: the run's default, scaled to colliding_mass
+                               // (contact_stiffness in compliance.hpp; the rigid
                                // methods ignore it)
+  double colliding_mass = 0.0; // the mass this contact stops [t], > 0: a body against a
+                               // fixed face its body's mass, two bodies their reduced mass
+                               // m_a m_b / (m_a + m_b); scales the compliance method's
+                               // default k where `stiffness` is 0; 0: not scaled
   bool far = false;            // the system guarantees this contact cannot close within
                                // the current step bound; integrators may skip it
 

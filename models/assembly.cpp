@@ -219,12 +219,18 @@ void Assembly::build_contacts() {
     const CornerFace geometry{
         .body_point = parts_.bodies[static_cast<std::size_t>(c.body)].corner(c.corner),
         .face_point = c.face.point, .face_normal = c.face.normal};
+    // The mass the contact stops, which scales the compliance method's default Hertz k: the
+    // body's own against a prescribed face (a seat or a key moves with the ground, whatever
+    // the force), the reduced mass m_a m_b / (m_a + m_b) of a two-body impact otherwise.
+    const double m_a = parts_.bodies[static_cast<std::size_t>(c.body)].mass;
     if (c.obstacle == parts::Obstacle::kPrescribed) {
       seat_contacts_.push_back({.slot = i, .offset = 3 * c.body, .seat = c.obstacle_index,
                                 .rest = parts_.bodies[static_cast<std::size_t>(c.body)].rest,
                                 .geometry = geometry, .restitution = c.restitution,
-                                .friction = c.friction, .stiffness = c.stiffness});
+                                .friction = c.friction, .stiffness = c.stiffness,
+                                .colliding_mass = m_a});
     } else {
+      const double m_b = parts_.bodies[static_cast<std::size_t>(c.obstacle_index)].mass;
       body_contacts_.push_back({.slot = i, .offset_a = 3 * c.body,
                                 .offset_b = 3 * c.obstacle_index,
                                 .rest_a = parts_.bodies[static_cast<std::size_t>(c.body)].rest,
@@ -232,7 +238,8 @@ void Assembly::build_contacts() {
                                     c.obstacle_index)].rest,
                                 .geometry = geometry,
                                 .restitution = c.restitution, .friction = c.friction,
-                                .stiffness = c.stiffness});
+                                .stiffness = c.stiffness,
+                                .colliding_mass = m_a * m_b / (m_a + m_b)});
     }
   }
 }
@@ -468,6 +475,7 @@ void Assembly::contacts_of(double t, const integrators::Vector& q, const integra
     const auto k = corner_contact(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
     parts::write_contact(k, offset, c.restitution, c.friction, out[c.slot]);
     out[c.slot].stiffness = c.stiffness;
+    out[c.slot].colliding_mass = c.colliding_mass;
   }
   if (!kOneBody) {  // a contact against a body needs two
     for (const auto& c : body_contacts_) {
@@ -478,6 +486,7 @@ void Assembly::contacts_of(double t, const integrators::Vector& q, const integra
       parts::write_body_contact(k, c.offset_a, c.offset_b, c.restitution, c.friction,
                                 out[c.slot]);
       out[c.slot].stiffness = c.stiffness;
+      out[c.slot].colliding_mass = c.colliding_mass;
     }
   }
   mark_broken(out);

@@ -188,6 +188,7 @@ class Assembly final : public integrators::SystemBase {
     Eigen::Vector3d rest = Eigen::Vector3d::Zero();
     CornerFace geometry;
     double restitution = 0.0, friction = 0.0, stiffness = 0.0;
+    double colliding_mass = 0.0;  // [t]: ContactData::colliding_mass
   };
   struct BodyContact {
     std::size_t slot = 0;
@@ -195,6 +196,7 @@ class Assembly final : public integrators::SystemBase {
     Eigen::Vector3d rest_a = Eigen::Vector3d::Zero(), rest_b = Eigen::Vector3d::Zero();
     CornerFace geometry;
     double restitution = 0.0, friction = 0.0, stiffness = 0.0;
+    double colliding_mass = 0.0;  // [t]: ContactData::colliding_mass
   };
 
   // One shear key as the run goes: its contact's slot, the peak mean force [kN], and whether

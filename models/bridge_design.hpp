@@ -82,7 +82,8 @@ struct BridgeDesign {
   double friction = 0.5;      // mu >= 0 (paper: 0.5)
   double compliance_stiffness = 0.0;  // Hertz k of the four abutment contacts under the
                                       //   compliance method [kN/m^1.5], >= 0; 0: the run's
-                                      //   solver.contact_stiffness
+                                      //   default scaled to the colliding mass
+                                      //   (integrators::contact_stiffness)
   double damping_ratio_i = 0.08, damping_ratio_j = 0.08;  // Rayleigh ratios, >= 0 (paper 8 %)
   int damping_mode_i = 1, damping_mode_j = 3;            // 1-based modes, distinct, in 1..3
   // None: a free deck (no damping, which needs the bents' stiffness); else >= 2 bents at >= 2

@@ -61,8 +61,9 @@ std::span<const config::Field<BridgeDesign>> bridge_seat_fields() {
                               "all four deck-corner contacts (paper: 0.5)"),
       c::number<&P::compliance_stiffness>("compliance_stiffness", "kN/m^1.5", c::non_negative(),
                                           "Hertz k of eq. (9) for the four deck-corner contacts "
-                                          "under the compliance method; 0: "
-                                          "solver.contact_stiffness"),
+                                          "under the compliance method; 0: the default, "
+                                          "solver.contact_stiffness scaled to the deck's mass "
+                                          "(solver.reference_mass)"),
   };
   return f;
 }

@@ -113,8 +113,9 @@ std::span<const config::Field<DeckChain::Joint>> joint_fields() {
                               "Coulomb's μ of the joint's two corner contacts"),
       c::number<&P::compliance_stiffness>("compliance_stiffness", "kN/m^1.5", c::non_negative(),
                                           "Hertz k of eq. (9) for the joint's two contacts "
-                                          "under the compliance method; 0: "
-                                          "solver.contact_stiffness"),
+                                          "under the compliance method; 0: the default, "
+                                          "solver.contact_stiffness scaled to the colliding "
+                                          "mass (solver.reference_mass)"),
   };
   return f;
 }

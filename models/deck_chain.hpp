@@ -50,7 +50,8 @@ struct DeckChain {
     double restitution = 0.0;  // Newton's eps_N in [0, 1]
     double friction = 0.0;     // Coulomb's mu >= 0
     double compliance_stiffness = 0.0;  // Hertz k of its contacts under the compliance
-                                        //   method [kN/m^1.5]; 0: solver.contact_stiffness
+                                        //   method [kN/m^1.5]; 0: the run's default scaled to
+                                        //   the colliding mass (integrators::contact_stiffness)
   };
   struct Parameters {
     std::vector<Deck> decks;    // N >= 1

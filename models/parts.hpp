@@ -169,7 +169,7 @@ struct CornerContact {
   Face face;                    // in the obstacle's frame
   double restitution = 0.0;     // Newton's eps_N in [0, 1]
   double friction = 0.0;        // Coulomb's mu >= 0
-  double stiffness = 0.0;       // compliance Hertz k [kN/m^1.5], >= 0; 0: solver.contact_stiffness
+  double stiffness = 0.0;       // compliance Hertz k [kN/m^1.5], >= 0; 0: the scaled default
   // What the contact is, for the outputs (summary.json "contacts", docs/outputs.md):
   // family "abutment", "hinge" or "shear_key" (empty: not a bridge part) and a name within
   // it, e.g. "left +W/2", "hinge 1 -W/2", "shear_key_right_plus". No physics reads them.

@@ -114,7 +114,9 @@ std::span<const config::Field<ShearKeyParameters>> shear_key_fields() {
                               "mean contact force of a step that breaks a key; 0: unbreakable"),
       c::number<&K::compliance_stiffness>("compliance_stiffness", "kN/m^1.5", c::non_negative(),
                                           "Hertz k of eq. (9) for the key contacts under the "
-                                          "compliance method; 0: solver.contact_stiffness"),
+                                          "compliance method; 0: the default, "
+                                          "solver.contact_stiffness scaled to the deck's mass "
+                                          "(solver.reference_mass)"),
   };
   return f;
 }

@@ -26,7 +26,8 @@ struct ShearKeyParameters {
   double restitution = 0.0;  // Newton's eps_N of a key contact, in [0, 1]
   double friction = 0.0;     // Coulomb's mu of a key contact, >= 0
   double compliance_stiffness = 0.0;  // Hertz k of a key contact under the compliance method
-                                      //   [kN/m^1.5], >= 0; 0: solver.contact_stiffness
+                                      //   [kN/m^1.5], >= 0; 0: the run's default scaled to the
+                                      //   deck's mass (integrators::contact_stiffness)
   double capacity = 0.0;     // the force that breaks a key [kN], >= 0; 0: unbreakable
   // Throws std::invalid_argument naming the field, prefixed with `prefix`.
   void validate(const std::string& prefix) const;

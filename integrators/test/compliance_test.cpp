@@ -150,10 +150,40 @@ TEST_CASE("compliance: damping law names and option validation") {
   bad([](ComplianceOptions& b) { b.max_step = 0.0; }, "max_step");
   bad([](ComplianceOptions& b) { b.min_impact_velocity = -1.0; }, "min_impact_velocity");
   bad([](ComplianceOptions& b) { b.law = static_cast<DampingLaw>(99); }, "law");
+  bad([](ComplianceOptions& b) { b.reference_mass = -1.0; }, "reference_mass");
   ts::SpringMass s(against_wall(1.0, 0.0, 0.0, 0.5));
   Recorder rec(s, 0.0);
   o.end_time = 0.0;  // not after the initial time
   CHECK_THROWS_AS(compliance(s, o, rec), std::invalid_argument);
+}
+
+TEST_CASE("compliance: a contact's stiffness, its own or the default scaled to its mass") {
+  // docs/compliance.md, "A default stiffness that scales with the bridge": k = contact_stiffness
+  // * m_c / reference_mass * stiffness_factor where the contact gives no k of its own.
+  using nsb::integrators::contact_stiffness;
+  ComplianceOptions o;
+  o.stiffness = 2.0e7;
+  o.stiffness_factor = 3.0;
+  o.reference_mass = 100.0;
+  ContactData c;
+  CHECK(contact_stiffness(o, c) == 6.0e7);  // no mass, no k: the run's, 2e7 * 3
+  c.colliding_mass = 250.0;
+  CHECK(contact_stiffness(o, c) == doctest::Approx(2.0e7 * 2.5 * 3.0).epsilon(1e-15));
+  // At the reference mass the ratio is exactly 1: the run's k to the last bit.
+  c.colliding_mass = 100.0;
+  CHECK(contact_stiffness(o, c) == o.effective_stiffness());
+  // A family's own k wins over the default, scaled by stiffness_factor only.
+  c.stiffness = 5.0e6;
+  CHECK(contact_stiffness(o, c) == 1.5e7);
+  // reference_mass = 0 turns the scaling off.
+  c.stiffness = 0.0;
+  c.colliding_mass = 250.0;
+  o.reference_mass = 0.0;
+  CHECK(contact_stiffness(o, c) == 6.0e7);
+  // The benchmark's: k0 * 140.5 / 140.5 is k0 exactly, so every shipped benchmark run keeps it.
+  ComplianceOptions d;
+  c.colliding_mass = 140.5;
+  CHECK(contact_stiffness(d, c) == 2.747e7);
 }
 
 TEST_CASE("compliance: effective restitution of a wall impact equals the closed form") {

@@ -2,6 +2,9 @@
 // compliance_stiffness reaches its contacts' ContactData::stiffness, 0 where a family gives
 // none (the run's solver.contact_stiffness), and a bad value is named at its key; an abutment's
 // seat length is read in [model.abutments] only, and refused in [model.seats] with that name.
+// Every contact reports the mass it stops (ContactData::colliding_mass), which scales the
+// compliance method's default stiffness: its body's mass against a seat or a key, the two
+// frames' reduced mass at a hinge.
 #include "scene/scene.hpp"
 #include "scene/test/scene_files.hpp"
 
@@ -36,8 +39,8 @@ method = "compliance"
 end_time = 0.1
 )";
 
-// The stiffness of every contact at the initial state.
-std::vector<double> stiffnesses(nsb::scene::Scene& s) {
+// The data of every contact at the initial state.
+std::vector<nsb::integrators::ContactData> contact_data(nsb::scene::Scene& s) {
   auto& system = *s.system;
   std::vector<nsb::integrators::ContactData> c(static_cast<std::size_t>(system.contacts()));
   for (auto& d : c) {
@@ -46,8 +49,18 @@ std::vector<double> stiffnesses(nsb::scene::Scene& s) {
   }
   system.contact_data(system.initial_time(), system.initial_position(), system.initial_velocity(),
                       c);
+  return c;
+}
+
+std::vector<double> stiffnesses(nsb::scene::Scene& s) {
   std::vector<double> out;
-  for (const auto& d : c) out.push_back(d.stiffness);
+  for (const auto& d : contact_data(s)) out.push_back(d.stiffness);
+  return out;
+}
+
+std::vector<double> colliding_masses(nsb::scene::Scene& s) {
+  std::vector<double> out;
+  for (const auto& d : contact_data(s)) out.push_back(d.colliding_mass);
   return out;
 }
 
@@ -70,6 +83,8 @@ compliance_stiffness = 2.0e6
 )" + kBents + kSolver));
   CHECK(stiffnesses(deck) ==
         std::vector<double>{1e6, 1e6, 1e6, 1e6, 2e6, 2e6, 2e6, 2e6});
+  // The deck's mass at the seats and at the keys, both fixed to the ground.
+  CHECK(colliding_masses(deck) == std::vector<double>(8, 140.5));
   // Two frames: abutments 1, 2 and 5, 6 give none (0: the solver's), the hinge 3, 4 its own.
   auto frames = load_scene(write("frames.toml", R"([model]
 kind = "bridge"
@@ -105,6 +120,9 @@ left = 0.0127
 right = 0.0127
 )" + kSolver));
   CHECK(stiffnesses(frames) == std::vector<double>{0.0, 0.0, 3e6, 3e6, 0.0, 0.0});
+  // A frame's own mass at the seats; at the hinge 70.25^2 / 140.5 = 35.125 t (exact in binary).
+  CHECK(colliding_masses(frames) ==
+        std::vector<double>{70.25, 70.25, 35.125, 35.125, 70.25, 70.25});
 }
 
 TEST_CASE("a family's compliance_stiffness is checked at its key") {
