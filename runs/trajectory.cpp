@@ -88,6 +88,9 @@ double velocity_magnitude(const integrators::Recorder& history, int i) {
 void bound_by_trajectories(Digest& run, const integrators::Recorder& run_history,
                            const CoordinateTrace& run_trace, const Digest& companion,
                            const CoordinateTrace& companion_trace, const CompanionPlan& plan) {
+  // The floor's argument is an impact's instant: none without an impact in either run.
+  const bool impacts = run.count(integrators::EventKind::kImpact) > 0 ||
+                       companion.count(integrators::EventKind::kImpact) > 0;
   for (std::size_t c = 0; c < run.coordinates.size() && c < companion.coordinates.size(); ++c) {
     CoordinatePeak& mine = run.coordinates[c];
     const ColumnPeak* pa = column_peak(run, mine.name);
@@ -100,7 +103,7 @@ void bound_by_trajectories(Digest& run, const integrators::Recorder& run_history
                                std::max(pa->t_abs_max, pb->t_abs_max) + kPeakWindow);
     }
     double error = std::max(mine.error, plan.factor * bound);
-    if (plan.setting == "step") {
+    if (plan.setting == "step" && impacts) {
       error = std::max(error, plan.value * velocity_magnitude(run_history, static_cast<int>(c)));
     }
     mine.error = error;

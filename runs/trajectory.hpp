@@ -8,8 +8,9 @@
 // impact, another cycle), where the difference of the peaks can be near zero while both are
 // off. The right side is taken over a window around the instants where either run peaks,
 // on a grid on which both runs' coordinates are kept (TracedSystem). Moreau–Jean's estimate
-// is also at least h |u|max: the method dates an impact at the end of the step that contains
-// it, so the position after it is off by up to the velocity times the step.
+// of a run with impacts is also at least h |u|max: the method dates an impact at the end of
+// the step that contains it, so the position after it is off by up to the velocity times
+// the step.
 #pragma once
 
 #include "integrators/run.hpp"
@@ -116,7 +117,8 @@ double trace_difference(const CoordinateTrace& a, const CoordinateTrace& b, int 
 
 // Raises the errors of the run's generalized coordinates (digest coordinates, and their
 // columns in peaks) to the trajectory bound above, times the plan's factor, and for
-// Moreau–Jean to at least h |u_i|max over the run's steps (run_history's velocity columns).
+// Moreau–Jean with an impact in either run to at least h |u_i|max over the run's steps
+// (run_history's velocity columns).
 // apply_estimate has set the errors from the peaks before.
 void bound_by_trajectories(Digest& run, const integrators::Recorder& run_history,
                            const CoordinateTrace& run_trace, const Digest& companion,
