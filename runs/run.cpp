@@ -84,7 +84,7 @@ bool estimate_errors(const scene::Scene& scene, const integrators::Recorder& his
   const double t_end = integrators::end_time(scene.run);
   integrators::Progress at_end;
   if (progress) at_end = [&progress, t_end](double) { progress(t_end); };
-  TracedSystem traced(*twin.system, trace.dt);
+  TracedSystem traced(*twin.system, trace.dt, t_end - t0);
   const integrators::RunResult result =
       integrators::integrate(traced, plan->config, companion_history, at_end, hooks);
   if (result.status == integrators::RunStatus::kInterrupted) return false;
@@ -112,7 +112,10 @@ Attempt integrate_once(scene::Scene& scene, const integrators::Progress& progres
                                 integrators::OutputGroups::parse(scene.output.groups));
   // With an estimate, the run keeps its coordinates for the trajectory bound.
   std::optional<TracedSystem> traced;
-  if (scene.estimate.error_estimate) traced.emplace(*scene.system, trace_interval(scene.run));
+  if (scene.estimate.error_estimate) {
+    traced.emplace(*scene.system, trace_interval(scene.run),
+                   integrators::end_time(scene.run) - scene.system->initial_time());
+  }
   integrators::System& system =
       traced ? static_cast<integrators::System&>(*traced) : *scene.system;
   const double start = thread_cpu_seconds();

@@ -7,10 +7,15 @@
 
 namespace nsb::runs {
 
-TracedSystem::TracedSystem(integrators::System& inner, double dt) : inner_(inner) {
+TracedSystem::TracedSystem(integrators::System& inner, double dt, double duration)
+    : inner_(inner) {
   trace_.t0 = inner.initial_time();
   trace_.dt = dt;
   trace_.dofs = inner.dofs();
+  if (dt > 0.0 && duration > 0.0 && trace_.dofs > 0) {
+    trace_.q.reserve((static_cast<std::size_t>(duration / dt) + 2) *
+                     static_cast<std::size_t>(trace_.dofs));
+  }
   keep(trace_.t0, inner.initial_position());
 }
 

@@ -43,10 +43,11 @@ struct CoordinateTrace {
 // (System::accept_step, which every integrator calls once per accepted step): each grid time
 // gets q linearly interpolated between the two accepted steps around it, the initial state
 // filling the grid times up to t0. Every call is forwarded as it is, so a run of the traced
-// system is bit for bit the run of `inner`.
+// system is bit for bit the run of `inner`. duration [s]: the run's, for which the trace is
+// sized once, so that no step allocates.
 class TracedSystem final : public integrators::System {
  public:
-  TracedSystem(integrators::System& inner, double dt);
+  TracedSystem(integrators::System& inner, double dt, double duration);
   const CoordinateTrace& trace() const { return trace_; }
 
   int dofs() const override { return inner_.dofs(); }

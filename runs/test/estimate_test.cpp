@@ -182,7 +182,7 @@ TEST_CASE("the traced system keeps q on its grid, interpolated between accepted 
   // 0.12 s (0.0144): 0.0081 + (0.1 - 0.09) / 0.03 * 0.0063 = 0.0102; at 0.2 s, between 0.18 s
   // (0.0324) and 0.21 s (0.0441): 0.0402; at 0.3 s, the step at 0.3 s itself: 0.09.
   testsupport::TwoCornerBody body({});
-  TracedSystem traced(body, 0.1);
+  TracedSystem traced(body, 0.1, 0.3);
   CHECK(traced.dofs() == 3);
   integrators::Vector q = integrators::Vector::Zero(3), u = integrators::Vector::Zero(3);
   for (int k = 1; k <= 10; ++k) {
