@@ -5,6 +5,7 @@
 #include "models/assembly.hpp"
 #include "runs/estimate.hpp"
 #include "runs/lcp_dump.hpp"
+#include "runs/trajectory.hpp"
 #include "runs/trust.hpp"
 
 #include <algorithm>
@@ -62,10 +63,11 @@ double thread_cpu_seconds() {
 // step or tolerance; no rows but the first and the last are kept, the peaks being those of
 // the steps. Sets digest.estimate. The companion reads the run's stop request, and reports
 // its progress as the run's end, so that a caller polling for Ctrl-C in the progress callback
-// still sees it; returns false when it was interrupted.
+// still sees it; returns false when it was interrupted. trace: the run's coordinates on the
+// grid of trace_interval (runs/trajectory.hpp), compared with the companion's.
 bool estimate_errors(const scene::Scene& scene, const integrators::Recorder& history,
-                     const integrators::Progress& progress, const integrators::RunHooks& run_hooks,
-                     Digest& digest) {
+                     const CoordinateTrace& trace, const integrators::Progress& progress,
+                     const integrators::RunHooks& run_hooks, Digest& digest) {
   ErrorEstimate& e = digest.estimate;
   e.enabled = true;
   const double t0 = scene.system->initial_time();
@@ -82,13 +84,15 @@ bool estimate_errors(const scene::Scene& scene, const integrators::Recorder& his
   const double t_end = integrators::end_time(scene.run);
   integrators::Progress at_end;
   if (progress) at_end = [&progress, t_end](double) { progress(t_end); };
+  TracedSystem traced(*twin.system, trace.dt, t_end - t0);
   const integrators::RunResult result =
-      integrators::integrate(*twin.system, plan->config, companion_history, at_end, hooks);
+      integrators::integrate(traced, plan->config, companion_history, at_end, hooks);
   if (result.status == integrators::RunStatus::kInterrupted) return false;
   e.companion_status = std::string(integrators::to_string(result.status));
   if (integrators::is_result(result.status)) {
     const Digest companion = make_digest(companion_history, result);
     apply_estimate(digest, history, companion, companion_history, *plan);
+    bound_by_trajectories(digest, history, trace, companion, traced.trace(), *plan);
   }
   e.companion_cpu_seconds = thread_cpu_seconds() - start;
   return true;
@@ -106,16 +110,24 @@ Attempt integrate_once(scene::Scene& scene, const integrators::Progress& progres
                        const integrators::RunHooks& hooks, LcpDump* dump) {
   integrators::Recorder history(*scene.system, scene.output.sample_dt,
                                 integrators::OutputGroups::parse(scene.output.groups));
+  // With an estimate, the run keeps its coordinates for the trajectory bound.
+  std::optional<TracedSystem> traced;
+  if (scene.estimate.error_estimate) {
+    traced.emplace(*scene.system, trace_interval(scene.run),
+                   integrators::end_time(scene.run) - scene.system->initial_time());
+  }
+  integrators::System& system =
+      traced ? static_cast<integrators::System&>(*traced) : *scene.system;
   const double start = thread_cpu_seconds();
   integrators::RunResult result =
-      integrators::integrate(*scene.system, scene.run, history, progress, hooks);
+      integrators::integrate(system, scene.run, history, progress, hooks);
   const double run_cpu_seconds = thread_cpu_seconds() - start;
   Digest digest = make_digest(history, result, scene.system->limit_states());
   digest.input = scene.input;
   digest.contacts = contact_labels(*scene.system);
   // A run that is not a result (it failed) has no peaks worth an estimate.
   if (scene.estimate.error_estimate && integrators::is_result(result.status) &&
-      !estimate_errors(scene, history, progress, hooks, digest)) {
+      !estimate_errors(scene, history, traced->trace(), progress, hooks, digest)) {
     result.status = integrators::RunStatus::kInterrupted;
   }
   // An interrupted run (or estimate) writes nothing: its dump is dropped with `dump`.
