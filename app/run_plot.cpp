@@ -3,6 +3,7 @@
 #include "app/commands.hpp"
 #include "io/gnuplot.hpp"
 #include "io/csv.hpp"
+#include "io/json_reader.hpp"
 
 #include <unistd.h>
 
@@ -26,176 +27,6 @@ namespace nsb::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-// ---------------------------------------------------------------------------------------
-// summary.json: a JSON value (RFC 8259), read whole; only what the figure names is used.
-struct Json {
-  enum class Type { kNull, kBool, kNumber, kString, kArray, kObject };
-  Type type = Type::kNull;
-  std::string text;  // a string's value
-  double number = 0.0;
-  std::vector<Json> items;         // an array's
-  std::vector<std::string> keys;   // an object's keys, in order, and their values (a vector
-  std::vector<Json> values;        //   of pairs would hold Json while it is incomplete)
-
-  const Json* find(std::string_view key) const {
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-      if (keys[i] == key) return &values[i];
-    }
-    return nullptr;
-  }
-  // The member `key` when it is a string; empty otherwise.
-  std::string string_member(std::string_view key) const {
-    const Json* v = find(key);
-    return v != nullptr && v->type == Type::kString ? v->text : std::string();
-  }
-};
-
-class JsonReader {
- public:
-  JsonReader(std::string_view text, std::string file) : s_(text), file_(std::move(file)) {}
-
-  Json document() {
-    Json v = value(0);
-    space();
-    if (i_ != s_.size()) fail("text after the JSON value");
-    return v;
-  }
-
- private:
-  static constexpr int kMaxDepth = 64;  // summary.json nests 4 deep
-
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(file_ + ": not a summary.json as `nsbridge run` writes it: " + what +
-                     " at byte " + std::to_string(i_ + 1));
-  }
-  void space() {
-    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\n' || s_[i_] == '\r' || s_[i_] == '\t'))
-      ++i_;
-  }
-  bool eat(char c) {
-    space();
-    if (i_ < s_.size() && s_[i_] == c) {
-      ++i_;
-      return true;
-    }
-    return false;
-  }
-  void expect(char c) {
-    if (!eat(c)) fail(std::string("expected '") + c + "'");
-  }
-  Json value(int depth) {
-    if (depth > kMaxDepth) fail("nested too deep");
-    space();
-    if (i_ >= s_.size()) fail("unexpected end");
-    Json v;
-    const char c = s_[i_];
-    if (c == '{') {
-      ++i_;
-      v.type = Json::Type::kObject;
-      if (eat('}')) return v;
-      do {
-        space();
-        std::string key = string();
-        expect(':');
-        v.values.push_back(value(depth + 1));
-        v.keys.push_back(std::move(key));
-      } while (eat(','));
-      expect('}');
-    } else if (c == '[') {
-      ++i_;
-      v.type = Json::Type::kArray;
-      if (eat(']')) return v;
-      do {
-        v.items.push_back(value(depth + 1));
-      } while (eat(','));
-      expect(']');
-    } else if (c == '"') {
-      v.type = Json::Type::kString;
-      v.text = string();
-    } else if (literal("null")) {
-      v.type = Json::Type::kNull;
-    } else if (literal("true") || literal("false")) {
-      v.type = Json::Type::kBool;
-    } else {
-      v.type = Json::Type::kNumber;
-      v.number = number();
-    }
-    return v;
-  }
-  bool literal(std::string_view word) {
-    if (s_.substr(i_, word.size()) != word) return false;
-    i_ += word.size();
-    return true;
-  }
-  double number() {
-    const std::size_t start = i_;
-    while (i_ < s_.size() && std::string_view("+-0123456789.eE").find(s_[i_]) != std::string_view::npos)
-      ++i_;
-    if (i_ == start) fail("expected a value");
-    const std::string text(s_.substr(start, i_ - start));
-    char* end = nullptr;
-    const double x = std::strtod(text.c_str(), &end);
-    if (end != text.c_str() + text.size()) fail("bad number '" + text + "'");
-    return x;
-  }
-  std::string string() {
-    if (i_ >= s_.size() || s_[i_] != '"') fail("expected a string");
-    ++i_;
-    std::string out;
-    while (true) {
-      if (i_ >= s_.size()) fail("unterminated string");
-      const char c = s_[i_++];
-      if (c == '"') return out;
-      if (c != '\\') {
-        out += c;
-        continue;
-      }
-      if (i_ >= s_.size()) fail("unterminated string");
-      const char e = s_[i_++];
-      switch (e) {
-        case '"': case '\\': case '/': out += e; break;
-        case 'b': out += '\b'; break;
-        case 'f': out += '\f'; break;
-        case 'n': out += '\n'; break;
-        case 'r': out += '\r'; break;
-        case 't': out += '\t'; break;
-        case 'u': append_utf8(out, hex4()); break;
-        default: fail("bad escape");
-      }
-    }
-  }
-  unsigned hex4() {
-    if (i_ + 4 > s_.size()) fail("bad \\u escape");
-    unsigned u = 0;
-    for (int k = 0; k < 4; ++k) {
-      const char h = s_[i_++];
-      u *= 16;
-      if (h >= '0' && h <= '9') u += static_cast<unsigned>(h - '0');
-      else if (h >= 'a' && h <= 'f') u += static_cast<unsigned>(h - 'a' + 10);
-      else if (h >= 'A' && h <= 'F') u += static_cast<unsigned>(h - 'A' + 10);
-      else fail("bad \\u escape");
-    }
-    return u;
-  }
-  // A code point of the basic plane as UTF-8 (the writer escapes only control characters).
-  static void append_utf8(std::string& out, unsigned u) {
-    if (u < 0x80) {
-      out += static_cast<char>(u);
-    } else if (u < 0x800) {
-      out += static_cast<char>(0xC0 | (u >> 6));
-      out += static_cast<char>(0x80 | (u & 0x3F));
-    } else {
-      out += static_cast<char>(0xE0 | (u >> 12));
-      out += static_cast<char>(0x80 | ((u >> 6) & 0x3F));
-      out += static_cast<char>(0x80 | (u & 0x3F));
-    }
-  }
-
-  std::string_view s_;
-  std::string file_;
-  std::size_t i_ = 0;
-};
 
 // ---------------------------------------------------------------------------------------
 // The run folder as the figure reads it.
@@ -295,19 +126,26 @@ void read_history(RunFolder& run) {
 
 void read_summary(RunFolder& run, const fs::path& dir) {
   const fs::path path = dir / "summary.json";
-  const Json summary = JsonReader(read_text(path, "summary.json"), path.string()).document();
-  if (summary.type != Json::Type::kObject)
+  io::JsonValue summary;
+  try {
+    summary = io::parse_json(read_text(path, "summary.json"));
+  } catch (const io::JsonError& e) {
+    throw InputError(path.string() + ": not a summary.json as `nsbridge run` writes it: " +
+                     e.what());
+  }
+  if (summary.type != io::JsonValue::Type::kObject)
     throw InputError(path.string() + ": expected a JSON object");
   run.scene = summary.string_member("scene");
   run.method = summary.string_member("method");
   run.status = summary.string_member("status");
   if (run.method.empty()) throw InputError(path.string() + ": method: missing");
-  if (const Json* t = summary.find("end_time"); t != nullptr && t->type == Json::Type::kNumber)
+  if (const io::JsonValue* t = summary.find("end_time");
+      t != nullptr && t->type == io::JsonValue::Type::kNumber)
     run.end_time = t->number;
   // "contacts" names each contact's family; a summary written before it had none.
-  if (const Json* contacts = summary.find("contacts");
-      contacts != nullptr && contacts->type == Json::Type::kArray) {
-    for (const Json& c : contacts->items) {
+  if (const io::JsonValue* contacts = summary.find("contacts");
+      contacts != nullptr && contacts->type == io::JsonValue::Type::kArray) {
+    for (const io::JsonValue& c : contacts->items) {
       run.contacts.emplace_back(c.string_member("family"), c.string_member("name"));
     }
   }

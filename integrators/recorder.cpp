@@ -1,5 +1,7 @@
 #include "integrators/recorder.hpp"
 
+#include "io/spelling.hpp"
+
 #include <cstdio>
 
 #include <algorithm>
@@ -80,26 +82,6 @@ std::string OutputGroups::names() const {
   return out;
 }
 
-namespace {
-
-// Levenshtein distance, for the hint of an unknown group name.
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
-}  // namespace
-
 OutputGroups OutputGroups::parse(std::string_view list) {
   OutputGroups g;
   while (!list.empty()) {
@@ -117,7 +99,7 @@ OutputGroups OutputGroups::parse(std::string_view list) {
     std::size_t best_distance = std::max<std::size_t>(1, name.size() / 3) + 1;
     for (const auto& n : kOutputGroupNames) {
       allowed += (allowed.empty() ? "" : ", ") + std::string(n.name);
-      const std::size_t d = edit_distance(name, n.name);
+      const std::size_t d = io::edit_distance(name, n.name);
       if (d < best_distance) best = n.name, best_distance = d;
     }
     throw std::invalid_argument("unknown output group '" + std::string(name) + "'" +

@@ -1,5 +1,6 @@
 #include "scene/scene_reader.hpp"
 
+#include "io/spelling.hpp"
 #include "scene/scene_docs.hpp"
 
 #include <algorithm>
@@ -81,22 +82,6 @@ void Section::fail_table(const std::string& what) const { c_.fail(&t_, path_, wh
 
 namespace {
 
-// The Levenshtein distance of a and b (insertions, deletions and substitutions).
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 // The hint of an unknown key: the known key of this table spelled closest to it (at most a
 // third of its letters differ), else the other tables that declare it.
 std::string unknown_key_hint(std::string_view key, const std::vector<std::string_view>& known,
@@ -104,7 +89,7 @@ std::string unknown_key_hint(std::string_view key, const std::vector<std::string
   std::string_view best;
   std::size_t best_distance = std::max<std::size_t>(1, key.size() / 3) + 1;
   for (const auto& k : known) {
-    const std::size_t d = edit_distance(key, k);
+    const std::size_t d = io::edit_distance(key, k);
     if (d < best_distance) {
       best = k;
       best_distance = d;

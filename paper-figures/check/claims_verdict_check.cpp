@@ -6,6 +6,8 @@
 // uncertainty study it re-derives every sample's verdicts in uncertainty.csv from the check
 // quantities beside them (with the thresholds of claims.json), the shares and their standard
 // errors in uncertainty.json from those verdicts, and the flips from uncertainty-oat.csv.
+#include "io/json_reader.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cctype>
@@ -24,101 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A JSON value, enough for claims.json: objects, arrays, strings, numbers, true/false/null.
-struct Json {
-  enum Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind = kNull;
-  bool b = false;
-  double n = std::numeric_limits<double>::quiet_NaN();
-  std::string s;
-  std::vector<Json> a;
-  std::map<std::string, Json> o;
-  const Json& at(const std::string& k) const {
-    static const Json kMissing;
-    const auto it = o.find(k);
-    return it == o.end() ? kMissing : it->second;
-  }
-};
-
-class Parser {
- public:
-  explicit Parser(std::string text) : t_(std::move(text)) {}
-  Json parse() {
-    Json v = value();
-    ws();
-    if (i_ != t_.size()) fail("trailing text");
-    return v;
-  }
-
- private:
-  [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error("claims.json at " + std::to_string(i_) + ": " + what);
-  }
-  void ws() {
-    while (i_ < t_.size() && std::isspace(static_cast<unsigned char>(t_[i_]))) ++i_;
-  }
-  bool eat(char c) {
-    ws();
-    if (i_ < t_.size() && t_[i_] == c) return ++i_, true;
-    return false;
-  }
-  std::string str() {
-    if (!eat('"')) fail("expected a string");
-    std::string out;
-    while (i_ < t_.size() && t_[i_] != '"') {
-      if (t_[i_] == '\\' && i_ + 1 < t_.size()) {
-        ++i_;
-        out += t_[i_] == 'n' ? '\n' : t_[i_];
-      } else {
-        out += t_[i_];
-      }
-      ++i_;
-    }
-    if (!eat('"')) fail("unterminated string");
-    return out;
-  }
-  Json value() {
-    ws();
-    Json v;
-    if (i_ >= t_.size()) fail("unexpected end");
-    const char c = t_[i_];
-    if (c == '{') {
-      v.kind = Json::kObject;
-      ++i_;
-      if (eat('}')) return v;
-      do {
-        const std::string k = str();
-        if (!eat(':')) fail("expected ':'");
-        v.o[k] = value();
-      } while (eat(','));
-      if (!eat('}')) fail("expected '}'");
-    } else if (c == '[') {
-      v.kind = Json::kArray;
-      ++i_;
-      if (eat(']')) return v;
-      do v.a.push_back(value());
-      while (eat(','));
-      if (!eat(']')) fail("expected ']'");
-    } else if (c == '"') {
-      v.kind = Json::kString;
-      v.s = str();
-    } else if (t_.compare(i_, 4, "true") == 0) {
-      v.kind = Json::kBool, v.b = true, i_ += 4;
-    } else if (t_.compare(i_, 5, "false") == 0) {
-      v.kind = Json::kBool, i_ += 5;
-    } else if (t_.compare(i_, 4, "null") == 0) {
-      i_ += 4;  // a non-finite number
-    } else {
-      std::size_t used = 0;
-      v.kind = Json::kNumber;
-      v.n = std::stod(t_.substr(i_, 40), &used);
-      if (used == 0) fail("expected a value");
-      i_ += used;
-    }
-    return v;
-  }
-  std::string t_;
-  std::size_t i_ = 0;
-};
+using Json = nsb::io::JsonValue;
 
 std::string read(const fs::path& p) {
   std::ifstream in(p);
@@ -144,35 +52,35 @@ const fs::path kDir = NSB_FIGURES_DIR;
 }  // namespace
 
 TEST_CASE("every verdict in claims.json follows from its numbers") {
-  const Json root = Parser(read(kDir / "claims.json")).parse();
+  const Json root = nsb::io::parse_json(read(kDir / "claims.json"));
   const Json& claims = root.at("claims");
-  REQUIRE(claims.kind == Json::kArray);
+  REQUIRE(claims.type == Json::Type::kArray);
   std::vector<std::string> ids;
-  for (const Json& c : claims.a) {
-    const std::string id = c.at("id").s;
+  for (const Json& c : claims.items) {
+    const std::string id = c.at("id").text;
     ids.push_back(id);
     CAPTURE(id);
-    REQUIRE(c.at("holds").kind == Json::kBool);
-    REQUIRE(c.at("checks").kind == Json::kArray);
-    CHECK(!c.at("statement").s.empty());
-    CHECK(!c.at("runs").a.empty());
-    CHECK(!c.at("measured").o.empty());
-    const bool evaluated = c.at("reason").s.rfind("not evaluated", 0) != 0;
-    bool all = evaluated && !c.at("checks").a.empty();
-    for (const Json& k : c.at("checks").a) {
-      CAPTURE(k.at("quantity").s);
-      CHECK(!k.at("why").s.empty());
-      all = all && satisfied(k.at("value").n, k.at("op").s, k.at("threshold").n);
+    REQUIRE(c.at("holds").type == Json::Type::kBool);
+    REQUIRE(c.at("checks").type == Json::Type::kArray);
+    CHECK(!c.at("statement").text.empty());
+    CHECK(!c.at("runs").items.empty());
+    CHECK(!c.at("measured").keys.empty());
+    const bool evaluated = c.at("reason").text.rfind("not evaluated", 0) != 0;
+    bool all = evaluated && !c.at("checks").items.empty();
+    for (const Json& k : c.at("checks").items) {
+      CAPTURE(k.at("quantity").text);
+      CHECK(!k.at("why").text.empty());
+      all = all && satisfied(k.at("value").number, k.at("op").text, k.at("threshold").number);
     }
-    CHECK(c.at("holds").b == all);
+    CHECK(c.at("holds").boolean == all);
   }
   CHECK(ids == std::vector<std::string>{"C1", "C2", "C3", "C4", "C5", "C6", "C4'", "C5'"});
 }
 
 TEST_CASE("the compliance claims name their damping law and its effective restitution") {
-  const Json root = Parser(read(kDir / "claims.json")).parse();
+  const Json root = nsb::io::parse_json(read(kDir / "claims.json"));
   std::map<std::string, const Json*> by_id;
-  for (const Json& c : root.at("claims").a) by_id[c.at("id").s] = &c;
+  for (const Json& c : root.at("claims").items) by_id[c.at("id").text] = &c;
   const std::map<std::string, std::string> laws{{"C4", "hertzdamp"},
                                                 {"C5", "hertzdamp"},
                                                 {"C4'", "hunt_crossley_exact"},
@@ -181,10 +89,10 @@ TEST_CASE("the compliance claims name their damping law and its effective restit
     CAPTURE(id);
     REQUIRE(by_id.count(id) == 1);
     const Json& law = by_id[id]->at("law");
-    REQUIRE(law.kind == Json::kObject);
-    CHECK(law.at("name").s == name);
-    const double chi = law.at("chi").n, e = law.at("effective_restitution").n;
-    const double eps = law.at("nonsmooth_restitution").n;
+    REQUIRE(law.type == Json::Type::kObject);
+    CHECK(law.at("name").text == name);
+    const double chi = law.at("chi").number, e = law.at("effective_restitution").number;
+    const double eps = law.at("nonsmooth_restitution").number;
     REQUIRE(std::isfinite(chi));
     REQUIRE(std::isfinite(e));
     CHECK(chi >= 0.0);
@@ -203,14 +111,14 @@ TEST_CASE("the compliance claims name their damping law and its effective restit
   for (const char* id : {"C4", "C5"}) {
     CAPTURE(id);
     std::vector<std::string> a, b;
-    for (const Json& k : by_id[id]->at("checks").a) a.push_back(k.at("quantity").s);
-    for (const Json& k : by_id[std::string(id) + "'"]->at("checks").a) {
-      b.push_back(k.at("quantity").s);
+    for (const Json& k : by_id[id]->at("checks").items) a.push_back(k.at("quantity").text);
+    for (const Json& k : by_id[std::string(id) + "'"]->at("checks").items) {
+      b.push_back(k.at("quantity").text);
     }
     CHECK(a == b);
   }
   for (const auto& [id, c] : by_id) {
-    if (laws.count(id) == 0) CHECK(c->at("law").kind == Json::kNull);
+    if (laws.count(id) == 0) CHECK(c->at("law").type == Json::Type::kNull);
   }
 }
 
@@ -289,11 +197,11 @@ double number(const std::string& s) {
 
 // The checks of each claim in claims.json: quantity -> (op, threshold).
 std::map<std::string, std::map<std::string, std::pair<std::string, double>>> thresholds() {
-  const Json root = Parser(read(kDir / "claims.json")).parse();
+  const Json root = nsb::io::parse_json(read(kDir / "claims.json"));
   std::map<std::string, std::map<std::string, std::pair<std::string, double>>> out;
-  for (const Json& c : root.at("claims").a) {
-    for (const Json& k : c.at("checks").a) {
-      out[c.at("id").s][k.at("quantity").s] = {k.at("op").s, k.at("threshold").n};
+  for (const Json& c : root.at("claims").items) {
+    for (const Json& k : c.at("checks").items) {
+      out[c.at("id").text][k.at("quantity").text] = {k.at("op").text, k.at("threshold").number};
     }
   }
   return out;
@@ -321,14 +229,14 @@ bool derived(const Csv& csv, const std::vector<std::string>& row, const std::str
 
 TEST_CASE("the uncertainty shares and flips follow from the per-sample verdicts") {
   const auto th = thresholds();
-  const Json u = Parser(read(kDir / "uncertainty.json")).parse();
+  const Json u = nsb::io::parse_json(read(kDir / "uncertainty.json"));
   const Csv samples = read_csv(kDir / "uncertainty.csv");
   const Csv oat = read_csv(kDir / "uncertainty-oat.csv");
-  REQUIRE(u.at("claims").kind == Json::kArray);
-  CHECK(u.at("samples").n == double(samples.rows.size()));
+  REQUIRE(u.at("claims").type == Json::Type::kArray);
+  CHECK(u.at("samples").number == double(samples.rows.size()));
   CHECK(!samples.rows.empty());
-  for (const Json& c : u.at("claims").a) {
-    const std::string id = c.at("id").s;
+  for (const Json& c : u.at("claims").items) {
+    const std::string id = c.at("id").text;
     CAPTURE(id);
     const std::size_t v = samples.col(id);
     std::size_t holds = 0, evaluated = 0;
@@ -341,12 +249,12 @@ TEST_CASE("the uncertainty shares and flips follow from the per-sample verdicts"
       CHECK(derived(samples, row, id, th.at(id)) == (row[v] == "holds"));
     }
     // Share p = holds / evaluated, binomial standard error sqrt(p (1 - p) / evaluated).
-    CHECK(c.at("samples").n == double(evaluated));
-    CHECK(c.at("holds").n == double(holds));
+    CHECK(c.at("samples").number == double(evaluated));
+    CHECK(c.at("holds").number == double(holds));
     if (evaluated > 0) {
       const double p = double(holds) / double(evaluated);
-      CHECK(c.at("share").n == doctest::Approx(p).epsilon(1e-12));
-      CHECK(c.at("standard_error").n ==
+      CHECK(c.at("share").number == doctest::Approx(p).epsilon(1e-12));
+      CHECK(c.at("standard_error").number ==
             doctest::Approx(std::sqrt(p * (1 - p) / double(evaluated))).epsilon(1e-12));
     }
     // Flips: the one-at-a-time points whose verdict differs from the base point's.
@@ -365,8 +273,8 @@ TEST_CASE("the uncertainty shares and flips follow from the per-sample verdicts"
       if (row[oa].empty() || base == "not evaluated" || row[ov] == "not evaluated") continue;
       if (row[ov] != base) expected.insert(row[oa] + " " + row[oe]);
     }
-    for (const Json& f : c.at("flips").a) {
-      written.insert(f.at("assumption").s + " " + f.at("end").s);
+    for (const Json& f : c.at("flips").items) {
+      written.insert(f.at("assumption").text + " " + f.at("end").text);
     }
     CHECK(expected == written);
   }
