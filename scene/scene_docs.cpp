@@ -57,8 +57,11 @@ void add_bridge_tables(std::vector<DocTable>& out) {
   out.push_back({"model.hinges",
                  kHeader + rows(joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}) +
                      rows(SeatLengthSettings::fields(), SeatLengthSettings{},
-                           {{"seat_length", "none"}}),
-                 joined(keys(joint_fields()), keys(SeatLengthSettings::fields()))});
+                           {{"seat_length", "none"}}) +
+                     rows(HingeSkewSettings::fields(), HingeSkewSettings{},
+                          {{"skew_deg", "[model] skew_deg"}}),
+                 joined(joined(keys(joint_fields()), keys(SeatLengthSettings::fields())),
+                        keys(HingeSkewSettings::fields()))});
   out.push_back(table("model.limit_states", LimitStateSettings::fields(), LimitStateSettings{},
                       {{"drift_ratio", "none"}, {"residual_rotation", "none"}}));
   // The part kinds' tables (restrainers, abutments, bearings, shear keys).
