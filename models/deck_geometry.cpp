@@ -64,6 +64,12 @@ void DeckGeometry::validate(const std::string& prefix) const {
     require(radius > 0.5 * width, prefix + "radius", "must exceed half the width, R > W/2 [m]");
     require(subtended_angle() < std::numbers::pi, prefix + "length",
             "of a curved deck must subtend less than 180 degrees, L / R < pi");
+    // Below 1e-3 rad the sector's inertia about its centroid, (Ro^2 + Ri^2)/2 - rbar^2, is a
+    // difference of numbers ~R^2 that cancel to ~L^2/12 and loses its digits; such a deck is
+    // straight for every purpose.
+    require(subtended_angle() >= 1e-3, prefix + "radius",
+            "gives a subtended angle L / R below 0.001 rad (0.057 deg): give radius = 0, a "
+            "straight deck");
     require(skew_deg == 0.0 && !skew_left_deg && !skew_right_deg, prefix + "skew_deg",
             "must be 0: a curved deck's end faces are radial");
   }

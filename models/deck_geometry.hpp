@@ -73,7 +73,7 @@ struct DeckGeometry {
   std::optional<double> skew_left_deg{};
   std::optional<double> skew_right_deg{};
   // R of a horizontally curved deck's centreline [m], > W/2; 0: straight. phi = L / R in
-  // (0, 180) degrees.
+  // [0.001 rad, 180 degrees).
   double radius = 0.0;
 
   // Throws std::invalid_argument naming the field (prefix is prepended to the field name).

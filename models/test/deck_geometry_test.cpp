@@ -151,6 +151,8 @@ TEST_CASE("deck geometry: bad plans name their field") {
   CHECK_THROWS_WITH_AS(g.validate(), doctest::Contains("radius"), std::invalid_argument);
   g.radius = 3.0;  // L / R = 3.33 > pi
   CHECK_THROWS_WITH_AS(g.validate(), doctest::Contains("length"), std::invalid_argument);
+  g.radius = 1e5;  // L / R = 1e-4 rad: straight for every purpose
+  CHECK_THROWS_WITH_AS(g.validate(), doctest::Contains("radius"), std::invalid_argument);
   g.radius = 30.0;
   g.skew_deg = 10.0;
   CHECK_THROWS_WITH_AS(g.validate(), doctest::Contains("skew_deg"), std::invalid_argument);
