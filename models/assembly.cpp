@@ -1,4 +1,5 @@
 #include "models/assembly.hpp"
+#include "models/deck_geometry.hpp"
 #include "models/field_checks.hpp"
 
 #include <cmath>
@@ -12,6 +13,15 @@
 namespace nsb::models {
 
 namespace {
+
+// The body frame's x of its axis's midpoint: -xbar of a body whose end angles differ
+// (DeckGeometry::axis_centre), 0 otherwise.
+double axis_centre_x(const parts::RigidBody& b) {
+  const DeckGeometry plan{.length = b.length, .width = b.width, .skew_deg = b.skew_deg,
+                          .gap_right = 0.0, .gap_left = 0.0, .skew_left_deg = b.skew_left_deg,
+                          .skew_right_deg = b.skew_right_deg, .radius = b.radius};
+  return plan.axis_centre().x();
+}
 
 // Coordinate names: x, y, theta for one body, x1, y1, theta1, ... for several.
 std::vector<std::string> names(std::size_t bodies, std::initializer_list<const char*> base) {
@@ -81,9 +91,14 @@ void Assembly::validate_parts() const {
     const auto& bent = parts_.bents[j];
     const std::string prefix = indexed("bents", j);
     require(bent.body >= 0 && bent.body < nb, prefix + "body", "must name one of the bodies");
+    // s is measured from the centroid, which lies off the axis's midpoint where the two end
+    // angles differ (models/deck_geometry.hpp). A curved body's bent lines cross its chord
+    // axis beyond L/2 near its ends (DeckGeometry::bent_site); their arc positions are
+    // checked by the bridge's design.
+    const auto& body = parts_.bodies[static_cast<std::size_t>(bent.body)];
     require(std::isfinite(bent.position) &&
-                std::abs(bent.position) <= 0.5 * parts_.bodies[static_cast<std::size_t>(
-                                                      bent.body)].length,
+                (body.radius > 0 ||
+                 std::abs(bent.position - axis_centre_x(body)) <= 0.5 * body.length),
             prefix + "position", "must lie on the body, |s| <= L/2 [m]");
     validate_takeda(bent.longitudinal, prefix + "longitudinal");
     validate_takeda(bent.transverse, prefix + "transverse");

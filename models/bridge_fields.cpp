@@ -16,6 +16,10 @@ std::span<const config::Field<BridgeDesign>> bridge_deck_fields() {
                                       "L = 110 ft (Saiidi, Vosooghi & Nelson 2013)"),
       c::number<&P::deck, &D::width>("width", "m", c::positive(), "W (assumed, docs/bridge.md)"),
       c::number<&P::deck, &D::skew_deg>("skew_deg", "deg", c::open(-80, 80), "skew angle α"),
+      c::number<&P::deck, &D::radius>("radius", "m", c::non_negative(),
+                                      "R of a horizontally curved deck's centreline (length: "
+                                      "its arc length; radial ends, docs/bridge.md); 0: "
+                                      "straight"),
       c::vector3<&P::initial_position>("initial_position", "m, m, rad",
                                        "absolute (x, y, θ) at t = 0; no corner may penetrate"),
       c::vector3<&P::initial_velocity>("initial_velocity", "m/s, m/s, rad/s", "(vx, vy, ω)"),

@@ -22,6 +22,8 @@ Assembly::Parts deck_parts(const BridgeDesign& p) {
   Assembly::Parts parts;
   parts.bodies.push_back({.mass = p.mass, .inertia = p.inertia, .length = p.deck.length,
                           .width = p.deck.width, .skew_deg = p.deck.skew_deg,
+                          .skew_left_deg = p.deck.skew_left_deg,
+                          .skew_right_deg = p.deck.skew_right_deg, .radius = p.deck.radius,
                           .initial_position = p.initial_position,
                           .initial_velocity = p.initial_velocity});
   // Seat a: its frame origin is the reference face point, its face passes through it.
@@ -32,10 +34,13 @@ Assembly::Parts deck_parts(const BridgeDesign& p) {
                                 .transverse = m.transverse, .rotation = m.rotation});
   }
   for (std::size_t j = 0; j < p.bents.size(); ++j) {
-    parts::Bent b{.body = 0, .position = p.bents[j].position,
+    // The bent's line on the deck's plan (a curved deck's bents stand along its arc).
+    const DeckGeometry::BentSite site = p.deck.bent_site(
+        p.bents[j].position, p.bents[j].column_offsets, p.bents[j].skew_deg);
+    parts::Bent b{.body = 0, .position = site.position,
                   .longitudinal = p.bents[j].longitudinal, .transverse = p.bents[j].transverse,
                   .ground_longitudinal = nullptr, .ground_transverse = nullptr,
-                  .column_offsets = p.bents[j].column_offsets, .skew_deg = p.bents[j].skew_deg};
+                  .column_offsets = site.column_offsets, .skew_deg = site.skew_deg};
     if (!excitation.bents.empty()) {
       b.ground_longitudinal = excitation.bents[j].longitudinal;
       b.ground_transverse = excitation.bents[j].transverse;
@@ -70,6 +75,13 @@ Assembly::Parts bridge_parts(const BridgeDesign& p) {
 
 namespace {
 
+// The plan of a segment (its gaps play no part here).
+DeckGeometry segment_plan(const parts::RigidBody& b) {
+  return {.length = b.length, .width = b.width, .skew_deg = b.skew_deg, .gap_right = 0.0,
+          .gap_left = 0.0, .skew_left_deg = b.skew_left_deg, .skew_right_deg = b.skew_right_deg,
+          .radius = b.radius};
+}
+
 double total_length(const SegmentedDeck& d) {
   double l = 0.0;
   for (std::size_t i = 0; i < d.segments.size(); ++i) {
@@ -86,10 +98,24 @@ double SegmentedDeck::rest_position(std::size_t i) const {
   return x + 0.5 * segments[i].length;
 }
 
+double SegmentedDeck::hinge_skew_deg(std::size_t k, const DeckGeometry& deck) const {
+  return k < hinge_skews_deg.size() && hinge_skews_deg[k] ? *hinge_skews_deg[k] : deck.skew_deg;
+}
+
 void SegmentedDeck::validate(const std::vector<BridgeDesign::Bent>& bents) const {
   require(!segments.empty(), "segments", "at least one segment is needed");
   require(hinges.size() + 1 == segments.size(), "hinges",
           "one fewer than the segments (hinge k joins segments k and k + 1)");
+  require(hinge_skews_deg.empty() || hinge_skews_deg.size() == hinges.size(), "hinge_skews_deg",
+          "none, or one (or none) per hinge");
+  for (std::size_t k = 0; k < hinge_skews_deg.size(); ++k) {
+    if (!hinge_skews_deg[k]) continue;
+    require(std::isfinite(*hinge_skews_deg[k]) && std::abs(*hinge_skews_deg[k]) < 80.0,
+            "hinges[" + std::to_string(k) + "].skew_deg", "must be in (-80, 80) [deg]");
+  }
+  for (const auto& s : segments) {
+    require(s.radius == 0.0, "segments", "a curved deck is one [model.deck]; segments are straight");
+  }
   for (std::size_t i = 1; i < segments.size(); ++i) {
     require(segments[i].width == segments[0].width, "segments[" + std::to_string(i) + "].width",
             "must equal segments[0].width (a hinge's two corners lie on the other's end face)");
@@ -137,16 +163,35 @@ Assembly::Parts bridge_parts(const BridgeDesign& p, const SegmentedDeck& deck) {
   one.validate();
   Assembly::Parts parts = deck_parts(one);
   const std::size_t n = deck.segments.size();
+  // The seats' reference points from the whole deck's axis midpoint, the segments' origin
+  // (deck_parts measures them from the one deck's centroid, which differs where the two
+  // abutments' angles differ).
+  if (const Eigen::Vector2d shift = one.deck.axis_centre(); !shift.isZero(0.0)) {
+    for (auto& seat : parts.prescribed) seat.reference -= shift;
+  }
   parts.bodies.clear();
   for (std::size_t i = 0; i < n; ++i) {
     parts::RigidBody b = deck.segments[i];
+    // Each end face at the angle of its joint: an abutment's, or a hinge's own.
     b.skew_deg = p.deck.skew_deg;
+    b.skew_left_deg = i == 0 ? p.deck.end_skew_deg(0) : deck.hinge_skew_deg(i - 1, p.deck);
+    b.skew_right_deg = i + 1 == n ? p.deck.end_skew_deg(1) : deck.hinge_skew_deg(i, p.deck);
     b.rest = Eigen::Vector3d(deck.rest_position(i), 0.0, 0.0);
+    // The rest centre is the segment's centroid (off the axis's midpoint when its two angles
+    // differ, models/deck_geometry.hpp).
+    if (const Eigen::Vector2d shift = segment_plan(b).axis_centre(); !shift.isZero(0.0)) {
+      b.rest.head<2>() -= shift;
+    }
     parts.bodies.push_back(b);
   }
   for (std::size_t j = 0; j < parts.bents.size(); ++j) {
+    const auto body = static_cast<std::size_t>(deck.bent_segment[j]);
+    const DeckGeometry::BentSite site = segment_plan(parts.bodies[body]).bent_site(
+        p.bents[j].position, p.bents[j].column_offsets, p.bents[j].skew_deg);
     parts.bents[j].body = deck.bent_segment[j];
-    parts.bents[j].position = p.bents[j].position;
+    parts.bents[j].position = site.position;
+    parts.bents[j].column_offsets = site.column_offsets;
+    parts.bents[j].skew_deg = site.skew_deg;
   }
   // Seat contacts 0, 1 stay on segment 0; 2, 3 go to the last segment, after the hinges.
   std::vector<parts::CornerContact> contacts(parts.contacts.begin(), parts.contacts.begin() + 2);

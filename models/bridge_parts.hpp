@@ -13,6 +13,7 @@
 #include "models/deck_chain.hpp"
 
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace nsb::models {
@@ -29,9 +30,15 @@ Assembly::Parts bridge_parts(const BridgeDesign& p);
 // (parts::RigidBody::rest), as the one deck's are: segments[i].initial_position is that
 // displacement at t = 0.
 struct SegmentedDeck {
-  std::vector<parts::RigidBody> segments;  // >= 1; their skew_deg is replaced by the bridge's
+  std::vector<parts::RigidBody> segments;  // >= 1, straight; their end angles are replaced by
+                                           //   their joints' (abutments', hinges')
   std::vector<DeckChain::Joint> hinges;    // segments - 1; hinge k joins segments k and k + 1
   std::vector<int> bent_segment;           // the segment of each BridgeDesign bent
+  // Hinge k's own angle [deg] (both faces of the joint), |alpha| < 80; empty or none: the
+  // bridge's deck.skew_deg.
+  std::vector<std::optional<double>> hinge_skews_deg;
+  // The angle of hinge k's faces [deg].
+  double hinge_skew_deg(std::size_t k, const DeckGeometry& deck) const;
   // Centre x of segment i at rest [m].
   double rest_position(std::size_t i) const;
   // Throws std::invalid_argument naming the field ("hinges: ...", "bent_segment[2]: ...",
@@ -50,7 +57,8 @@ inline constexpr const char* kTwoBents =
     "needs bents at two distinct positions at least (torsional stiffness; the bents' K0 is "
     "singular otherwise, and Rayleigh damping needs it)";
 
-// The bridge of p with its deck in segments: p's deck.skew_deg, gaps, seats' contact law,
+// The bridge of p with its deck in segments: p's deck angles (skew_deg, the abutments' own
+// skew_left_deg / skew_right_deg; each hinge its hinge_skews_deg), gaps, seats' contact law,
 // damping and bents (bent j at position p.bents[j].position from the centre of segment
 // deck.bent_segment[j]) apply; p's mass, inertia, length and width are replaced by the
 // segments'. Contacts in output order, two per joint (y_b = +W/2 first), as DeckChain:

@@ -90,4 +90,47 @@ CriterionPrediction predict_right_end_impact(const CriterionInput& in, double vx
   return out;
 }
 
+double end_eta(const DeckGeometry& deck, int end, double impulse_ratio) {
+  deck.validate();
+  require(end == 0 || end == 1, "end", "must be 0 (left) or 1 (right)");
+  require(std::isfinite(impulse_ratio), "impulse_ratio", "must be finite");
+  const int plus = 2 * end, minus = 2 * end + 1;  // the end's +W/2 and -W/2 corners
+  const Eigen::Vector2d p = deck.corner(plus), q = deck.corner(minus);
+  const Eigen::Vector2d mid = 0.5 * (p + q), half = 0.5 * (p - q);
+  const Eigen::Vector2d n = deck.face_normal(plus);
+  const Eigen::Vector2d d = n + impulse_ratio * perp(n);
+  // The line c d through the centroid meets the face's line mid + xi half where
+  // (mid + xi half) x d = 0, xi = -(mid x d) / (half x d); eta = -xi (docs/criterion.md).
+  return cross2(mid, d) / cross2(half, d);
+}
+
+EndCriterion end_criterion(const DeckGeometry& deck, int end, double friction) {
+  require(std::isfinite(friction) && friction >= 0.0, "friction", "must be >= 0");
+  EndCriterion c;
+  c.eta_plus = end_eta(deck, end, -friction);
+  c.eta_minus = end_eta(deck, end, friction);
+  c.rotation = std::max(std::abs(c.eta_plus), std::abs(c.eta_minus)) > 1.0;
+  return c;
+}
+
+CriterionPrediction predict_end_impact(const DeckGeometry& deck, int end,
+                                       const Eigen::Vector2d& velocity, double friction,
+                                       double restitution) {
+  require(velocity.allFinite(), "velocity", "must be finite");
+  require(std::isfinite(friction) && friction >= 0.0, "friction", "must be >= 0");
+  require(restitution >= 0.0 && restitution <= 1.0, "restitution", "must be in [0, 1]");
+  const Eigen::Vector2d n = deck.face_normal(2 * end);
+  const double gn = n.dot(velocity), gt = perp(n).dot(velocity);
+  require(gn < 0.0, "velocity", "the end must approach its abutment (gdot_N- < 0)");
+  // As predict_right_end_impact: both corners slide (k = -sgn(gdot_T-) mu) or stick
+  // (k = gdot_T- / ((1 + e) gdot_N-), the impulse that stops the tangential motion).
+  CriterionPrediction out;
+  const double e = restitution;
+  out.sliding = std::abs(gt) > friction * (1.0 + e) * std::abs(gn);
+  out.impulse_ratio = out.sliding ? -sgn(gt) * friction : gt / ((1.0 + e) * gn);
+  out.eta = end_eta(deck, end, out.impulse_ratio);
+  out.rotation = std::abs(out.eta) > 1.0;
+  return out;
+}
+
 }  // namespace nsb::models::analytic

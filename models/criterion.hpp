@@ -3,6 +3,10 @@
 // `nsbridge criterion` command), not a test oracle.
 #pragma once
 
+#include "models/deck_geometry.hpp"
+
+#include <Eigen/Dense>
+
 namespace nsb::models::analytic {
 
 // Assumptions: a rigid parallelogram deck, not rotating before the impact, strikes a rigid
@@ -54,5 +58,30 @@ struct CriterionPrediction {
 };
 CriterionPrediction predict_right_end_impact(const CriterionInput& in, double vx, double vy,
                                              double restitution);
+
+// The criterion for one end of any deck plan (models/deck_geometry.hpp): end faces at
+// unequal angles (the centroid then lies off the axis's midpoint) and a curved deck's radial
+// ends (docs/criterion.md, "Unequal end angles and curved decks"). With, from the centroid,
+// M the midpoint of the end's face (between its corners) and h half the face, from its -W/2
+// corner to its +W/2 corner, the total impulse's line of action (direction d = n + k t, n
+// and t of that end, k = Lambda_T,total / Lambda_N,total) passes through the centroid and
+// meets the face's line at M - eta h with
+//   eta(k) = (M x d) / (h x d);
+// a motion without rotation exists iff |eta| <= 1. For equal angles at the right end this
+// is eta() above; at the left end of such a deck it is eta() with alpha and k of that end.
+double end_eta(const DeckGeometry& deck, int end, double impulse_ratio);
+// Both sliding branches of one end: eta_plus = end_eta(-mu), eta_minus = end_eta(+mu);
+// rotation = max(|eta_plus|, |eta_minus|) > 1.
+struct EndCriterion {
+  double eta_plus = 0.0;
+  double eta_minus = 0.0;
+  bool rotation = false;
+};
+EndCriterion end_criterion(const DeckGeometry& deck, int end, double friction);
+// The two-corner impact of end `end` (0 left, 1 right) of a deck translating at v, as
+// predict_right_end_impact: gdot_N- = n . v < 0, gdot_T- = t . v.
+CriterionPrediction predict_end_impact(const DeckGeometry& deck, int end,
+                                       const Eigen::Vector2d& velocity, double friction,
+                                       double restitution);
 
 }  // namespace nsb::models::analytic

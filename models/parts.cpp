@@ -16,7 +16,8 @@ bool finite_positive(double v) { return std::isfinite(v) && v > 0; }
 
 DeckGeometry plan(const RigidBody& b) {
   return {.length = b.length, .width = b.width, .skew_deg = b.skew_deg, .gap_right = 0.0,
-          .gap_left = 0.0};
+          .gap_left = 0.0, .skew_left_deg = b.skew_left_deg, .skew_right_deg = b.skew_right_deg,
+          .radius = b.radius};
 }
 
 }  // namespace
@@ -39,8 +40,7 @@ Face end_face(const RigidBody& body, End end) {
   // end: the outward normal of the deck's end face is their opposite.
   const DeckGeometry g = plan(body);
   const int contact = end == End::kLeft ? 0 : 2;
-  const double sign = end == End::kLeft ? -1.0 : 1.0;
-  return {Eigen::Vector2d(sign * 0.5 * body.length, 0.0), -g.face_normal(contact)};
+  return {g.end_point(end == End::kLeft ? 0 : 1), -g.face_normal(contact)};
 }
 
 BodyContactKinematics corner_on_body(const CornerFace& c, const Eigen::Vector3d& q_a,

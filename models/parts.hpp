@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,12 @@ struct RigidBody {
   double length = 0.0;     // L along the body axis [m], > 0
   double width = 0.0;      // W across it [m], > 0
   double skew_deg = 0.0;   // alpha of both end faces [deg], |alpha| < 80
+  // Each end face its own angle, and a curved plan (models/deck_geometry.hpp: the same
+  // fields): the left (right) end's skew, none: skew_deg; R of a curved body's centreline,
+  // 0: straight (length is then the arc length).
+  std::optional<double> skew_left_deg{};
+  std::optional<double> skew_right_deg{};
+  double radius = 0.0;
   Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();  // (x, y, theta) [m, m, rad]
   Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();  // (vx, vy, omega)
   // The rest pose the coordinates are measured from: the body's pose is rest + q, so that q
@@ -76,7 +83,9 @@ struct Face {
   Eigen::Vector2d point = Eigen::Vector2d::Zero();   // [m]
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX(); // unit length
 };
-// The end face of `body`: through (+-L/2, 0), normal (-+cos alpha, +-sin alpha) outwards.
+// The end face of `body`: through its end point on the axis (+-L/2, 0 from the axis's
+// midpoint; models/deck_geometry.hpp), normal (-+cos alpha, +-sin alpha) outwards, alpha that
+// end's angle.
 Face end_face(const RigidBody& body, End end);
 
 // A body whose motion is prescribed: the pose of its frame at time t is

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <numbers>
 #include <optional>
 
 namespace nsb::scene {
@@ -710,8 +711,67 @@ SegmentedDeck read_segments(const Section& m, BridgeDesign& p) {
   d.segments = read_bodies(m, "segments");
   d.hinges = read_joints(m, "hinges", d.segments.size() - 1,
                          "one between each two neighbouring segments",
-                         {"seat_length", "restrainer"});
+                         {"seat_length", "restrainer", "skew_deg"});
+  // Each hinge's own angle, where it gives one.
+  const auto* hinges = m.array_of_tables("hinges");
+  for (std::size_t k = 0; hinges != nullptr && k < hinges->size(); ++k) {
+    const Section h(m.context(), *(*hinges)[k].as_table(),
+                    m.key_path("hinges") + "[" + std::to_string(k) + "]");
+    d.hinge_skews_deg.emplace_back();
+    if (!h.has("skew_deg")) continue;
+    HingeSkewSettings hs;
+    h.read_all(HingeSkewSettings::fields(), hs);
+    d.hinge_skews_deg.back() = hs.skew_deg;
+  }
   return d;
+}
+
+// [model.deck]: the one deck, straight or curved (radius with length or angle_deg); a curved
+// deck without inertia gets its annular sector's, I = m I_G / m (models/deck_geometry.hpp).
+std::optional<Section> read_deck(const Section& m, BridgeDesign& p) {
+  const auto* t = m.subtable("deck");
+  if (t == nullptr) return std::nullopt;
+  Section s(m.context(), *t, m.key_path("deck"));
+  std::vector<std::string_view> keys = keys_of(bridge_deck_fields());
+  for (const auto& k : keys_of(CurvedDeckSettings::fields())) keys.push_back(k);
+  s.only(keys);
+  s.read_all(bridge_deck_fields(), p);
+  if (s.has("angle_deg")) {
+    if (!s.has("radius")) s.fail("angle_deg", "needs radius (a curved deck's R [m])");
+    if (s.has("length")) {
+      s.fail("angle_deg", "give either length (the arc length) or angle_deg, not both");
+    }
+    CurvedDeckSettings c;
+    s.read_all(CurvedDeckSettings::fields(), c);
+    p.deck.length = p.deck.radius * c.angle_deg * std::numbers::pi / 180.0;
+  }
+  if (p.deck.curved()) {
+    try {
+      p.deck.validate();
+      if (!s.has("inertia")) {
+        p.inertia = p.mass * annular_sector(p.deck.radius, p.deck.width,
+                                            p.deck.subtended_angle()).inertia_per_mass;
+      }
+    } catch (const std::invalid_argument& e) {
+      s.rethrow(e);
+    }
+  }
+  return s;
+}
+
+// [model.abutments] skew_left_deg / skew_right_deg: each abutment's own angle.
+void read_abutment_skews(const Section& m, BridgeDesign& p) {
+  const auto* t = m.subtable("abutments");
+  if (t == nullptr) return;
+  const Section s(m.context(), *t, m.key_path("abutments"));
+  AbutmentSkewSettings a;
+  s.read_all(AbutmentSkewSettings::fields(), a);
+  if (s.has("skew_left_deg")) p.deck.skew_left_deg = a.skew_left_deg;
+  if (s.has("skew_right_deg")) p.deck.skew_right_deg = a.skew_right_deg;
+  if ((s.has("skew_left_deg") || s.has("skew_right_deg")) && p.deck.curved()) {
+    s.fail(s.has("skew_left_deg") ? "skew_left_deg" : "skew_right_deg",
+           "a curved deck's abutment faces are radial ([model.deck] radius)");
+  }
 }
 
 // A seat shorter than its joint's opening at t0 (models/assembly_limits.cpp): reported at the
@@ -825,8 +885,8 @@ BridgeScene build_bridge(Section& m) {
   p.bents.clear();
   SegmentedDeck segments;
   if (segmented) segments = read_segments(m, p);
-  const std::optional<Section> deck =
-      segmented ? std::nullopt : read_table(m, "deck", bridge_deck_fields(), p);
+  const std::optional<Section> deck = segmented ? std::nullopt : read_deck(m, p);
+  read_abutment_skews(m, p);
   if (deck) check_body(*deck, p.mass, p.inertia, p.deck.length, p.deck.width);
   std::vector<double> lengths;
   for (const auto& b : segments.segments) lengths.push_back(b.length);
@@ -839,6 +899,12 @@ BridgeScene build_bridge(Section& m) {
   add.limits.limits.bent_heights = bents.heights;
   const SeatMotions seats = read_seats(m, p);
   add.parts = read_bridge_parts(m, PartShape{lengths, p.deck});
+  // The connectors and keys stand on a straight deck's axis and faces (docs/bridge.md,
+  // "Curved decks").
+  if (p.deck.curved() && add.parts.any()) {
+    deck->fail("radius", "a curved deck takes bents and seats only: no bearings, restrainers, "
+                         "shear keys or backfill yet");
+  }
   BridgeScene out;
   std::array<parts::Motion, 2> ground{};
   // The system for a set of support motions: one deck, segmented, with the additions.

@@ -83,7 +83,10 @@ std::any read_abutments(const Section& m, const PartShape&) {
   std::vector<std::string_view> keys = keys_of(AbutmentSettings::fields());
   keys.push_back("restrainer");
   for (std::string_view k : keys_of(SeatLengthSettings::fields())) keys.push_back(k);
-  s.only(keys);  // seat_length: a limit state's (read_bridge_limits)
+  for (std::string_view k : keys_of(AbutmentSkewSettings::fields())) keys.push_back(k);
+  // seat_length: a limit state's (read_bridge_limits); the skews: the deck's geometry's
+  // (scene/bridge_scene.cpp).
+  s.only(keys);
   AbutmentSettings a;
   s.read_all(AbutmentSettings::fields(), a);
   if (a.unloading_stiffness_per_width < a.stiffness_per_width) {
@@ -101,7 +104,8 @@ int add_backfill_seat(const AbutmentSettings& s, const BridgeDesign& p, std::siz
   const double w = s.width > 0 ? s.width : p.deck.width;
   const double t = s.thickness;
   parts::RigidBody wall{.mass = s.mass, .inertia = s.mass * (w * w + t * t) / 12.0,
-                        .length = t, .width = w, .skew_deg = p.deck.skew_deg};
+                        .length = t, .width = w,
+                        .skew_deg = p.deck.end_skew_deg(static_cast<int>(a))};
   wall.rest = Eigen::Vector3d(parts.prescribed[a].reference.x() + side * 0.5 * t,
                               parts.prescribed[a].reference.y(), 0.0);
   const int index = static_cast<int>(parts.bodies.size());
@@ -148,8 +152,11 @@ void abutment_docs(std::vector<DocTable>& out) {
   out.push_back({"model.abutments",
                  kHeader + rows(AbutmentSettings::fields(), AbutmentSettings{}) +
                      rows(SeatLengthSettings::fields(), SeatLengthSettings{},
-                          {{"seat_length", "none"}}),
-                 joined(keys(AbutmentSettings::fields()), keys(SeatLengthSettings::fields()))});
+                          {{"seat_length", "none"}}) +
+                     rows(AbutmentSkewSettings::fields(), AbutmentSkewSettings{},
+                          {{"skew_left_deg", "skew_deg"}, {"skew_right_deg", "skew_deg"}}),
+                 joined(joined(keys(AbutmentSettings::fields()), keys(SeatLengthSettings::fields())),
+                        keys(AbutmentSkewSettings::fields()))});
 }
 
 }  // namespace

@@ -31,7 +31,11 @@ void add_method_tables(std::vector<DocTable>& out) {
 
 void add_bridge_tables(std::vector<DocTable>& out) {
   const BridgeDesign bridge = BridgeDesign::benchmark();
-  out.push_back(table("model.deck", bridge_deck_fields(), bridge));
+  out.push_back({"model.deck",
+                 kHeader + rows(bridge_deck_fields(), bridge) +
+                     rows(CurvedDeckSettings::fields(), CurvedDeckSettings{},
+                          {{"angle_deg", "none"}}),
+                 joined(keys(bridge_deck_fields()), keys(CurvedDeckSettings::fields()))});
   out.push_back(table("model.gaps", bridge_gap_fields(), bridge));
   out.push_back(table("model.damping", bridge_damping_fields(), bridge));
   const DefaultNotes derived{{"position", "required"},
@@ -57,8 +61,11 @@ void add_bridge_tables(std::vector<DocTable>& out) {
   out.push_back({"model.hinges",
                  kHeader + rows(joint_fields(), DeckChain::Joint{}, {{"gap", "required"}}) +
                      rows(SeatLengthSettings::fields(), SeatLengthSettings{},
-                           {{"seat_length", "none"}}),
-                 joined(keys(joint_fields()), keys(SeatLengthSettings::fields()))});
+                           {{"seat_length", "none"}}) +
+                     rows(HingeSkewSettings::fields(), HingeSkewSettings{},
+                          {{"skew_deg", "[model] skew_deg"}}),
+                 joined(joined(keys(joint_fields()), keys(SeatLengthSettings::fields())),
+                        keys(HingeSkewSettings::fields()))});
   out.push_back(table("model.limit_states", LimitStateSettings::fields(), LimitStateSettings{},
                       {{"drift_ratio", "none"}, {"residual_rotation", "none"}}));
   // The part kinds' tables (restrainers, abutments, bearings, shear keys).

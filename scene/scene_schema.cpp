@@ -259,6 +259,39 @@ std::span<const c::Field<LayoutSettings>> LayoutSettings::fields() {
   return f;
 }
 
+std::span<const c::Field<HingeSkewSettings>> HingeSkewSettings::fields() {
+  using S = HingeSkewSettings;
+  static const c::Field<S> f[] = {
+      c::number<&S::skew_deg>("skew_deg", "deg", c::open(-80, 80),
+                              "this hinge's own angle α (both its faces); absent: [model] "
+                              "skew_deg"),
+  };
+  return f;
+}
+
+std::span<const c::Field<AbutmentSkewSettings>> AbutmentSkewSettings::fields() {
+  using S = AbutmentSkewSettings;
+  static const c::Field<S> f[] = {
+      c::number<&S::skew_left_deg>("skew_left_deg", "deg", c::open(-80, 80),
+                                   "the left abutment's own angle α (its face and the deck end "
+                                   "on it); absent: the deck's skew_deg"),
+      c::number<&S::skew_right_deg>("skew_right_deg", "deg", c::open(-80, 80),
+                                    "the right abutment's own angle α; absent: the deck's "
+                                    "skew_deg"),
+  };
+  return f;
+}
+
+std::span<const c::Field<CurvedDeckSettings>> CurvedDeckSettings::fields() {
+  using S = CurvedDeckSettings;
+  static const c::Field<S> f[] = {
+      c::number<&S::angle_deg>("angle_deg", "deg", c::open(0, 180),
+                               "a curved deck's subtended angle φ, instead of length "
+                               "(length = radius φ)"),
+  };
+  return f;
+}
+
 std::span<const c::Field<SeatLengthSettings>> SeatLengthSettings::fields() {
   using S = SeatLengthSettings;
   static const c::Field<S> f[] = {

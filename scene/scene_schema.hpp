@@ -128,6 +128,26 @@ struct LayoutSettings {
   static std::span<const config::Field<LayoutSettings>> fields();
 };
 
+// A joint's own angle (docs/bridge.md, "Faces with their own angles"): [[model.hinges]]
+// skew_deg sets both faces of that hinge; [model.abutments] skew_left_deg / skew_right_deg
+// each abutment's face and the deck end on it. Absent: the bridge's skew_deg.
+struct HingeSkewSettings {
+  double skew_deg = 0.0;  // [deg], |alpha| < 80
+  static std::span<const config::Field<HingeSkewSettings>> fields();
+};
+struct AbutmentSkewSettings {
+  double skew_left_deg = 0.0;   // [deg], |alpha| < 80
+  double skew_right_deg = 0.0;  // [deg], |alpha| < 80
+  static std::span<const config::Field<AbutmentSkewSettings>> fields();
+};
+
+// [model.deck] angle_deg: a curved deck's subtended angle, instead of its length (docs/bridge.md,
+// "Curved decks").
+struct CurvedDeckSettings {
+  double angle_deg = 0.0;  // phi [deg], in (0, 180); length = radius phi
+  static std::span<const config::Field<CurvedDeckSettings>> fields();
+};
+
 // The seat a deck end rests on, of [model.abutments] (both abutments) and of each
 // [[model.hinges]] element: its length along the axis, from the backwall (abutment) or from
 // the other frame's end face (hinge) to the seat's edge (docs/limit-states.md, "Unseating").
