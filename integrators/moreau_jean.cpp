@@ -53,6 +53,9 @@ constexpr double kScaleFloor = 1e-2;
 // the bridge longer steps leave an error of the peaks that no tolerance removes
 // (docs/moreau-jean.md, "Adaptive steps").
 constexpr double kMaxStepOfStep = 10.0;
+// A growth below this factor is not taken (the step is held): each new length costs a
+// factorization of A = M + h theta C + h^2 theta^2 K.
+constexpr double kHoldGrowth = 1.25;
 
 // y += alpha A x. The systems here are tiny (3 DOF for the bridge), where the general
 // matrix-vector kernel's dispatch costs more than the arithmetic. Per row the products are
@@ -144,7 +147,9 @@ class MoreauJean {
   void free_velocity(double h);
   void select_index_set(double h);
   void accumulate_impulse_work();
-  bool accept(double h, double t1);  // false for a non-finite force or energy
+  // false for a non-finite force or energy; force_ready: f(t1, q_k+1, u_k+1) is in f_end_,
+  // the system's trial state is that evaluation's
+  bool accept(double h, double t1, bool force_ready = false);
   bool solve_contacts(double t1);   // false for a non-finite contact problem
   bool diverge(double t1, const std::string& what);
   bool unseat(double t1);
@@ -413,7 +418,7 @@ bool MoreauJean::march_adaptive() {
     const double hk = last ? end - t_ : h;
     if (!advance(hk, t1)) return false;
     // The end state's force, evaluated here so that a hysteretic spring's change of branch
-    // within the step (a kink of the force) counts as a switch; accept() evaluates it again.
+    // within the step (a kink of the force) counts as a switch; accept() keeps it.
     system_.forces(t1, q_new_, u_new_, f_end_);
     const bool switching = switches(hk) || system_.tangent_changed();
     const bool can_shrink = hk > h_min * (1.0 + kTimeSlack);
@@ -442,7 +447,7 @@ bool MoreauJean::march_adaptive() {
     previous_h_ = hk;
     accumulate_impulse_work();
     update_events(t1);
-    if (!accept(hk, t1)) return false;
+    if (!accept(hk, t1, true)) return false;
     for (int i = 0; i < n_; ++i) peak_q_[i] = std::max(peak_q_[i], std::abs(q_[i]));
     sample(last);
     if (std::string why = pace.collapsed(book_.result().steps, t_); !why.empty()) {
@@ -458,6 +463,9 @@ bool MoreauJean::march_adaptive() {
     double factor = err > 0.0 ? kStepSafety * std::pow(err, -1.0 / order) : kMaxStepFactor;
     factor = std::clamp(factor, kMinStepFactor, kMaxStepFactor);
     if (rejected || switching || !had_previous || localising > 0) factor = std::min(factor, 1.0);
+    // A step that would grow by less than kHoldGrowth keeps its length, and so its
+    // factorization of A (which depends on h).
+    if (factor > 1.0 && factor < kHoldGrowth) factor = 1.0;
     if (switching) localising = 0;
     if (localising > 0) --localising;
     rejected = false;
@@ -623,8 +631,12 @@ void MoreauJean::accumulate_impulse_work() {
 // is far in the contact data read next, so it leaves the index set), then the contact data,
 // the works of the smooth forces and the forces for the history. False when the system
 // stopped the run (unseated) or something went non-finite.
-bool MoreauJean::accept(double h, double t1) {
-  system_.forces(t1, q_new_, u_new_, f_k_);
+bool MoreauJean::accept(double h, double t1, bool force_ready) {
+  if (force_ready) {
+    copy(f_end_, f_k_);
+  } else {
+    system_.forces(t1, q_new_, u_new_, f_k_);
+  }
   if (!all_finite(f_k_)) return diverge(t1, "non-finite smooth force");
   if (system_.tangent_changed()) {
     system_.tangent(t1, q_new_, u_new_, K_, C_);
