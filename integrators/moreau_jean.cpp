@@ -7,6 +7,7 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -24,6 +25,37 @@ constexpr double kTimeSlack = 1e-9;
 constexpr std::int64_t kMaxWarnings = 100;
 // Accepted steps between two calls of the progress callback.
 constexpr std::int64_t kProgressInterval = 4096;
+
+// The step control of adaptive steps (docs/moreau-jean.md, "Adaptive steps"). The next step is
+// h (kStepSafety / err)^(1/p) with err the local error estimate over the tolerance and p the
+// local order of q (3 for theta = 1/2, 2 otherwise), kept within [kMinStepFactor,
+// kMaxStepFactor] times h: the usual safety factor and bounds of a step controller (Hairer,
+// Nørsett & Wanner, Solving ODEs I, sec. II.4), so that one poor estimate neither collapses
+// nor explodes the step.
+constexpr double kStepSafety = 0.8;
+constexpr double kMinStepFactor = 0.2;
+constexpr double kMaxStepFactor = 2.0;
+// A step in which a contact impacts or changes state is retried with kSwitchFactor times its
+// length, down to min_step (Studer, Leine & Glocker 2008: no error-based step in a switching
+// step, the switching point localised by reducing the step).
+constexpr double kSwitchFactor = 0.25;
+// After a step was retried for a switch, the step does not grow again for this many accepted
+// steps without a switch: the switch is near, and growing would only be rejected again.
+constexpr int kLocalisingSteps = 8;
+// A coordinate's error is measured against its peak so far, and at least against this
+// fraction of the largest peak (weighted by the square root of the mass, which makes metres
+// and radians comparable): a coordinate that barely moves is not asked for a relative
+// accuracy on its round-off.
+constexpr double kScaleFloor = 1e-2;
+// The largest step when max_step is not given, in steps of the scene's own `step`, which
+// resolves its excitation and its periods (runs/trust.hpp): the local estimate sees the error
+// of the coordinates' smooth motion, not what falls between the steps of the forcing, and on
+// the bridge longer steps leave an error of the peaks that no tolerance removes
+// (docs/moreau-jean.md, "Adaptive steps").
+constexpr double kMaxStepOfStep = 10.0;
+// A growth below this factor is not taken (the step is held): each new length costs a
+// factorization of A = M + h theta C + h^2 theta^2 K.
+constexpr double kHoldGrowth = 1.25;
 
 // y += alpha A x. The systems here are tiny (3 DOF for the bridge), where the general
 // matrix-vector kernel's dispatch costs more than the arithmetic. Per row the products are
@@ -102,6 +134,12 @@ class MoreauJean {
   RunResult run();
 
  private:
+  bool march_fixed();
+  bool march_adaptive();
+  bool advance(double h, double t1);  // the end state of a step; false: non-finite
+  double local_error(double h) const;
+  bool switches(double h) const;
+  ContactState end_state(int i, bool& impact) const;
   void resume(const MoreauJeanCheckpoint& from);
   void save(MoreauJeanCheckpoint& to) const;
   void factorize(double h);
@@ -109,7 +147,9 @@ class MoreauJean {
   void free_velocity(double h);
   void select_index_set(double h);
   void accumulate_impulse_work();
-  bool accept(double h, double t1);  // false for a non-finite force or energy
+  // false for a non-finite force or energy; force_ready: f(t1, q_k+1, u_k+1) is in f_end_,
+  // the system's trial state is that evaluation's
+  bool accept(double h, double t1, bool force_ready = false);
   bool solve_contacts(double t1);   // false for a non-finite contact problem
   bool diverge(double t1, const std::string& what);
   bool unseat(double t1);
@@ -164,6 +204,13 @@ class MoreauJean {
 
   RunBookkeeping book_;
   double last_sample_t_ = -1e300;
+
+  // Adaptive steps: the last accepted step's mean acceleration (u_k - u_k-1) / h_k-1 and
+  // length (has_previous_ false after a switching step: its velocity jumps), each
+  // coordinate's peak |q| so far and sqrt(M_ii).
+  Vector previous_rate_, peak_q_, root_mass_, f_end_;
+  double previous_h_ = 0.0;
+  bool has_previous_ = false;
 };
 
 MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
@@ -258,9 +305,10 @@ MoreauJean::MoreauJean(System& system, const MoreauJeanOptions& options, Recorde
 // end_time that is not exactly on it (the saving run's last step then ended at end_time).
 void MoreauJean::resume(const MoreauJeanCheckpoint& from) {
   const double h = options_.step;
+  const bool adaptive = options_.local_tolerance > 0.0;
   const auto k = static_cast<std::int64_t>(std::llround((from.time - from.grid_origin) / h));
   const double on_grid = from.grid_origin + static_cast<double>(k) * h;
-  if (!(k >= 0 && std::abs(on_grid - from.time) <= kTimeSlack * h)) {
+  if (!adaptive && !(k >= 0 && std::abs(on_grid - from.time) <= kTimeSlack * h)) {
     throw std::invalid_argument("moreau_jean: resume.time (" + io::three_digits(from.time) +
                                 ") is not on the step grid of resume.grid_origin (" +
                                 io::three_digits(from.grid_origin) + ") and step");
@@ -274,8 +322,8 @@ void MoreauJean::resume(const MoreauJeanCheckpoint& from) {
   t_ = from.time;
   q_ = from.position;
   u_ = from.velocity;
-  grid_origin_ = from.grid_origin;
-  first_step_ = k;
+  grid_origin_ = adaptive ? from.time : from.grid_origin;
+  first_step_ = adaptive ? 0 : k;
 }
 
 void MoreauJean::save(MoreauJeanCheckpoint& to) const {
@@ -304,29 +352,8 @@ void MoreauJean::factorize(double h) {
 }
 
 RunResult MoreauJean::run() {
-  const double t0 = grid_origin_;
-  const double h = options_.step;
-  const double duration = options_.end_time - t0;
-  const auto steps = static_cast<std::int64_t>(std::ceil(duration / h - kTimeSlack));
-
   sample(true);
-  bool completed = true;
-  for (std::int64_t k = first_step_; k < steps; ++k) {
-    const bool last = (k + 1 == steps);
-    const double t1 = last ? options_.end_time : t0 + static_cast<double>(k + 1) * h;
-    // Keep the nominal h (and its factorization) unless the last step is really shorter.
-    const double hk = (last && std::abs((t1 - t_) - h) > kTimeSlack * h) ? t1 - t_ : h;
-    if (!step(hk, t1)) {
-      completed = false;
-      break;
-    }
-    sample(last);
-    book_.progress_at_interval(t_);
-    if (book_.interrupted()) {
-      completed = false;
-      break;
-    }
-  }
+  const bool completed = options_.local_tolerance > 0.0 ? march_adaptive() : march_fixed();
   if (completed) {
     book_.result().message = "reached end_time";
   } else if (last_sample_t_ != t_) {
@@ -341,6 +368,171 @@ RunResult MoreauJean::run() {
     save(*hooks_.checkpoint);
   }
   return book_.finish(t_, completed, energy_, &stage_.counts());
+}
+
+// The steps of a fixed step h on the grid t_k = grid_origin + k h; false when the run ended
+// before end_time.
+bool MoreauJean::march_fixed() {
+  const double t0 = grid_origin_;
+  const double h = options_.step;
+  const double duration = options_.end_time - t0;
+  const auto steps = static_cast<std::int64_t>(std::ceil(duration / h - kTimeSlack));
+  for (std::int64_t k = first_step_; k < steps; ++k) {
+    const bool last = (k + 1 == steps);
+    const double t1 = last ? options_.end_time : t0 + static_cast<double>(k + 1) * h;
+    // Keep the nominal h (and its factorization) unless the last step is really shorter.
+    const double hk = (last && std::abs((t1 - t_) - h) > kTimeSlack * h) ? t1 - t_ : h;
+    if (!step(hk, t1)) return false;
+    sample(last);
+    book_.progress_at_interval(t_);
+    if (book_.interrupted()) return false;
+  }
+  return true;
+}
+
+// Adaptive steps (docs/moreau-jean.md, "Adaptive steps"). Each trial step computes its end
+// state from the committed state at t_k; it is retried, the system's trial state dropped,
+// when a contact impacts or changes state in it and it is longer than min_step, or when its
+// local error estimate exceeds the tolerance. An accepted step is an ordinary step of the
+// scheme of its length: its impulses' work, its events, its commit and its sample, as with a
+// fixed step. False when the run ended before end_time.
+bool MoreauJean::march_adaptive() {
+  const double end = options_.end_time;
+  const double h_min = options_.min_step;
+  const double h_max =
+      std::min(options_.max_step > 0.0 ? options_.max_step : kMaxStepOfStep * options_.step,
+               end - t_);
+  const double order = theta_ == 0.5 ? 3.0 : 2.0;
+  previous_rate_ = Vector::Zero(n_);
+  f_end_ = Vector::Zero(n_);
+  peak_q_ = q_.cwiseAbs();
+  root_mass_ = mass_.diagonal().cwiseSqrt();
+  has_previous_ = false;
+  PaceWatch pace(t_, end);
+  double h = std::clamp(options_.step, std::min(h_min, h_max), h_max);
+  int localising = 0;  // accepted steps left without growth
+  bool rejected = false;
+  while (t_ < end) {
+    const bool last = end - t_ <= h * (1.0 + kTimeSlack);
+    const double t1 = last ? end : t_ + h;
+    const double hk = last ? end - t_ : h;
+    if (!advance(hk, t1)) return false;
+    // The end state's force, evaluated here so that a hysteretic spring's change of branch
+    // within the step (a kink of the force) counts as a switch; accept() keeps it.
+    system_.forces(t1, q_new_, u_new_, f_end_);
+    const bool switching = switches(hk) || system_.tangent_changed();
+    const bool can_shrink = hk > h_min * (1.0 + kTimeSlack);
+    if (switching && can_shrink) {
+      system_.revert();
+      ++book_.result().rejected_steps;
+      h = std::max(h_min, kSwitchFactor * hk);
+      localising = kLocalisingSteps;
+      rejected = true;
+      continue;
+    }
+    const double err = switching ? 0.0 : local_error(hk);
+    if (err > 1.0 && can_shrink) {
+      system_.revert();
+      ++book_.result().rejected_steps;
+      h = std::max(h_min,
+                   hk * std::max(kMinStepFactor, kStepSafety * std::pow(err, -1.0 / order)));
+      rejected = true;
+      continue;
+    }
+    // Accepted: the rate of this step, for the next step's estimate (none across a switch,
+    // where the velocity jumps).
+    for (int i = 0; i < n_; ++i) previous_rate_[i] = (u_new_[i] - u_[i]) / hk;
+    const bool had_previous = has_previous_;
+    has_previous_ = !switching;
+    previous_h_ = hk;
+    accumulate_impulse_work();
+    update_events(t1);
+    if (!accept(hk, t1, true)) return false;
+    for (int i = 0; i < n_; ++i) peak_q_[i] = std::max(peak_q_[i], std::abs(q_[i]));
+    sample(last);
+    if (std::string why = pace.collapsed(book_.result().steps, t_); !why.empty()) {
+      book_.result().message = std::move(why);
+      book_.stall(t_);
+      return false;
+    }
+    book_.progress_at_interval(t_);
+    if (book_.interrupted()) return false;
+    if (last) break;
+    // The next step: from the error where it is known, never growing right after a
+    // rejection, a switch or without an estimate.
+    double factor = err > 0.0 ? kStepSafety * std::pow(err, -1.0 / order) : kMaxStepFactor;
+    factor = std::clamp(factor, kMinStepFactor, kMaxStepFactor);
+    if (rejected || switching || !had_previous || localising > 0) factor = std::min(factor, 1.0);
+    // A step that would grow by less than kHoldGrowth keeps its length, and so its
+    // factorization of A (which depends on h).
+    if (factor > 1.0 && factor < kHoldGrowth) factor = 1.0;
+    if (switching) localising = 0;
+    if (localising > 0) --localising;
+    rejected = false;
+    h = std::clamp(hk * factor, std::min(h_min, h_max), h_max);
+  }
+  return true;
+}
+
+// The local error of q over a trial step of length h, over the tolerance times each
+// coordinate's scale, the largest over the coordinates (docs/moreau-jean.md, "The local error
+// estimate"). The scheme's q_k+1 = q_k + h [(1 - theta) u_k + theta u_k+1] is the trapezoidal
+// rule for theta = 1/2, with the local error -(h³/12) q‴ + O(h⁴); otherwise it adds
+// (theta - 1/2) h² q″ + O(h³). q″ and q‴ = u″ come from the velocities of this step and the
+// last: q″ ≈ (u_k+1 - u_k) / h, and u″ ≈ 2 [(u_k+1 - u_k) / h - (u_k - u_k-1) / h_k-1] /
+// (h + h_k-1), the second divided difference. Without a last step (the first, or after a
+// switch) only the term of theta - 1/2 is known.
+// The peaks a run reports are the extremes over the ends of its steps (Recorder), so a step
+// in which a velocity changes sign also counts the extremum it would miss: with u linear over
+// the step, from a = |u_k| to b = |u_k+1|, the extremum lies h a² / (2 (a + b)) beyond q_k
+// and h b² / (2 (a + b)) beyond q_k+1; the nearer end misses the smaller of the two.
+double MoreauJean::local_error(double h) const {
+  double largest_peak = 0.0;  // max_i sqrt(M_ii) max(peak_i, |q_i|)
+  for (int i = 0; i < n_; ++i) {
+    const double peak = std::max(peak_q_[i], std::abs(q_new_[i]));
+    largest_peak = std::max(largest_peak, root_mass_[i] * peak);
+  }
+  if (!(largest_peak > 0.0)) return 0.0;  // at rest: nothing to be relative to
+  const double first_order = std::abs(theta_ - 0.5) * h;
+  double worst = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    const double rate = (u_new_[i] - u_[i]) / h;
+    double e = first_order * std::abs(u_new_[i] - u_[i]);
+    if (has_previous_) {
+      const double d2 = 2.0 * (rate - previous_rate_[i]) / (h + previous_h_);
+      e += h * h * h / 12.0 * std::abs(d2);
+    }
+    if (u_[i] * u_new_[i] < 0.0) {
+      const double a = std::abs(u_[i]), b = std::abs(u_new_[i]);
+      e = std::max(e, 0.5 * h * std::min(a * a, b * b) / (a + b));
+    }
+    const double scale = std::max(std::max(peak_q_[i], std::abs(q_new_[i])),
+                                  kScaleFloor * largest_peak / root_mass_[i]);
+    worst = std::max(worst, e / (options_.local_tolerance * scale));
+  }
+  return worst;
+}
+
+// Whether a contact impacts or changes state (open, closed, stick, slip) at the end of the
+// step of length h computed, without recording it: the switches update_events() would record;
+// or whether a contact outside the index set closes within the step, its gap at t_k+1,
+// g_N + h (gdot_N,k + gdot_N,k+1) / 2, below the gap's round-off (a long step passes the rule
+// g_N + (h/2) gdot_N > 0 at t_k and would carry the body through the obstacle).
+bool MoreauJean::switches(double h) const {
+  const double gap_slack = ContactTolerances::gap(q_);
+  for (int i = 0; i < m_; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    const ContactData& c = contacts_[ui];
+    if (!in_index_set_[ui] && !c.far &&
+        c.gap_normal + 0.5 * h * (gap_rate(c, u_) + gap_rate(c, u_new_)) <= gap_slack) {
+      return true;
+    }
+    const ContactState before = state_[ui];
+    if (before == ContactState::kOpen && !(lambda_n_[i] > 0.0)) continue;
+    bool impact = false;
+    if (end_state(i, impact) != before || impact) return true;
+  }
+  return false;
 }
 
 bool MoreauJean::diverge(double t1, const std::string& what) {
@@ -362,6 +554,15 @@ bool MoreauJean::unseat(double t1) {
 }
 
 bool MoreauJean::step(double h, double t1) {
+  if (!advance(h, t1)) return false;
+  accumulate_impulse_work();
+  update_events(t1);
+  return accept(h, t1);
+}
+
+// The end state (q_new_, u_new_) and the impulses of a step of length h from t_k to t1, from
+// the committed state; the system is left at its trial state of the step.
+bool MoreauJean::advance(double h, double t1) {
   if (refactor_ || h != h_factored_) factorize(h);
   system_.forces(t1, q_, u_, f_pred_);
   if (!all_finite(f_pred_)) return diverge(t1, "non-finite smooth force");
@@ -381,9 +582,7 @@ bool MoreauJean::step(double h, double t1) {
 
   combine(q_, h * (1.0 - theta_), u_, h * theta_, u_new_, q_new_);
   if (!all_finite(q_new_) || !all_finite(u_new_)) return diverge(t1, "non-finite state");
-  accumulate_impulse_work();
-  update_events(t1);
-  return accept(h, t1);
+  return true;
 }
 
 // Free velocity: the theta-method with the smooth force linearised about (q_k, u_k),
@@ -432,8 +631,12 @@ void MoreauJean::accumulate_impulse_work() {
 // is far in the contact data read next, so it leaves the index set), then the contact data,
 // the works of the smooth forces and the forces for the history. False when the system
 // stopped the run (unseated) or something went non-finite.
-bool MoreauJean::accept(double h, double t1) {
-  system_.forces(t1, q_new_, u_new_, f_k_);
+bool MoreauJean::accept(double h, double t1, bool force_ready) {
+  if (force_ready) {
+    copy(f_end_, f_k_);
+  } else {
+    system_.forces(t1, q_new_, u_new_, f_k_);
+  }
   if (!all_finite(f_k_)) return diverge(t1, "non-finite smooth force");
   if (system_.tangent_changed()) {
     system_.tangent(t1, q_new_, u_new_, K_, C_);
@@ -519,36 +722,46 @@ bool MoreauJean::solve_contacts(double t1) {
 //     a contact kept in the index set with no impulse and no separation velocity rests on);
 //   stick / slip: a resting frictional contact's |gdot_T+| <= v_tol or not; slip is also
 //     reported when the slip direction reverses.
-void MoreauJean::update_events(double t1) {
+// end_state() gives contact i's state at the end of the step computed and whether the step is
+// an impact on it; update_events() records the changes.
+ContactState MoreauJean::end_state(int i, bool& impact) const {
   const double v_tol = options_.event_velocity_tolerance;
+  const auto ui = static_cast<std::size_t>(i);
+  const ContactState before = state_[ui];
+  const ContactData& c = in_index_set_[ui] ? contacts_next_[ui] : contacts_[ui];
+  ContactState now = ContactState::kOpen;
+  impact = false;
+  const bool resting = std::abs(c.gap_rate(u_new_)) <= v_tol;
+  if (lambda_n_[i] > 0.0) {
+    // A resting contact under a moving obstacle meets a small approach velocity every
+    // step (the obstacle's acceleration times h): that is contact, not an impact.
+    impact = before == ContactState::kOpen && contacts_[ui].gap_rate(u_) < -v_tol;
+    if (resting) {
+      const double slip = c.slip_rate(u_new_);
+      if (c.friction == 0.0) {
+        now = ContactState::kClosed;
+      } else if (std::abs(slip) <= v_tol) {
+        now = ContactState::kStick;
+      } else {
+        now = slip > 0.0 ? ContactState::kSlipPositive : ContactState::kSlipNegative;
+      }
+    }
+  } else if (before != ContactState::kOpen && in_index_set_[ui] && resting) {
+    now = before;
+  }
+  return now;
+}
+
+void MoreauJean::update_events(double t1) {
   for (int i = 0; i < m_; ++i) {
     const auto ui = static_cast<std::size_t>(i);
     const ContactState before = state_[ui];
     // An open contact without a normal impulse stays open: nothing to evaluate (most
     // contacts at most steps).
     if (before == ContactState::kOpen && !(lambda_n_[i] > 0.0)) continue;
-    const ContactData& c = in_index_set_[ui] ? contacts_next_[ui] : contacts_[ui];
-    ContactState now = ContactState::kOpen;
-    const bool resting = std::abs(c.gap_rate(u_new_)) <= v_tol;
-    if (lambda_n_[i] > 0.0) {
-      // A resting contact under a moving obstacle meets a small approach velocity every
-      // step (the obstacle's acceleration times h): that is contact, not an impact.
-      if (before == ContactState::kOpen && contacts_[ui].gap_rate(u_) < -v_tol) {
-        recorder_.impact(t1, i + 1, lambda_n_[i], lambda_t_[i]);
-      }
-      if (resting) {
-        const double slip = c.slip_rate(u_new_);
-        if (c.friction == 0.0) {
-          now = ContactState::kClosed;
-        } else if (std::abs(slip) <= v_tol) {
-          now = ContactState::kStick;
-        } else {
-          now = slip > 0.0 ? ContactState::kSlipPositive : ContactState::kSlipNegative;
-        }
-      }
-    } else if (before != ContactState::kOpen && in_index_set_[ui] && resting) {
-      now = before;
-    }
+    bool impact = false;
+    const ContactState now = end_state(i, impact);
+    if (impact) recorder_.impact(t1, i + 1, lambda_n_[i], lambda_t_[i]);
     state_[ui] = now;
     if (now == before) continue;
     if (before == ContactState::kOpen) recorder_.event(t1, i + 1, EventKind::kClose);

@@ -62,6 +62,13 @@ struct MoreauJeanOptions {
   // Normal or tangential contact velocity [m/s] below which a contact counts as resting or
   // sticking, for events only (it does not change the dynamics); > 0.
   double event_velocity_tolerance = 1e-6;
+  // Adaptive steps (docs/moreau-jean.md, "Adaptive steps"). 0: every step is `step`. > 0:
+  // each step is chosen so that the local error estimate of every coordinate is at most
+  // local_tolerance times its scale (its peak so far), `step` being the first trial step; a
+  // step in which a contact impacts or changes state is retried smaller, down to min_step.
+  double local_tolerance = 0.0;  // relative local error of q per step [-], in [0, 1)
+  double min_step = 1e-6;        // smallest adaptive step [s], > 0
+  double max_step = 0.0;         // largest adaptive step [s], >= 0; 0: 10 x step
   // The schema of these fields (keys of a scene's [solver] table, units, ranges).
   static std::span<const config::Field<MoreauJeanOptions>> fields();
   void validate() const;       // throws std::invalid_argument naming the key
@@ -77,6 +84,12 @@ struct MoreauJeanOptions {
 // the best answer), kCompletedWithFallbacks, kCompleted.
 RunResult moreau_jean(System& system, const MoreauJeanOptions& options, Recorder& recorder,
                       const Progress& progress = {}, const RunHooks& hooks = {});
+// solver.adapt = true under Moreau–Jean: the local tolerance a run starts from when the scene
+// gives none, as a multiple of solver.accuracy (docs/moreau-jean.md, "Adaptive steps": the
+// local errors of the thousands of steps of a record add up, mostly as a phase error, so the
+// tolerance per step is a hundredth of the relative accuracy asked of the peaks).
+inline constexpr double kLocalToleranceOfAccuracy = 0.01;
+
 // The run API's entry for this method (integrators/run.hpp).
 inline RunResult run_method(System& system, const MoreauJeanOptions& options, Recorder& recorder,
                             const Progress& progress, const RunHooks& hooks) {

@@ -46,6 +46,15 @@ std::span<const c::Field<MoreauJeanOptions>> MoreauJeanOptions::fields() {
           "event_velocity_tolerance", "m/s", c::positive(),
           "contact velocity below which a contact counts as resting or sticking, for events "
           "only"),
+      c::number<&O::local_tolerance>(
+          "local_tolerance", "-", c::closed_open(0.0, 1.0),
+          "adaptive steps: relative local error of each coordinate per step; 0: the fixed "
+          "step `step` (solver.adapt sets it to 0.01 × accuracy when not given)"),
+      c::number<&O::min_step>("min_step", "s", c::positive(),
+                              "adaptive steps: the smallest step, to which a step where a "
+                              "contact impacts or changes state is reduced"),
+      c::number<&O::max_step>("max_step", "s", c::non_negative(),
+                              "adaptive steps: the largest step; 0: 10 × step"),
   };
   return f;
 }

@@ -38,6 +38,7 @@ std::pair<std::string, double> accuracy_setting(const integrators::RunConfig& co
   return std::visit(
       [](const auto& o) -> std::pair<std::string, double> {
         if constexpr (std::is_same_v<std::decay_t<decltype(o)>, integrators::MoreauJeanOptions>) {
+          if (o.local_tolerance > 0.0) return {"local_tolerance", o.local_tolerance};
           return {"step", o.step};
         } else {
           return {"tolerance", o.tolerance};
@@ -52,6 +53,15 @@ std::optional<CompanionPlan> companion_plan(const integrators::RunConfig& config
       [duration](const auto& o) -> std::optional<CompanionPlan> {
         using O = std::decay_t<decltype(o)>;
         if constexpr (std::is_same_v<O, integrators::MoreauJeanOptions>) {
+          if (o.local_tolerance > 0.0) {
+            // Adaptive steps: the same run at a looser local tolerance (below 1, its range).
+            const double loose = std::min(kMoreauToleranceRatio * o.local_tolerance, 0.5);
+            if (!(loose > o.local_tolerance)) return std::nullopt;
+            O c = o;
+            c.local_tolerance = loose;
+            return plan_of(c, "local_tolerance", o.local_tolerance, loose,
+                           kAdaptiveMoreauOrder);
+          }
           const double coarse = kMoreauStepRatio * o.step;
           if (!(coarse <= duration)) return std::nullopt;
           O c = o;
@@ -199,7 +209,7 @@ std::string accuracy_warning(const Digest& digest) {
   const ErrorEstimate& e = digest.estimate;
   const Accuracy& a = digest.accuracy;
   if (!e.enabled) return {};
-  const std::string knob = e.setting == "step" ? "solver.step" : "solver.tolerance";
+  const std::string knob = "solver." + e.setting;
   if (!e.computed) {
     return "accuracy: no error estimate: " +
            (e.companion_status.empty()

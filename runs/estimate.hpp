@@ -24,6 +24,11 @@ namespace nsb::runs {
 // 1.02, two simultaneous contacts 1.00), below the method's order 1 with impacts.
 inline constexpr double kMoreauStepRatio = 2.0;
 inline constexpr double kMoreauOrder = 0.95;
+// Moreau–Jean with adaptive steps (solver.local_tolerance > 0): the companion takes the local
+// tolerance kMoreauToleranceRatio times looser, and the error is taken as C tol^p with
+// p = kAdaptiveMoreauOrder (docs/moreau-jean.md, "The companion of an adaptive run").
+inline constexpr double kMoreauToleranceRatio = 10.0;
+inline constexpr double kAdaptiveMoreauOrder = 0.5;
 // The adaptive methods: the tolerance ratio of the companion.
 inline constexpr double kToleranceRatio = 100.0;
 // Event-driven: error ≈ 1.89 tol^0.912 on the impact oscillator with impacts

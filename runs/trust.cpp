@@ -92,7 +92,9 @@ std::vector<std::string> step_warnings(integrators::System& system,
   limits.validate();
   std::vector<std::string> w;
   const auto* mj = std::get_if<integrators::MoreauJeanOptions>(&config);
-  if (mj == nullptr) return w;  // the adaptive methods choose their steps by their tolerance
+  // The adaptive methods, and Moreau–Jean with adaptive steps, choose their steps by their
+  // tolerance.
+  if (mj == nullptr || mj->local_tolerance > 0.0) return w;
   const double h = mj->step;
   const double period = shortest_period(system);
   if (std::isfinite(period) && h * limits.steps_per_period > period) {

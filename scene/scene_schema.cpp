@@ -82,7 +82,8 @@ std::span<const c::Field<EstimateSettings>> EstimateSettings::fields() {
       c::boolean<&S::error_estimate>(
           "error_estimate",
           "estimate the numerical error of every peak, the impact count and the first impact's "
-          "time by a companion run (Moreau–Jean at twice solver.step, the adaptive methods at "
+          "time by a companion run (Moreau–Jean at twice solver.step, or at 10 times "
+          "solver.local_tolerance with adaptive steps, the adaptive methods at "
           "100 times solver.tolerance) extrapolated at the method's measured order "
           "(docs/error-estimates.md); "
           "false: no estimate, the run alone"),
@@ -92,8 +93,9 @@ std::span<const c::Field<EstimateSettings>> EstimateSettings::fields() {
           "accuracy times the peak warns \"accuracy: ...\" (exit 1 under --strict)"),
       c::boolean<&S::adapt>(
           "adapt",
-          "choose the step (Moreau–Jean) or the tolerance (event-driven, compliance) to meet "
-          "accuracy: from the scene's, refined while the estimate exceeds accuracy, at most 6 "
+          "choose the steps (Moreau–Jean: adaptive steps at solver.local_tolerance, 0.01 × "
+          "accuracy unless given) or the tolerance (event-driven, compliance) to meet "
+          "accuracy: refined while the estimate exceeds accuracy, at most 6 "
           "runs (docs/error-estimates.md, \"Choosing the step\"); needs error_estimate"),
   };
   return f;

@@ -77,6 +77,12 @@ RunConfig read_solver(Section& s, EstimateSettings& estimate) {
         }
       },
       config);
+  // solver.adapt under Moreau–Jean: adaptive steps at a local tolerance from the accuracy,
+  // unless the scene gives its own (docs/moreau-jean.md, "Adaptive steps").
+  auto* moreau = std::get_if<integrators::MoreauJeanOptions>(&config);
+  if (estimate.adapt && moreau != nullptr && moreau->local_tolerance == 0.0) {
+    moreau->local_tolerance = integrators::kLocalToleranceOfAccuracy * estimate.accuracy;
+  }
   return config;
 }
 

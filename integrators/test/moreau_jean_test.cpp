@@ -556,4 +556,98 @@ TEST_CASE("the progress callback is called with increasing times up to end_time"
   CHECK(seen.back() == doctest::Approx(1.0));
 }
 
+// Adaptive steps (local_tolerance > 0; docs/moreau-jean.md, "Adaptive steps").
+
+TEST_CASE("adaptive steps: a bouncing ball's impact times and apex heights are the closed form's") {
+  // Dropped from y0 = 1 m at rest, e = 0.8, g = 9.81 m/s^2. The first impact is at
+  // t_1 = sqrt(2 y0 / g) at the speed v_1 = sqrt(2 g y0); the k-th rebound leaves at e^k v_1,
+  // so t_k+1 = t_k + 2 e^k v_1 / g and the apex after it is e^(2k) y0.
+  const double g = 9.81, y0 = 1.0, e = 0.8;
+  ts::Ball ball(ball_on_platform(y0, 0.0, e));
+  Recorder rec(ball, 0.0);
+  MoreauJeanOptions o;
+  o.step = 1e-3;
+  o.end_time = 2.0;
+  o.local_tolerance = 1e-4;
+  o.min_step = 1e-6;
+  const RunResult stats = moreau_jean(ball, o, rec);
+  CHECK(stats.completed);
+  const double v1 = std::sqrt(2.0 * g * y0);
+  std::vector<double> expected{std::sqrt(2.0 * y0 / g)};
+  for (int k = 1; k < 3; ++k) expected.push_back(expected.back() + 2.0 * std::pow(e, k) * v1 / g);
+  std::vector<double> impacts;
+  for (const auto& ev : rec.events()) {
+    if (ev.kind == EventKind::kImpact) impacts.push_back(ev.t);
+  }
+  REQUIRE(impacts.size() == 3);  // the fourth is at 2.214 s
+  // The impact is located to within a few min_step: the step that takes the contact into the
+  // index set is min_step long, and it closes the gap left of (h/2) |v|.
+  constexpr double kImpactTime = 1e-5;  // [s], 10 min_step
+  for (std::size_t k = 0; k < impacts.size(); ++k) {
+    CAPTURE(k);
+    CHECK(std::abs(impacts[k] - expected[k]) <= kImpactTime);
+  }
+  // The apex between two impacts, the largest y over the steps between them: within the
+  // local tolerance of the peak (the step ending nearest the apex misses at most that).
+  const auto t = rec.series("t"), y = rec.series("y");
+  for (std::size_t k = 0; k + 1 < impacts.size(); ++k) {
+    double apex = 0.0;
+    for (std::size_t r = 0; r < t.size(); ++r) {
+      if (t[r] > impacts[k] && t[r] < impacts[k + 1]) apex = std::max(apex, y[r]);
+    }
+    CAPTURE(k);
+    CHECK(std::abs(apex - std::pow(e, 2.0 * static_cast<double>(k + 1)) * y0) <= 2e-4 * y0);
+  }
+  // Free flight is exact for the scheme, so the steps grow there: a fixed step of min_step
+  // would take 2e6 steps.
+  CHECK(stats.steps < 5000);
+  CHECK(stats.rejected_steps > 0);
+  // The energy balance is bookkeeping of the accepted steps, whatever their lengths.
+  CHECK(stats.energy.error <= 1e-12);
+}
+
+TEST_CASE("adaptive steps: on a smooth oscillator the step follows the local order 3 of theta = 1/2") {
+  // Undamped m x'' + k x = 0, w = sqrt(k / m): the scheme is the trapezoidal rule, whose local
+  // error is (h^3 / 12) |x'''| = (h^3 / 12) w^3 A |sin|. Holding it at tol A asks for
+  // h ~ tol^(1/3): a tolerance 8 times tighter doubles the number of steps (step doubling).
+  // The global error at a fixed time is then ~ h^2 ~ tol^(2/3): 4 times smaller.
+  const double m = 1.0, k = 40.0, x0 = 0.05, T = 5.0;
+  const double w = std::sqrt(k / m);
+  auto run = [&](double tol, std::int64_t& steps) {
+    ts::SpringMass s(oscillator(m, k, 0.0, x0, 0.0));
+    Recorder rec(s, 1e9);
+    MoreauJeanOptions o;
+    o.step = 1e-3;
+    o.end_time = T;
+    o.local_tolerance = tol;
+    o.max_step = T;  // no bound but the tolerance
+    const RunResult stats = moreau_jean(s, o, rec);
+    steps = stats.steps;
+    return std::abs(rec.series("x").back() - x0 * std::cos(w * T));
+  };
+  std::int64_t coarse = 0, fine = 0;
+  const double error_coarse = run(1e-4, coarse);
+  const double error_fine = run(1e-4 / 8.0, fine);
+  const double step_ratio = static_cast<double>(fine) / static_cast<double>(coarse);
+  constexpr double kRatioSlack = 0.1;  // the steps near the extrema and the first ones
+  CHECK(step_ratio == doctest::Approx(2.0).epsilon(kRatioSlack));
+  CHECK(error_coarse / error_fine == doctest::Approx(4.0).epsilon(0.35));
+  // And the error itself: at most about w T (w h)^2 / 12 of the amplitude (the phase error of
+  // the trapezoidal rule), with (w h)^3 / 12 = tol.
+  CHECK(error_coarse <= x0 * w * T * std::pow(12.0 * 1e-4, 2.0 / 3.0) / 12.0);
+}
+
+TEST_CASE("adaptive steps: the options' ranges") {
+  ts::SpringMass s(oscillator(1.0, 1.0, 0.0, 1.0, 0.0));
+  Recorder rec(s, 0.0);
+  MoreauJeanOptions o;
+  o.local_tolerance = 1.0;
+  CHECK_THROWS_WITH_AS(moreau_jean(s, o, rec), doctest::Contains("local_tolerance"),
+                       std::invalid_argument);
+  o.local_tolerance = 1e-3;
+  o.min_step = 0.0;
+  CHECK_THROWS_WITH_AS(moreau_jean(s, o, rec), doctest::Contains("min_step"),
+                       std::invalid_argument);
+}
+
 }  // namespace nsb::integrators

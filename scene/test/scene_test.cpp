@@ -502,7 +502,8 @@ TEST_CASE("an unknown [solver] key names every key the methods declare") {
   CHECK(contains(e, "unknown.toml:7:9: solver.stepp: unknown key; did you mean `step`?; "
                     "allowed here: method, "
                     "end_time, step, theta, lcp_solver, lcp_tolerance, lcp_fallback, "
-                    "event_velocity_tolerance, tolerance, event_time_tolerance"));
+                    "event_velocity_tolerance, local_tolerance, min_step, max_step, tolerance, "
+                    "event_time_tolerance"));
   CHECK(contains(e, "contact_stiffness, stiffness_factor, damping_law"));
 }
 
