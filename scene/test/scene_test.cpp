@@ -504,7 +504,7 @@ TEST_CASE("an unknown [solver] key names every key the methods declare") {
                     "end_time, step, theta, lcp_solver, lcp_tolerance, lcp_fallback, "
                     "event_velocity_tolerance, local_tolerance, min_step, max_step, tolerance, "
                     "event_time_tolerance"));
-  CHECK(contains(e, "contact_stiffness, stiffness_factor, damping_law"));
+  CHECK(contains(e, "contact_stiffness, stiffness_factor, reference_mass, damping_law"));
 }
 
 TEST_CASE("[output] groups: names checked at the key, with the closest name") {
