@@ -43,6 +43,13 @@ Face end_face(const RigidBody& body, End end) {
   return {Eigen::Vector2d(sign * 0.5 * body.length, 0.0), -g.face_normal(contact)};
 }
 
+Face bounded_end_face(const RigidBody& body, End end) {
+  Face f = end_face(body, end);
+  // The corners (+-L/2 +- (W/2) tan alpha, +-W/2) lie (W/2) / cos alpha from (+-L/2, 0).
+  f.half_length = 0.5 * body.width / std::cos(body.skew_deg * std::numbers::pi / 180.0);
+  return f;
+}
+
 BodyContactKinematics corner_on_body(const CornerFace& c, const Eigen::Vector3d& q_a,
                                      const Eigen::Vector3d& u_a, const Eigen::Vector3d& q_b,
                                      const Eigen::Vector3d& u_b) {
