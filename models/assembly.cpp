@@ -643,7 +643,7 @@ Assembly::BodyPair<parts::BodyContactKinematics> Assembly::body_pair(
                               u.segment<3>(c.offset_b));
   const double first = parts::beyond_edge(p.k.a.gap_tangent, c.half_length);
   if (!c.sided) {
-    p.candidate = first <= 0.0;
+    p.candidate = first <= parts::kEdgeTie;
     return p;
   }
   auto partner = parts::corner_on_body(c.partner, qb, u.segment<3>(c.offset_b), qa,
@@ -668,7 +668,7 @@ Assembly::BodyPair<parts::BodyContactNormal> Assembly::body_pair_normal(
                                      u.segment<3>(c.offset_b));
   const double first = parts::beyond_edge(p.k.a.gap_tangent, c.half_length);
   if (!c.sided) {
-    p.candidate = first <= 0.0;
+    p.candidate = first <= parts::kEdgeTie;
     return p;
   }
   auto partner = parts::corner_on_body_normal(c.partner, qb, u.segment<3>(c.offset_b), qa,

@@ -271,7 +271,9 @@ inline double beyond_edge(double gap_tangent, double half_length) {
 // obstacle's corner on this body's face). The innermost corner is the one that bounds the
 // faces' overlap on this side, so it is the contact; it lies on the other face whenever the
 // joint is closed, and beyond it by at most g_N sin(theta) (theta the faces' relative angle)
-// while the joint is open, so the side stays a candidate while beyond <= max(0, g_N).
+// while the joint is open, so the side stays a candidate while beyond <= max(kEdgeTie, g_N).
+// The floor kEdgeTie is for a flush joint: its coincident corners lie at the faces' ends up
+// to round-off (beyond ~ +-1e-16 m with g_N ~ -1e-16 m), which must not make the side far.
 struct JointSide {
   bool second = false;     // the second pair is the contact
   bool candidate = true;   // false: no overlap of the faces on this side, the contact is far
@@ -282,7 +284,7 @@ inline JointSide joint_side(double first_beyond, double second_beyond, double fi
   s.second = second_beyond < first_beyond - kEdgeTie;
   const double beyond = s.second ? second_beyond : first_beyond;
   const double gap = s.second ? second_gap : first_gap;
-  s.candidate = beyond <= std::max(0.0, gap);
+  s.candidate = beyond <= std::max(kEdgeTie, gap);
   return s;
 }
 
