@@ -123,6 +123,12 @@ void Assembly::validate_parts() const {
     require(c.face.point.allFinite(), prefix + "face.point", "must be finite [m]");
     require(c.face.normal.allFinite() && std::abs(c.face.normal.norm() - 1.0) < 1e-12,
             prefix + "face.normal", "must be a unit vector");
+    require(c.face.half_length > 0, prefix + "face.half_length", "must be > 0 [m]");
+    require(c.partner_corner < 0 || (on_body && c.partner_corner <= 3 &&
+                                     c.partner_face.half_length > 0 &&
+                                     std::abs(c.partner_face.normal.norm() - 1.0) < 1e-12),
+            prefix + "partner_corner",
+            "must be -1, or 0..3 against another body with a partner face");
     require(std::isfinite(c.restitution) && c.restitution >= 0 && c.restitution <= 1,
             prefix + "restitution", "must be in [0, 1]");
     require(std::isfinite(c.friction) && c.friction >= 0, prefix + "friction", "must be >= 0");
@@ -245,16 +251,23 @@ void Assembly::build_contacts() {
                                 .friction = c.friction, .stiffness = c.stiffness,
                                 .colliding_mass = m_a});
     } else {
-      const double m_b = parts_.bodies[static_cast<std::size_t>(c.obstacle_index)].mass;
-      body_contacts_.push_back({.slot = i, .offset_a = 3 * c.body,
-                                .offset_b = 3 * c.obstacle_index,
-                                .rest_a = parts_.bodies[static_cast<std::size_t>(c.body)].rest,
-                                .rest_b = parts_.bodies[static_cast<std::size_t>(
-                                    c.obstacle_index)].rest,
-                                .geometry = geometry,
-                                .restitution = c.restitution, .friction = c.friction,
-                                .stiffness = c.stiffness,
-                                .colliding_mass = m_a * m_b / (m_a + m_b)});
+      const auto& other = parts_.bodies[static_cast<std::size_t>(c.obstacle_index)];
+      const double m_b = other.mass;
+      BodyContact b{.slot = i, .offset_a = 3 * c.body, .offset_b = 3 * c.obstacle_index,
+                    .rest_a = parts_.bodies[static_cast<std::size_t>(c.body)].rest,
+                    .rest_b = other.rest, .geometry = geometry,
+                    .restitution = c.restitution, .friction = c.friction,
+                    .stiffness = c.stiffness, .colliding_mass = m_a * m_b / (m_a + m_b),
+                    .half_length = c.face.half_length,
+                    .sided = false, .partner = {},
+                    .partner_half_length = std::numeric_limits<double>::infinity()};
+      if (c.partner_corner >= 0) {
+        b.sided = true;
+        b.partner = {.body_point = other.corner(c.partner_corner),
+                     .face_point = c.partner_face.point, .face_normal = c.partner_face.normal};
+        b.partner_half_length = c.partner_face.half_length;
+      }
+      body_contacts_.push_back(b);
     }
   }
 }
@@ -263,7 +276,8 @@ void Assembly::check_initial_gaps() const {
   std::vector<integrators::ContactData> c = make_contact_buffer();
   contact_data(initial_time(), initial_position(), initial_velocity(), c);
   for (std::size_t i = 0; i < c.size(); ++i) {
-    if (c[i].gap_normal < -kPenetrationTolerance) {
+    // A contact that is no candidate (a corner beyond a face's end) cannot penetrate.
+    if (!c[i].far && c[i].gap_normal < -kPenetrationTolerance) {
       std::ostringstream s;
       s << "contacts[" << i << "]: initial penetration (g_N = " << c[i].gap_normal
         << " m); the initial gaps must be >= 0";
@@ -494,14 +508,13 @@ void Assembly::contacts_of(double t, const integrators::Vector& q, const integra
   }
   if (!kOneBody) {  // a contact against a body needs two
     for (const auto& c : body_contacts_) {
-      const auto k = parts::corner_on_body(c.geometry, q.segment<3>(c.offset_a) + c.rest_a,
-                                           u.segment<3>(c.offset_a),
-                                           q.segment<3>(c.offset_b) + c.rest_b,
-                                           u.segment<3>(c.offset_b));
-      parts::write_body_contact(k, c.offset_a, c.offset_b, c.restitution, c.friction,
+      const auto p = body_pair(c, q, u);
+      parts::write_body_contact(p.k, p.swapped ? c.offset_b : c.offset_a,
+                                p.swapped ? c.offset_a : c.offset_b, c.restitution, c.friction,
                                 out[c.slot]);
       out[c.slot].stiffness = c.stiffness;
       out[c.slot].colliding_mass = c.colliding_mass;
+      if (!p.candidate) out[c.slot].far = true;
     }
   }
   mark_broken(out);
@@ -589,10 +602,7 @@ void Assembly::evaluate_normals(double t, const integrators::Vector& q,
         corner_contact_normal(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
   }
   for (std::size_t i = 0; i < body_contacts_.size(); ++i) {
-    const BodyContact& c = body_contacts_[i];
-    normals_.body[i] = parts::corner_on_body_normal(
-        c.geometry, q.segment<3>(c.offset_a) + c.rest_a, u.segment<3>(c.offset_a),
-        q.segment<3>(c.offset_b) + c.rest_b, u.segment<3>(c.offset_b));
+    normals_.body[i] = body_pair_normal(body_contacts_[i], q, u);
   }
 }
 
@@ -607,8 +617,7 @@ void Assembly::contact_normals(double t, const integrators::Vector& q,
       parts::write_contact_normal(normals_.seat[i], c.offset, out[c.slot]);
     }
     for (std::size_t i = 0; i < body_contacts_.size(); ++i) {
-      const BodyContact& c = body_contacts_[i];
-      parts::write_body_contact_normal(normals_.body[i], c.offset_a, c.offset_b, out[c.slot]);
+      write_body_pair_normal(body_contacts_[i], normals_.body[i], out[body_contacts_[i].slot]);
     }
     mark_broken(out);
     return;
@@ -639,13 +648,72 @@ void Assembly::normals_of(double t, const integrators::Vector& q, const integrat
   }
   if (!kOneBody) {
     for (const auto& c : body_contacts_) {
-      const auto k = parts::corner_on_body_normal(
-          c.geometry, q.segment<3>(c.offset_a) + c.rest_a, u.segment<3>(c.offset_a),
-          q.segment<3>(c.offset_b) + c.rest_b, u.segment<3>(c.offset_b));
-      parts::write_body_contact_normal(k, c.offset_a, c.offset_b, out[c.slot]);
+      write_body_pair_normal(c, body_pair_normal(c, q, u), out[c.slot]);
     }
   }
   mark_broken(out);
+}
+
+// The pair of a body contact that is its contact (docs/bridge.md, "Contacts with edges"):
+// a contact without a partner is its own pair, a candidate while its corner lies on the face;
+// one side of a joint is the pair whose corner lies further inside the other's face
+// (parts::joint_side), the partner's with the bodies exchanged.
+Assembly::BodyPair<parts::BodyContactKinematics> Assembly::body_pair(
+    const BodyContact& c, const integrators::Vector& q, const integrators::Vector& u) const {
+  const Eigen::Vector3d qa = q.segment<3>(c.offset_a) + c.rest_a;
+  const Eigen::Vector3d qb = q.segment<3>(c.offset_b) + c.rest_b;
+  BodyPair<parts::BodyContactKinematics> p;
+  p.k = parts::corner_on_body(c.geometry, qa, u.segment<3>(c.offset_a), qb,
+                              u.segment<3>(c.offset_b));
+  const double first = parts::beyond_edge(p.k.a.gap_tangent, c.half_length);
+  if (!c.sided) {
+    p.candidate = first <= parts::kEdgeTie;
+    return p;
+  }
+  auto partner = parts::corner_on_body(c.partner, qb, u.segment<3>(c.offset_b), qa,
+                                       u.segment<3>(c.offset_a));
+  const parts::JointSide side = parts::joint_side(
+      first, parts::beyond_edge(partner.a.gap_tangent, c.partner_half_length),
+      p.k.a.gap_normal, partner.a.gap_normal);
+  if (side.second) {
+    p.k = partner;
+    p.swapped = true;
+  }
+  p.candidate = side.candidate;
+  return p;
+}
+
+Assembly::BodyPair<parts::BodyContactNormal> Assembly::body_pair_normal(
+    const BodyContact& c, const integrators::Vector& q, const integrators::Vector& u) const {
+  const Eigen::Vector3d qa = q.segment<3>(c.offset_a) + c.rest_a;
+  const Eigen::Vector3d qb = q.segment<3>(c.offset_b) + c.rest_b;
+  BodyPair<parts::BodyContactNormal> p;
+  p.k = parts::corner_on_body_normal(c.geometry, qa, u.segment<3>(c.offset_a), qb,
+                                     u.segment<3>(c.offset_b));
+  const double first = parts::beyond_edge(p.k.a.gap_tangent, c.half_length);
+  if (!c.sided) {
+    p.candidate = first <= parts::kEdgeTie;
+    return p;
+  }
+  auto partner = parts::corner_on_body_normal(c.partner, qb, u.segment<3>(c.offset_b), qa,
+                                              u.segment<3>(c.offset_a));
+  const parts::JointSide side = parts::joint_side(
+      first, parts::beyond_edge(partner.a.gap_tangent, c.partner_half_length),
+      p.k.a.gap_normal, partner.a.gap_normal);
+  if (side.second) {
+    p.k = partner;
+    p.swapped = true;
+  }
+  p.candidate = side.candidate;
+  return p;
+}
+
+void Assembly::write_body_pair_normal(const BodyContact& c,
+                                      const BodyPair<parts::BodyContactNormal>& p,
+                                      integrators::ContactData& out) {
+  parts::write_body_contact_normal(p.k, p.swapped ? c.offset_b : c.offset_a,
+                                   p.swapped ? c.offset_a : c.offset_b, out);
+  if (!p.candidate) out.far = true;
 }
 
 integrators::PowerTerms Assembly::power(double t, const integrators::Vector&,

@@ -190,6 +190,9 @@ class Assembly final : public integrators::SystemBase {
     double restitution = 0.0, friction = 0.0, stiffness = 0.0;
     double colliding_mass = 0.0;  // [t]: ContactData::colliding_mass
   };
+  // A body contact with a finite face, or one side of a joint (parts::CornerContact):
+  // `partner` is the obstacle's corner against the body's face (sided only), half_length and
+  // partner_half_length the extents of the two faces.
   struct BodyContact {
     std::size_t slot = 0;
     int offset_a = 0, offset_b = 0;
@@ -197,7 +200,30 @@ class Assembly final : public integrators::SystemBase {
     CornerFace geometry;
     double restitution = 0.0, friction = 0.0, stiffness = 0.0;
     double colliding_mass = 0.0;  // [t]: ContactData::colliding_mass
+    double half_length = std::numeric_limits<double>::infinity();
+    bool sided = false;
+    CornerFace partner;
+    double partner_half_length = std::numeric_limits<double>::infinity();
   };
+  // The kinematics of a body contact's pair that is its contact (the partner's when
+  // `swapped`, whose body is the obstacle: its columns' offsets are exchanged), and whether
+  // it is a candidate (parts::joint_side).
+  template <class Kinematics>
+  struct BodyPair {
+    Kinematics k;
+    bool swapped = false;
+    bool candidate = true;
+  };
+  BodyPair<parts::BodyContactKinematics> body_pair(const BodyContact& c,
+                                                   const integrators::Vector& q,
+                                                   const integrators::Vector& u) const;
+  BodyPair<parts::BodyContactNormal> body_pair_normal(const BodyContact& c,
+                                                      const integrators::Vector& q,
+                                                      const integrators::Vector& u) const;
+  // Writes a body pair's normal fields into `out` (far when it is no candidate).
+  static void write_body_pair_normal(const BodyContact& c,
+                                     const BodyPair<parts::BodyContactNormal>& p,
+                                     integrators::ContactData& out);
 
   // One shear key as the run goes: its contact's slot, the peak mean force [kN], and whether
   // and when it broke.
@@ -281,7 +307,7 @@ class Assembly final : public integrators::SystemBase {
     double t = std::numeric_limits<double>::quiet_NaN();
     integrators::Vector q, u;
     std::vector<ContactNormal> seat;             // per seat_contacts_
-    std::vector<parts::BodyContactNormal> body;  // per body_contacts_
+    std::vector<BodyPair<parts::BodyContactNormal>> body;  // per body_contacts_
   };
   mutable NormalCache normals_;
   void evaluate_normals(double t, const integrators::Vector& q,

@@ -52,7 +52,7 @@ void Assembly::watch_gaps(double t, const integrators::Vector& q, const integrat
     watch_gaps_[seat_contacts_[i].slot] = normals_.seat[i].gap_normal;
   }
   for (std::size_t i = 0; i < body_contacts_.size(); ++i) {
-    watch_gaps_[body_contacts_[i].slot] = normals_.body[i].a.gap_normal;
+    watch_gaps_[body_contacts_[i].slot] = normals_.body[i].k.a.gap_normal;
   }
 }
 

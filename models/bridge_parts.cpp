@@ -196,7 +196,10 @@ Assembly::Parts bridge_parts(const BridgeDesign& p, const SegmentedDeck& deck) {
   // Seat contacts 0, 1 stay on segment 0; 2, 3 go to the last segment, after the hinges.
   std::vector<parts::CornerContact> contacts(parts.contacts.begin(), parts.contacts.begin() + 2);
   for (std::size_t k = 1; k < n; ++k) {
-    const parts::Face face = parts::end_face(parts.bodies[k - 1], parts::End::kRight);
+    // Each side of the hinge: segment k's left corner on segment k - 1's right end face, or
+    // segment k - 1's right corner (2, 3) on segment k's left end face (parts::CornerContact).
+    const parts::Face face = parts::bounded_end_face(parts.bodies[k - 1], parts::End::kRight);
+    const parts::Face partner_face = parts::bounded_end_face(parts.bodies[k], parts::End::kLeft);
     for (int corner : {0, 1}) {
       contacts.push_back({.body = static_cast<int>(k), .corner = corner,
                           .obstacle = parts::Obstacle::kBody,
@@ -206,7 +209,8 @@ Assembly::Parts bridge_parts(const BridgeDesign& p, const SegmentedDeck& deck) {
                           .stiffness = deck.hinges[k - 1].compliance_stiffness,
                           .family = "hinge",
                           .name = "hinge " + std::to_string(k) +
-                                  (corner == 0 ? " +W/2" : " -W/2")});
+                                  (corner == 0 ? " +W/2" : " -W/2"),
+                          .partner_corner = corner + 2, .partner_face = partner_face});
     }
   }
   for (std::size_t i = 2; i < 4; ++i) {

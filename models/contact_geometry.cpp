@@ -124,12 +124,12 @@ ContactNormal corner_contact_normal(const CornerFace& c, const Eigen::Vector3d& 
   k.point.x() = px;
   k.point.y() = py;
   k.gap_normal = nx * dx + ny * dy;
-  const double gap_tangent = tx * dx + ty * dy;
+  k.gap_tangent = tx * dx + ty * dy;
   const double wn2 = rx * ny - ry * nx;  // r x n
   k.w_normal.x() = nx;
   k.w_normal.y() = ny;
   k.w_normal.z() = wn2;
-  k.what_normal = phid * gap_tangent - (nx * adx + ny * ady);
+  k.what_normal = phid * k.gap_tangent - (nx * adx + ny * ady);
   k.gap_rate_normal = (nx * vx + ny * vy + wn2 * omega) + k.what_normal;
   return k;
 }

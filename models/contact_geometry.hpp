@@ -71,6 +71,7 @@ ContactKinematics corner_contact(const CornerFace& c, const Eigen::Vector3d& q,
 // to choose its index set.
 struct ContactNormal {
   double gap_normal = 0.0;       // g_N [m]
+  double gap_tangent = 0.0;      // g_T [m]: where the corner lies along the face
   Eigen::Vector3d w_normal = Eigen::Vector3d::Zero();  // W_N [-, -, m]
   double what_normal = 0.0;      // [m/s]
   double gap_rate_normal = 0.0;  // gdot_N = W_N^T u + what_N [m/s]

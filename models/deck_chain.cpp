@@ -76,22 +76,28 @@ Assembly::Parts DeckChain::parts(const Parameters& p) {
   // The outputs' family and name of each contact: its joint and the corner's side.
   auto add = [&](int deck, int corner, parts::Obstacle obstacle, int index,
                  const parts::Face& face, const Joint& j, const std::string& family,
-                 const std::string& joint) {
+                 const std::string& joint, const parts::Face* partner_face = nullptr) {
     out.contacts.push_back({.body = deck, .corner = corner, .obstacle = obstacle,
                             .obstacle_index = index, .face = face,
                             .restitution = j.restitution, .friction = j.friction,
                             .stiffness = j.compliance_stiffness,
                             .family = family,
-                            .name = joint + (corner % 2 == 0 ? " +W/2" : " -W/2")});
+                            .name = joint + (corner % 2 == 0 ? " +W/2" : " -W/2"),
+                            .partner_corner = partner_face != nullptr ? corner + 2 : -1,
+                            .partner_face = partner_face != nullptr ? *partner_face
+                                                                    : parts::Face{}});
   };
   for (int corner : {0, 1}) {
     add(0, corner, parts::Obstacle::kPrescribed, 0, left_face, p.joints[0], "abutment", "left");
   }
   for (std::size_t k = 1; k < n; ++k) {
-    const parts::Face face = parts::end_face(out.bodies[k - 1], parts::End::kRight);
+    // Each side of the hinge: deck k's left corner on deck k - 1's right end face, or deck
+    // k - 1's right corner (2, 3) on deck k's left end face (parts::CornerContact).
+    const parts::Face face = parts::bounded_end_face(out.bodies[k - 1], parts::End::kRight);
+    const parts::Face partner = parts::bounded_end_face(out.bodies[k], parts::End::kLeft);
     for (int corner : {0, 1}) {
       add(static_cast<int>(k), corner, parts::Obstacle::kBody, static_cast<int>(k - 1), face,
-          p.joints[k], "hinge", "hinge " + std::to_string(k));
+          p.joints[k], "hinge", "hinge " + std::to_string(k), &partner);
     }
   }
   for (int corner : {2, 3}) {

@@ -13,16 +13,13 @@
 //   joint 0:        corners 0, 1 (left end) of deck 0 against the left abutment face;
 //   joint k, 0<k<N: corners 0, 1 (left end) of deck k against the right end face of deck k-1;
 //   joint N:        corners 2, 3 (right end) of deck N-1 against the right abutment face.
-// At a hinge, only the corners of the left end of deck k touch the right end face of deck
-// k - 1, not also the reverse. With equal widths the corners of both ends meet: the corner of
-// deck k at point p on the face of deck k - 1 (normal n) has the columns
-// (n, r_k x n) for deck k and (-n, -d x n) for deck k - 1 (d = p - centre of k - 1); the corner
-// of deck k - 1 at the same p on the face of deck k (normal -n) has (-n, -d x n) for deck k - 1
-// and (n, r_k x n) for deck k: the same column. Adding the reverse pair would make the
-// Delassus matrix W^T M^-1 W singular and the impulses non-unique; the two corners of one end
-// already bound the relative normal motion at both edges of the joint (its normal
-// displacement and its relative rotation), as the two deck corners do at each abutment. The
-// faces are lines, as at the abutments (models/contact_geometry.hpp).
+// Each hinge contact is one side of the joint (parts::CornerContact, docs/bridge.md "Contacts
+// with edges"): the corner of deck k's left end on deck k - 1's right end face, or the corner
+// of deck k - 1's right end (2 for +W/2, 3 for -W/2) on deck k's left end face, whichever lies
+// further inside the other's face. The faces end at the decks' corners; the abutment faces are
+// lines (models/contact_geometry.hpp). With equal widths and no relative offset the two
+// corners of a side coincide and have the same columns; the side is then one contact (deck
+// k's corner), so the Delassus matrix W^T M^-1 W has no repeated columns.
 //
 // Units: kN, t, m, s, rad, deg.
 #pragma once

@@ -43,6 +43,19 @@ Face end_face(const RigidBody& body, End end) {
   return {g.end_point(end == End::kLeft ? 0 : 1), -g.face_normal(contact)};
 }
 
+Face bounded_end_face(const RigidBody& body, End end) {
+  Face f = end_face(body, end);
+  // The end's two corners lie on its face on either side of the end point, each (W/2) /
+  // cos alpha from it for a straight end of angle alpha (its own, docs/bridge.md "Faces with
+  // their own angles") and W/2 for a curved deck's radial end: the half-length is their
+  // distance from the end point.
+  const DeckGeometry g = plan(body);
+  const int first = end == End::kLeft ? 0 : 2;
+  const Eigen::Vector2d point = g.end_point(end == End::kLeft ? 0 : 1);
+  f.half_length = std::max((g.corner(first) - point).norm(), (g.corner(first + 1) - point).norm());
+  return f;
+}
+
 BodyContactKinematics corner_on_body(const CornerFace& c, const Eigen::Vector3d& q_a,
                                      const Eigen::Vector3d& u_a, const Eigen::Vector3d& q_b,
                                      const Eigen::Vector3d& u_b) {

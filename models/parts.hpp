@@ -78,15 +78,20 @@ struct RigidBody {
 // The two end faces of a rigid body.
 enum class End { kLeft, kRight };
 // A face of a body or of a prescribed body, in that body's frame: a point on it and its unit
-// normal, pointing out of the body (towards whatever touches the face).
+// normal, pointing out of the body (towards whatever touches the face). The face extends
+// half_length either way from `point` along its tangent t = R(+90 deg) n; infinity is a line
+// (the abutment seats, wider than the deck).
 struct Face {
   Eigen::Vector2d point = Eigen::Vector2d::Zero();   // [m]
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX(); // unit length
+  double half_length = std::numeric_limits<double>::infinity();  // [m], > 0
 };
 // The end face of `body`: through its end point on the axis (+-L/2, 0 from the axis's
 // midpoint; models/deck_geometry.hpp), normal (-+cos alpha, +-sin alpha) outwards, alpha that
-// end's angle.
+// end's angle; taken as a line (a backwall seat, wider than the deck that strikes it).
 Face end_face(const RigidBody& body, End end);
+// The same face between the end's two corners, half_length = (W/2) / cos alpha (a hinge).
+Face bounded_end_face(const RigidBody& body, End end);
 
 // A body whose motion is prescribed: the pose of its frame at time t is
 // (reference.x + u_x(t), reference.y + u_y(t), phi(t)); null motions are zero.
@@ -169,7 +174,17 @@ struct RayleighParts {
 };
 
 // A unilateral frictional contact: corner `corner` of rigid body `body` against `face` of the
-// obstacle (index `obstacle_index` among the prescribed or the rigid bodies).
+// obstacle (index `obstacle_index` among the prescribed or the rigid bodies). A corner touches
+// only the face that exists: against a face of finite half_length the contact is far (no
+// candidate) while the corner's projection g_T lies beyond the face's end, |g_T| > half_length.
+//
+// One side of a joint between two bodies (docs/bridge.md, "Contacts with edges"): with
+// partner_corner >= 0 the contact is the pair of corner-against-face contacts of that side,
+// this corner against the obstacle's `face` and the obstacle's corner `partner_corner`
+// against this body's `partner_face`. Of the two, the contact is the one whose corner lies
+// further inside the other's face (parts::joint_side), the first on a tie: with equal widths
+// and no relative offset the two corners coincide and so do their columns, and the side is
+// one contact, not two equal ones (a Delassus matrix without repeated columns).
 struct CornerContact {
   int body = 0;                 // the body whose corner touches, >= 0
   int corner = 0;               // 0..3 (models/deck_geometry.hpp numbering)
@@ -184,6 +199,8 @@ struct CornerContact {
   // it, e.g. "left +W/2", "hinge 1 -W/2", "shear_key_right_plus". No physics reads them.
   std::string family;
   std::string name;
+  int partner_corner = -1;      // the obstacle's corner 0..3 of the same side (kBody); -1: none
+  Face partner_face{};          // the face of `body` it touches, in the body's frame
 };
 
 // A shear key (models/shear_keys.hpp): contact `contact` (0-based, among the assembly's
@@ -243,6 +260,40 @@ void write_body_contact_normal(const BodyContactNormal& k, int offset_a, int off
 // `far`: the contact cannot close within kFarHorizon (models/parts.hpp, kFarGap).
 inline bool is_far(double gap_normal, double gap_rate_normal) {
   return gap_normal > kFarGap + kFarHorizon * std::max(0.0, -gap_rate_normal);
+}
+
+// Two corners of one side of a joint closer than this across the faces count as coincident
+// (equal widths, no relative offset): the side keeps its first pair, so that a joint at rest
+// gives the same contact whatever the round-off of its corners (1e-9 m is the tolerance of
+// an initial penetration, far above the round-off ~1e-13 m of a 30 m body's corners).
+inline constexpr double kEdgeTie = kPenetrationTolerance;  // [m]
+
+// A corner's distance beyond the end of a face, |g_T| - half_length (< 0: on the face) [m].
+inline double beyond_edge(double gap_tangent, double half_length) {
+  return std::abs(gap_tangent) - half_length;
+}
+
+// Which pair of a joint's side is its contact, and whether it is a candidate
+// (docs/bridge.md, "Contacts with edges"). first_beyond, second_beyond: beyond_edge() of the
+// side's first pair (this body's corner on the obstacle's face) and of its second (the
+// obstacle's corner on this body's face). The innermost corner is the one that bounds the
+// faces' overlap on this side, so it is the contact; it lies on the other face whenever the
+// joint is closed, and beyond it by at most g_N sin(theta) (theta the faces' relative angle)
+// while the joint is open, so the side stays a candidate while beyond <= max(kEdgeTie, g_N).
+// The floor kEdgeTie is for a flush joint: its coincident corners lie at the faces' ends up
+// to round-off (beyond ~ +-1e-16 m with g_N ~ -1e-16 m), which must not make the side far.
+struct JointSide {
+  bool second = false;     // the second pair is the contact
+  bool candidate = true;   // false: no overlap of the faces on this side, the contact is far
+};
+inline JointSide joint_side(double first_beyond, double second_beyond, double first_gap,
+                            double second_gap) {
+  JointSide s;
+  s.second = second_beyond < first_beyond - kEdgeTie;
+  const double beyond = s.second ? second_beyond : first_beyond;
+  const double gap = s.second ? second_gap : first_gap;
+  s.candidate = beyond <= std::max(kEdgeTie, gap);
+  return s;
 }
 
 inline void write_contact(const ContactKinematics& k, int offset_a, double restitution,

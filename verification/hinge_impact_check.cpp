@@ -14,6 +14,7 @@
 #include "lcp/frictional.hpp"
 #include "models/analytic.hpp"
 #include "models/deck_chain.hpp"
+#include "models/parts.hpp"
 
 #include <doctest/doctest.h>
 
@@ -55,15 +56,21 @@ nm::Assembly::Parts pair_parts(const Pair& pair, const Eigen::Vector3d& ua,
   p.decks[1].initial_velocity = ub;
   nm::Assembly::Parts parts = nm::DeckChain::parts(p);
   if (pair.theta_b != 0.0) {
+    // B is moved along the outward normal n of A's right face, so that its corners keep their
+    // place along A's face (the joint's transverse offset stays zero). A step ds changes the
+    // gap of B's corner on A's face by ds and that of A's corner on B's face (normal
+    // -R(theta_b) n) by cos(theta_b) ds: moving B by the smallest gap of the two sides
+    // (the assembly's inner pairs) never penetrates and leaves at most (1 - cos theta_b) of
+    // it, 2e-6 here, so four steps from 1 m close the gap to round-off.
     parts.bodies[1].initial_position.z() = pair.theta_b;
-    nm::Assembly::Parts turned = parts;
-    turned.bodies[1].initial_position.x() += 1.0;  // far from A while measuring
-    nm::Assembly a(turned);
-    std::vector<ni::ContactData> c;
-    a.contact_data(0.0, a.initial_position(), a.initial_velocity(), c);
-    const double g = std::min(c[2].gap_normal, c[3].gap_normal);
-    const double cn = std::cos(p.skew_deg * kPi / 180.0);  // g_N changes by cos(alpha) dx
-    parts.bodies[1].initial_position.x() += 1.0 - g / cn;
+    const Eigen::Vector2d n = nm::parts::end_face(parts.bodies[0], nm::parts::End::kRight).normal;
+    parts.bodies[1].initial_position.head<2>() += n;  // far from A while measuring
+    for (int step = 0; step < 4; ++step) {
+      nm::Assembly m(parts);
+      std::vector<ni::ContactData> c;
+      m.contact_data(0.0, m.initial_position(), m.initial_velocity(), c);
+      parts.bodies[1].initial_position.head<2>() -= std::min(c[2].gap_normal, c[3].gap_normal) * n;
+    }
   }
   return parts;
 }

@@ -176,6 +176,7 @@ class CornerOnFace(sk.LagrangianScleronomousR):
         self.jac = sk.SimpleMatrix(1, 6)
         self.setJachqPtr(self.jac)
         self.step = None  # a StepStart: W_N at q_k in place of Siconos's prediction
+        self.partner, self.half_face = None, np.inf  # the other pair of a hinge side
 
     def pose(self, q, i):
         return np.array([self.rest[i] + q[3 * i], q[3 * i + 1]]), q[3 * i + 2]
@@ -193,6 +194,20 @@ class CornerOnFace(sk.LagrangianScleronomousR):
     def gap(self, q):
         rel, n, _, _ = self.kinematics(q)
         return float(n @ rel)
+
+    def recorded_gap(self, q):
+        """The gap nsbridge records for this contact (docs/bridge.md, "Contacts with edges"):
+        at a hinge, of the side's two corner-against-face pairs the one whose corner lies
+        further inside the other frame's end face (faces of half length W/2 at skew 0), the
+        first within 1e-9 m (parts::kEdgeTie). The two gaps differ by O(g theta) while the
+        joint is open and coincide at contact, so the motion is that of this relation."""
+        if self.partner is None:
+            return self.gap(q)
+        beyond = []
+        for r in (self, self.partner):
+            rel, n, _, _ = r.kinematics(q)
+            beyond.append(abs(n[0] * rel[1] - n[1] * rel[0]) - self.half_face)
+        return self.partner.gap(q) if beyond[1] < beyond[0] - 1e-9 else self.gap(q)
 
     def computeh(self, q, z, y):
         y[0] = self.gap(q)
@@ -234,8 +249,10 @@ def contacts(scene):
     for side in (hw, -hw):
         out.append((CornerOnFace(0, [-half[0], side], rest, None, left_face, [1.0, 0.0]), seat_e))
     for side in (hw, -hw):
-        out.append((CornerOnFace(1, [-half[1], side], rest, 0, [half[0], 0.0], [1.0, 0.0]),
-                    hinge_e))
+        hinge = CornerOnFace(1, [-half[1], side], rest, 0, [half[0], 0.0], [1.0, 0.0])
+        hinge.partner = CornerOnFace(0, [half[0], side], rest, 1, [-half[1], 0.0], [-1.0, 0.0])
+        hinge.half_face = hw
+        out.append((hinge, hinge_e))
     for side in (hw, -hw):
         out.append((CornerOnFace(1, [half[1], side], rest, None, right_face, [-1.0, 0.0]), seat_e))
     return out
@@ -301,14 +318,14 @@ def run_siconos(scene, scene_dir, perturb, jacobian_at_start=False):
     osi = sk.MoreauJeanOSI(solver["theta"])
     lcp = sk.LCP(sn.SICONOS_LCP_LEMKE)
     sim = sk.TimeStepping(nsds, td, osi, lcp)
-    rows = [[0.0] + [0.0] * 6 + [r.gap(np.zeros(6)) for r, _, _ in keep]]
+    rows = [[0.0] + [0.0] * 6 + [r.recorded_gap(np.zeros(6)) for r, _, _ in keep]]
     steps = round(end / h)
     for k in range(1, steps + 1):
         if step is not None:
             step.begin(np.array(frames.q()), np.array(frames.velocity()))
         sim.computeOneStep()
         q = np.array(frames.q())
-        rows.append([k * h] + list(q) + [r.gap(q) for r, _, _ in keep])
+        rows.append([k * h] + list(q) + [r.recorded_gap(q) for r, _, _ in keep])
         sim.nextStep()
     return np.array(rows)
 
