@@ -90,7 +90,8 @@ struct Face {
 // midpoint; models/deck_geometry.hpp), normal (-+cos alpha, +-sin alpha) outwards, alpha that
 // end's angle; taken as a line (a backwall seat, wider than the deck that strikes it).
 Face end_face(const RigidBody& body, End end);
-// The same face between the end's two corners, half_length = (W/2) / cos alpha (a hinge).
+// The same face between the end's two corners, half_length their distance from the end point
+// ((W/2) / cos alpha of a straight end, W/2 of a curved deck's radial end; a hinge).
 Face bounded_end_face(const RigidBody& body, End end);
 
 // A body whose motion is prescribed: the pose of its frame at time t is
