@@ -55,8 +55,9 @@ TEST_CASE("deck geometry: one skew_deg is every face's, bit for bit") {
 TEST_CASE("deck geometry: unequal end angles put the frame's origin at the centroid") {
   // Trapezoids of unequal end angles: the shoelace centroid of the four corners (counter-
   // clockwise: 1, 3, 2, 0) must be the frame's origin; the end faces keep their angles.
-  for (const auto& [left, right] : {std::pair{0.0, 30.0}, std::pair{-20.0, 45.0},
-                                    std::pair{50.0, 10.0}}) {
+  for (const auto& angles : {std::pair{0.0, 30.0}, std::pair{-20.0, 45.0},
+                             std::pair{50.0, 10.0}}) {
+    const double left = angles.first, right = angles.second;
     CAPTURE(left);
     CAPTURE(right);
     DeckGeometry g{.length = 30.0, .width = 8.0, .skew_deg = 0.0, .gap_right = 0.02,
@@ -86,8 +87,10 @@ TEST_CASE("deck geometry: the annular sector's area, centroid and inertia by int
   // n = 400 cells per direction its relative error is below 1e-6 here; 1e-5 gives margin.
   constexpr double kQuadrature = 1e-5;
   constexpr int n = 400;
-  for (const auto& [radius, width, angle_deg] :
+  for (const auto& sector :
        {std::tuple{100.0, 10.0, 60.0}, std::tuple{40.0, 12.0, 120.0}, std::tuple{500.0, 8.0, 5.0}}) {
+    const double radius = std::get<0>(sector), width = std::get<1>(sector),
+                 angle_deg = std::get<2>(sector);
     CAPTURE(radius);
     CAPTURE(angle_deg);
     const double phi = angle_deg * kPi / 180.0;
