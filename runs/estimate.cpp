@@ -66,7 +66,7 @@ std::optional<CompanionPlan> companion_plan(const integrators::RunConfig& config
           if (!(coarse <= duration)) return std::nullopt;
           O c = o;
           c.step = coarse;
-          return plan_of(c, "step", o.step, coarse, kMoreauOrder);
+          return plan_of(c, "step", o.step, coarse, kMoreauPeakOrder);
         } else if constexpr (std::is_same_v<O, integrators::EventDrivenOptions>) {
           return looser(o, 1.0, kEventDrivenOrder);  // tolerance in (0, 1)
         } else {

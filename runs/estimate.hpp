@@ -21,9 +21,18 @@ namespace nsb::runs {
 
 // Moreau–Jean: the step ratio, and the order with impacts: 0.95 is the lowest order measured
 // on the bridge (verification/moreau_order_check.cpp, excitations 5 and 7; the bouncing ball
-// 1.02, two simultaneous contacts 1.00), below the method's order 1 with impacts.
+// 1.02, two simultaneous contacts 1.00), below the method's order 1 with impacts. It predicts
+// how the error of a whole run falls with its step (refined_value).
 inline constexpr double kMoreauStepRatio = 2.0;
 inline constexpr double kMoreauOrder = 0.95;
+// Moreau–Jean's order in the extrapolation of a peak's error: the lower quartile of the orders
+// at which the deck peaks' true errors fall with the step on the shipped bridges (one decade
+// of step, 1e-4 to 1e-3 s and 1e-3 to 1e-2 s: lower quartile 0.58, median 0.95;
+// docs/error-estimates.md, "Effectivity on the bridge"). A peak reached at an impact has the
+// impact's instant, off by up to a step, and what follows it; its error falls more slowly
+// than the run's, and half the order keeps the factor 1 / (2^0.5 - 1) = 2.41 on the side of
+// the slow peaks.
+inline constexpr double kMoreauPeakOrder = 0.5;
 // Moreau–Jean with adaptive steps (solver.local_tolerance > 0): the companion takes the local
 // tolerance kMoreauToleranceRatio times looser, and the error is taken as C tol^p with
 // p = kAdaptiveMoreauOrder (docs/moreau-jean.md, "The companion of an adaptive run").

@@ -112,12 +112,12 @@ def test_version_and_build_info():
 
 def test_peaks_carry_their_error_estimate_and_the_accuracy_verdict(source):
     # Moreau–Jean at 2e-3 s on the ball: the companion at 4e-3 s; each peak's error is the
-    # factor 1 / (2^0.95 - 1) times the difference of the two runs' peaks (docs/error-estimates.md).
+    # factor 1 / (2^0.5 - 1) times the difference of the two runs' peaks (docs/error-estimates.md).
     r = nsbridge.run(source / "scenes/bouncing-ball.toml", overrides=["solver.step=2e-3"])
     e = r.error_estimate
     assert e["enabled"] and e["computed"]
     assert e["companion"] == {"setting": "step", "value": 4e-3, "status": "completed"}
-    assert e["factor"] == pytest.approx(1.0 / (2.0 ** 0.95 - 1.0))
+    assert e["factor"] == pytest.approx(1.0 / (2.0 ** 0.5 - 1.0))
     assert r.peaks["y"]["error"] >= 0
     assert e["cost"]["companion_cpu_seconds"] > 0
     assert r.accuracy["target"] == 0.01 and r.accuracy["step"] == 2e-3
