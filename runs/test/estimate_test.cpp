@@ -109,8 +109,8 @@ TEST_CASE("the companion of each method and Richardson's factor 1 / (r^p - 1)") 
   const auto e = companion_plan(ed, 10.0);
   REQUIRE(e.has_value());
   CHECK(std::get<integrators::EventDrivenOptions>(e->config).tolerance == doctest::Approx(1e-6));
-  // 100^0.88 = 57.544: factor 1 / 56.544 = 0.017685.
-  CHECK(e->factor == doctest::Approx(0.017685).epsilon(1e-4));
+  // p = ln 2 / ln 100: 100^p = 2, factor 1 / (2 - 1) = 1, |p_tol - p_100tol| itself.
+  CHECK(e->factor == doctest::Approx(1.0).epsilon(1e-12));
   ed.tolerance = 0.6;  // already above half the range's top: no looser companion
   CHECK_FALSE(companion_plan(ed, 10.0).has_value());
 
