@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """usage: accuracy-coarse-check.py NSBRIDGE [SCENES_DIR] [--method event_driven|compliance]
-                                 [--scenes a,b,...] [--reference-cache DIR]
+                                 [--scenes a,b,...] [--reference-cache DIR] [--set KEY=VALUE]
 
 Every shipped bridge scene (SCENES_DIR/bridge-*.toml, or the names given) at 10 and 100 times
 its own step (Moreau-Jean, the scenes' method), or with --method at 100 and 10^4 times that
@@ -11,8 +11,9 @@ deck's largest true error against the converged reference (the same method at to
 1e-10 for --method, event-driven at 1e-10 for Moreau-Jean; nsb_runs.references, kept in
 --reference-cache DIR), and the deck's largest deviation from the run at the scene's own
 settings. Then the runs that meet their target while a deck peak is further than the target
-from the reference. At most two processes run at once. Exit 1 when a run neither warns nor
-meets its target, or does not run."""
+from the reference. --set (repeatable) overrides a key in every run and reference, e.g.
+solver.end_time=10 for a shorter window. At most two processes run at once. Exit 1 when a run
+neither warns nor meets its target, or does not run."""
 import concurrent.futures
 import os
 import sys
@@ -46,6 +47,9 @@ def main():
     cache = option(args, "--reference-cache")
     names = option(args, "--scenes")
     names = names.split(",") if names else None
+    extra = []
+    while "--set" in args:
+        extra.append(option(args, "--set"))
     if not args:
         print(__doc__)
         return 2
@@ -62,19 +66,19 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         with concurrent.futures.ThreadPoolExecutor(max_workers=nsb_runs.MAX_WORKERS) as pool:
             refs = nsb_runs.references(nsbridge, paths.values(), tmp, cache, pool,
-                                       method or nsb_runs.REFERENCE_METHOD)
+                                       method or nsb_runs.REFERENCE_METHOD, extra)
             jobs = {}
             for name in files:
                 own = 1e-8 if method else float(
                     nsb_runs.solver_table(paths[name]).get("step", 1e-4))
                 jobs[(name, 1)] = pool.submit(nsb_runs.run, nsbridge, paths[name],
-                                              os.path.join(tmp, f"{name}-own"), method)
+                                              os.path.join(tmp, f"{name}-own"), method, extra)
                 for factor in factors:
                     value = factor * own
                     jobs[(name, factor)] = (value, pool.submit(
                         nsb_runs.run, nsbridge, paths[name],
                         os.path.join(tmp, f"{name}-x{factor}"), method,
-                        [f"solver.{knob}={value:g}"]))
+                        extra + [f"solver.{knob}={value:g}"]))
             for name in files:
                 own = deck(jobs[(name, 1)].result())
                 reference = deck(refs[paths[name]].result())

@@ -61,20 +61,21 @@ def solver_table(path):
         return tomllib.load(f).get("solver", {})
 
 
-def _cache_file(cache, path, method):
-    # Keyed by the scene file's content and the method: a changed scene is run again. A
-    # changed binary is not detected; a new model or integrator needs a fresh folder.
+def _cache_file(cache, path, method, sets):
+    # Keyed by the scene file's content, the method and the overrides: a changed scene is run
+    # again. A changed binary is not detected; a new model or integrator needs a fresh folder.
     with open(path, "rb") as f:
-        digest = hashlib.sha256(f.read()).hexdigest()[:12]
+        digest = hashlib.sha256(f.read() + "\n".join(sets).encode()).hexdigest()[:12]
     name = os.path.basename(path)[:-5]
     return os.path.join(cache, f"{name}-{method}-{digest}.json")
 
 
-def references(nsbridge, paths, tmp, cache=None, pool=None, method=REFERENCE_METHOD):
+def references(nsbridge, paths, tmp, cache=None, pool=None, method=REFERENCE_METHOD, sets=()):
     """The reference summary of each scene path (`method` with REFERENCE_SETS: the tolerance
-    1e-10; event-driven unless given), read from the folder `cache` when it holds one for the
-    scene's content and written there otherwise. Returns {path: future}; pool: the executor
-    to run on (MAX_WORKERS)."""
+    1e-10; event-driven unless given; and the overrides `sets`, e.g. a shorter end_time),
+    read from the folder `cache` when it holds one for the scene's content and overrides and
+    written there otherwise. Returns {path: future}; pool: the executor to run on
+    (MAX_WORKERS)."""
     own = pool is None
     if own:
         pool = concurrent.futures.ThreadPoolExecutor(max_workers=MAX_WORKERS)
@@ -82,12 +83,12 @@ def references(nsbridge, paths, tmp, cache=None, pool=None, method=REFERENCE_MET
         os.makedirs(cache, exist_ok=True)
 
     def one(path):
-        cached = _cache_file(cache, path, method) if cache else None
+        cached = _cache_file(cache, path, method, list(sets)) if cache else None
         if cached and os.path.exists(cached):
             with open(cached) as f:
                 return json.load(f)
         out = os.path.join(tmp, os.path.basename(path)[:-5] + "-reference-" + method)
-        summary = run(nsbridge, path, out, method, REFERENCE_SETS)
+        summary = run(nsbridge, path, out, method, list(sets) + list(REFERENCE_SETS))
         if cached:
             with open(cached + ".part", "w") as f:
                 json.dump(summary, f)
