@@ -1,4 +1,4 @@
-# The two-frame bridge (scenes/bridge-two-frame.toml, excitation 5, Moreau–Jean h = 1e-4 s):
+# The two-frame bridge (scenes/bridge-two-frame.toml, excitation 5, Moreau–Jean h = 2.5e-5 s):
 # the rotations of both frames and the normal gaps of the hinge's two corner contacts
 # (contacts 3 and 4, docs/outputs.md) against time. Input: two-frame-hinge.csv, the columns
 # t, theta1, theta2, gN3, gN4 of the run's history.csv. Made by (from the repository root):
