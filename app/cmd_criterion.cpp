@@ -108,7 +108,6 @@ void run_equal_skew(const CriterionArgs& a) {
             << ", rotation: " << yes_no[c.printed_rotation] << "\n";
 }
 
-
 // The option of a DeckGeometry field (DeckGeometry::validate names its fields).
 std::string option_of(const std::string& field) {
   if (field == "skew_deg") return "--skew";
