@@ -508,7 +508,7 @@ void Assembly::contacts_of(double t, const integrators::Vector& q, const integra
   }
   if (!kOneBody) {  // a contact against a body needs two
     for (const auto& c : body_contacts_) {
-      const auto p = body_pair(c, q, u);
+      const auto p = body_pair(c, q, u, parts::corner_on_body);
       parts::write_body_contact(p.k, p.swapped ? c.offset_b : c.offset_a,
                                 p.swapped ? c.offset_a : c.offset_b, c.restitution, c.friction,
                                 out[c.slot]);
@@ -602,7 +602,7 @@ void Assembly::evaluate_normals(double t, const integrators::Vector& q,
         corner_contact_normal(c.geometry, qa, ua, seats_[static_cast<std::size_t>(c.seat)]);
   }
   for (std::size_t i = 0; i < body_contacts_.size(); ++i) {
-    normals_.body[i] = body_pair_normal(body_contacts_[i], q, u);
+    normals_.body[i] = body_pair(body_contacts_[i], q, u, parts::corner_on_body_normal);
   }
 }
 
@@ -648,7 +648,7 @@ void Assembly::normals_of(double t, const integrators::Vector& q, const integrat
   }
   if (!kOneBody) {
     for (const auto& c : body_contacts_) {
-      write_body_pair_normal(c, body_pair_normal(c, q, u), out[c.slot]);
+      write_body_pair_normal(c, body_pair(c, q, u, parts::corner_on_body_normal), out[c.slot]);
     }
   }
   mark_broken(out);
@@ -657,46 +657,23 @@ void Assembly::normals_of(double t, const integrators::Vector& q, const integrat
 // The pair of a body contact that is its contact (docs/bridge.md, "Contacts with edges"):
 // a contact without a partner is its own pair, a candidate while its corner lies on the face;
 // one side of a joint is the pair whose corner lies further inside the other's face
-// (parts::joint_side), the partner's with the bodies exchanged.
-Assembly::BodyPair<parts::BodyContactKinematics> Assembly::body_pair(
-    const BodyContact& c, const integrators::Vector& q, const integrators::Vector& u) const {
+// (parts::joint_side), the partner's with the bodies exchanged. `kinematics` is
+// parts::corner_on_body (the full kinematics) or parts::corner_on_body_normal (its normal part).
+template <class Kinematics>
+Assembly::BodyPair<Kinematics> Assembly::body_pair(const BodyContact& c,
+                                                   const integrators::Vector& q,
+                                                   const integrators::Vector& u,
+                                                   CornerOnBody<Kinematics> kinematics) const {
   const Eigen::Vector3d qa = q.segment<3>(c.offset_a) + c.rest_a;
   const Eigen::Vector3d qb = q.segment<3>(c.offset_b) + c.rest_b;
-  BodyPair<parts::BodyContactKinematics> p;
-  p.k = parts::corner_on_body(c.geometry, qa, u.segment<3>(c.offset_a), qb,
-                              u.segment<3>(c.offset_b));
+  BodyPair<Kinematics> p;
+  p.k = kinematics(c.geometry, qa, u.segment<3>(c.offset_a), qb, u.segment<3>(c.offset_b));
   const double first = parts::beyond_edge(p.k.a.gap_tangent, c.half_length);
   if (!c.sided) {
     p.candidate = first <= parts::kEdgeTie;
     return p;
   }
-  auto partner = parts::corner_on_body(c.partner, qb, u.segment<3>(c.offset_b), qa,
-                                       u.segment<3>(c.offset_a));
-  const parts::JointSide side = parts::joint_side(
-      first, parts::beyond_edge(partner.a.gap_tangent, c.partner_half_length),
-      p.k.a.gap_normal, partner.a.gap_normal);
-  if (side.second) {
-    p.k = partner;
-    p.swapped = true;
-  }
-  p.candidate = side.candidate;
-  return p;
-}
-
-Assembly::BodyPair<parts::BodyContactNormal> Assembly::body_pair_normal(
-    const BodyContact& c, const integrators::Vector& q, const integrators::Vector& u) const {
-  const Eigen::Vector3d qa = q.segment<3>(c.offset_a) + c.rest_a;
-  const Eigen::Vector3d qb = q.segment<3>(c.offset_b) + c.rest_b;
-  BodyPair<parts::BodyContactNormal> p;
-  p.k = parts::corner_on_body_normal(c.geometry, qa, u.segment<3>(c.offset_a), qb,
-                                     u.segment<3>(c.offset_b));
-  const double first = parts::beyond_edge(p.k.a.gap_tangent, c.half_length);
-  if (!c.sided) {
-    p.candidate = first <= parts::kEdgeTie;
-    return p;
-  }
-  auto partner = parts::corner_on_body_normal(c.partner, qb, u.segment<3>(c.offset_b), qa,
-                                              u.segment<3>(c.offset_a));
+  auto partner = kinematics(c.partner, qb, u.segment<3>(c.offset_b), qa, u.segment<3>(c.offset_a));
   const parts::JointSide side = parts::joint_side(
       first, parts::beyond_edge(partner.a.gap_tangent, c.partner_half_length),
       p.k.a.gap_normal, partner.a.gap_normal);

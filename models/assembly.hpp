@@ -214,12 +214,15 @@ class Assembly final : public integrators::SystemBase {
     bool swapped = false;
     bool candidate = true;
   };
-  BodyPair<parts::BodyContactKinematics> body_pair(const BodyContact& c,
-                                                   const integrators::Vector& q,
-                                                   const integrators::Vector& u) const;
-  BodyPair<parts::BodyContactNormal> body_pair_normal(const BodyContact& c,
-                                                      const integrators::Vector& q,
-                                                      const integrators::Vector& u) const;
+  // parts::corner_on_body or parts::corner_on_body_normal.
+  template <class Kinematics>
+  using CornerOnBody = Kinematics (*)(const CornerFace&, const Eigen::Vector3d&,
+                                      const Eigen::Vector3d&, const Eigen::Vector3d&,
+                                      const Eigen::Vector3d&);
+  template <class Kinematics>
+  BodyPair<Kinematics> body_pair(const BodyContact& c, const integrators::Vector& q,
+                                 const integrators::Vector& u,
+                                 CornerOnBody<Kinematics> kinematics) const;
   // Writes a body pair's normal fields into `out` (far when it is no candidate).
   static void write_body_pair_normal(const BodyContact& c,
                                      const BodyPair<parts::BodyContactNormal>& p,

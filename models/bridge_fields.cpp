@@ -105,7 +105,7 @@ std::span<const config::Field<parts::RigidBody>> segment_fields() {
                              "rotational inertia about its centre (required)"),
       c::number<&P::length>("length", "m", c::positive(), "L along the axis (required)"),
       c::number<&P::width>("width", "m", c::positive(),
-                           "W (required); every body of a scene has the same width"),
+                           "W (required); neighbours may differ (each corner meets the other's finite face)"),
       c::vector3<&P::initial_position>("initial_position", "m, m, rad",
                                        "(x, y, θ) at t = 0 from the rest layout; no corner "
                                        "may penetrate"),

@@ -116,10 +116,6 @@ void SegmentedDeck::validate(const std::vector<BridgeDesign::Bent>& bents) const
   for (const auto& s : segments) {
     require(s.radius == 0.0, "segments", "a curved deck is one [model.deck]; segments are straight");
   }
-  for (std::size_t i = 1; i < segments.size(); ++i) {
-    require(segments[i].width == segments[0].width, "segments[" + std::to_string(i) + "].width",
-            "must equal segments[0].width (a hinge's two corners lie on the other's end face)");
-  }
   require(bent_segment.size() == bents.size(), "bent_segment", "one segment index per bent");
   for (std::size_t j = 0; j < bent_segment.size(); ++j) {
     const std::string field = "bent_segment[" + std::to_string(j) + "]";

@@ -113,6 +113,27 @@ EndCriterion end_criterion(const DeckGeometry& deck, int end, double friction) {
   return c;
 }
 
+PlanCriterion plan_criterion(const DeckGeometry& deck, double friction) {
+  deck.validate();
+  PlanCriterion c;
+  bool finite = std::isnormal(deck.width / deck.length);
+  for (int end = 0; end < 2; ++end) {
+    const EndCriterion e = end_criterion(deck, end, friction);
+    finite = finite && std::isfinite(e.eta_plus) && std::isfinite(e.eta_minus);
+    c.ends[static_cast<std::size_t>(end)] = e;
+    c.rotation = c.rotation || e.rotation;
+  }
+  if (!finite) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "W = %.6g m and L = %.6g m (W/L = %.6g, mu = %.6g) make eta non-finite; "
+                  "expected W/L, L/W and mu L/W within the range of a double",
+                  deck.width, deck.length, deck.width / deck.length, friction);
+    throw std::invalid_argument(std::string("width: ") + text);
+  }
+  return c;
+}
+
 CriterionPrediction predict_end_impact(const DeckGeometry& deck, int end,
                                        const Eigen::Vector2d& velocity, double friction,
                                        double restitution) {

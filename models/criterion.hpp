@@ -7,6 +7,8 @@
 
 #include <Eigen/Dense>
 
+#include <array>
+
 namespace nsb::models::analytic {
 
 // Assumptions: a rigid parallelogram deck, not rotating before the impact, strikes a rigid
@@ -78,6 +80,16 @@ struct EndCriterion {
   bool rotation = false;
 };
 EndCriterion end_criterion(const DeckGeometry& deck, int end, double friction);
+// Both ends of a plan at the friction mu: end_criterion of the left (ends[0]) and right
+// (ends[1]) end; rotation when either end predicts it. Throws std::invalid_argument naming
+// the field for a bad plan or mu, and "width: ..." naming W, L and mu when an eta is not
+// finite (eta scales with L/W, so W/L must be a normal double): the one check of
+// `nsbridge criterion` with a plan and nsbridge.end_criterion.
+struct PlanCriterion {
+  std::array<EndCriterion, 2> ends{};
+  bool rotation = false;
+};
+PlanCriterion plan_criterion(const DeckGeometry& deck, double friction);
 // The two-corner impact of end `end` (0 left, 1 right) of a deck translating at v, as
 // predict_right_end_impact: gdot_N- = n . v < 0, gdot_T- = t . v.
 CriterionPrediction predict_end_impact(const DeckGeometry& deck, int end,

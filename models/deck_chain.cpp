@@ -14,7 +14,8 @@ namespace {
 parts::RigidBody body(const DeckChain::Parameters& p, std::size_t i) {
   const auto& d = p.decks[i];
   const Eigen::Vector3d rest(DeckChain::rest_position(p, static_cast<int>(i)), 0.0, 0.0);
-  return {.mass = d.mass, .inertia = d.inertia, .length = d.length, .width = p.width,
+  return {.mass = d.mass, .inertia = d.inertia, .length = d.length,
+          .width = d.width > 0.0 ? d.width : p.width,
           .skew_deg = p.skew_deg, .initial_position = rest + d.initial_displacement,
           .initial_velocity = d.initial_velocity};
 }
@@ -35,6 +36,8 @@ void DeckChain::Parameters::validate() const {
     require(std::isfinite(d.inertia) && d.inertia > 0, prefix + "inertia",
             "must be > 0 [t m^2]");
     require(std::isfinite(d.length) && d.length > 0, prefix + "length", "must be > 0 [m]");
+    require(std::isfinite(d.width) && d.width >= 0, prefix + "width",
+            "must be >= 0 [m] (0: the chain's width)");
     require(d.initial_displacement.allFinite(), prefix + "initial_displacement",
             "must be finite [m, m, rad]");
     require(d.initial_velocity.allFinite(), prefix + "initial_velocity",

@@ -2,8 +2,9 @@
 // excitation, no gravity in the plane; only the N + 1 joints (left abutment, N - 1 hinges,
 // right abutment), each a pair of unilateral frictional corner contacts (models/parts.hpp).
 //
-// Geometry at rest: the decks lie along global x at y = 0, theta = 0, all of width W and skew
-// alpha (every face is parallel to the line x = y tan(alpha)). The left abutment face passes
+// Geometry at rest: the decks lie along global x at y = 0, theta = 0, each of its own width
+// (W unless the deck gives one) and all of skew alpha (every face is parallel to the line
+// x = y tan(alpha)). The left abutment face passes
 // through x = 0; joint k's gap is the clear distance along the axis between the faces it
 // joins, so deck i's centre is at x_i = sum_{k <= i} gap_k + sum_{k < i} L_k + L_i / 2, and the
 // right abutment face passes through x_{N-1} + L_{N-1} / 2 + gap_N. The normal gap of joint k is
@@ -17,7 +18,9 @@
 // with edges"): the corner of deck k's left end on deck k - 1's right end face, or the corner
 // of deck k - 1's right end (2 for +W/2, 3 for -W/2) on deck k's left end face, whichever lies
 // further inside the other's face. The faces end at the decks' corners; the abutment faces are
-// lines (models/contact_geometry.hpp). With equal widths and no relative offset the two
+// lines (models/contact_geometry.hpp). Neighbouring decks may differ in width: a corner beyond
+// the other deck's face is no candidate, so the narrower deck's corners meet the wider one's
+// face. With equal widths and no relative offset the two
 // corners of a side coincide and have the same columns; the side is then one contact (deck
 // k's corner), so the Delassus matrix W^T M^-1 W has no repeated columns.
 //
@@ -39,6 +42,7 @@ struct DeckChain {
     double mass = 0.0;      // [t], > 0
     double inertia = 0.0;   // about the centre [t m^2], > 0
     double length = 0.0;    // along the axis [m], > 0
+    double width = 0.0;     // across the axis [m], >= 0; 0: Parameters::width
     Eigen::Vector3d initial_displacement = Eigen::Vector3d::Zero();  // from rest [m, m, rad]
     Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();      // [m/s, m/s, rad/s]
   };
@@ -53,7 +57,7 @@ struct DeckChain {
   struct Parameters {
     std::vector<Deck> decks;    // N >= 1
     std::vector<Joint> joints;  // N + 1: left abutment, N - 1 hinges, right abutment
-    double width = 0.0;         // W of every deck [m], > 0
+    double width = 0.0;         // W of a deck that gives none [m], > 0
     double skew_deg = 0.0;      // alpha of every face [deg], |alpha| < 80
     // Throws std::invalid_argument naming the field ("joints[2].gap: must be >= 0 [m]").
     void validate() const;

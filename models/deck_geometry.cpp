@@ -2,6 +2,7 @@
 #include "models/field_checks.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 
@@ -62,8 +63,17 @@ void DeckGeometry::validate(const std::string& prefix) const {
           "must be >= 0 [m] (0: a straight deck)");
   if (curved()) {
     require(radius > 0.5 * width, prefix + "radius", "must exceed half the width, R > W/2 [m]");
-    require(subtended_angle() < std::numbers::pi, prefix + "length",
-            "of a curved deck must subtend less than 180 degrees, L / R < pi");
+    // The arc of length L on the radius R subtends L / R; from 180 degrees on the sector
+    // overlaps itself, so the radius cannot hold the deck.
+    if (subtended_angle() >= std::numbers::pi) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "R = %.6g m cannot hold an arc of L = %.6g m: it would subtend %.6g deg, "
+                    "180 or more (L / R >= pi); R > L / pi = %.6g m",
+                    radius, length, subtended_angle() * 180.0 / std::numbers::pi,
+                    length / std::numbers::pi);
+      require(false, prefix + "radius", text);
+    }
     // Below 1e-3 rad the sector's inertia about its centroid, (Ro^2 + Ri^2)/2 - rbar^2, is a
     // difference of numbers ~R^2 that cancel to ~L^2/12 and loses its digits; such a deck is
     // straight for every purpose.

@@ -1,13 +1,16 @@
-// nsbridge.lcp and nsbridge.criterion: the LCP solvers and the rotation criterion of eq. (1).
+// nsbridge.lcp, nsbridge.criterion and nsbridge.end_criterion: the LCP solvers and the rotation
+// criterion of eq. (1), of an equal-skew deck and of each end of any plan.
 #include "lcp/frictional.hpp"
 #include "lcp/siconos_format.hpp"
 #include "lcp/solve.hpp"
 #include "models/analytic.hpp"
+#include "models/criterion.hpp"
 #include "python/bindings.hpp"
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -83,7 +86,40 @@ py::dict criterion(double skew_deg, double width, double length, double friction
   return d;
 }
 
+py::dict end_criterion(double width, double length, double friction, double skew_deg,
+                       std::optional<double> skew_left_deg, std::optional<double> skew_right_deg,
+                       double radius) {
+  const models::DeckGeometry plan{.length = length, .width = width, .skew_deg = skew_deg,
+                                  .skew_left_deg = skew_left_deg,
+                                  .skew_right_deg = skew_right_deg, .radius = radius};
+  return plan_criterion_dict(plan, friction);
+}
+
 }  // namespace
+
+py::dict plan_criterion_dict(const models::DeckGeometry& plan, double friction) {
+  const auto c = models::analytic::plan_criterion(plan, friction);
+  py::dict d;
+  d["plan"] = plan.curved() ? "curved" : "straight";
+  d["width"] = plan.width;
+  d["length"] = plan.length;
+  d["radius"] = plan.radius;
+  d["friction"] = friction;
+  py::list ends;
+  for (int i = 0; i < 2; ++i) {
+    const auto& e = c.ends[static_cast<std::size_t>(i)];
+    py::dict end;
+    end["end"] = i == 0 ? "left" : "right";
+    end["angle_deg"] = plan.end_skew_deg(i);
+    end["eta_plus"] = e.eta_plus;
+    end["eta_minus"] = e.eta_minus;
+    end["rotation"] = e.rotation;
+    ends.append(end);
+  }
+  d["ends"] = ends;
+  d["rotation"] = c.rotation;
+  return d;
+}
 
 void bind_lcp(py::module_& m) {
   auto l = m.def_submodule("lcp", "Linear complementarity problems: w = M z + q, z >= 0, w >= 0, "
@@ -116,6 +152,13 @@ void bind_lcp(py::module_& m) {
         py::arg("friction"),
         "The rotation criterion eta of eq. (1), derived (docs/criterion.md): the keys of "
         "`nsbridge criterion --json`");
+  m.def("end_criterion", &end_criterion, py::arg("width"), py::arg("length"),
+        py::arg("friction"), py::arg("skew_deg") = 0.0, py::arg("skew_left_deg") = py::none(),
+        py::arg("skew_right_deg") = py::none(), py::arg("radius") = 0.0,
+        "The rotation criterion eta of each end of a plan with unequal end angles "
+        "(skew_left_deg, skew_right_deg) or of a curved deck (radius; length is the "
+        "centreline's arc) (docs/criterion.md): the keys of `nsbridge criterion --width W "
+        "--length L --friction MU --skew-left A --skew-right B --json` (or --radius R)");
 }
 
 }  // namespace nsb::python

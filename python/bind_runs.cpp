@@ -10,6 +10,7 @@
 #include "python/progress.hpp"
 #include "runs/files.hpp"
 #include "runs/run.hpp"
+#include "scene/scene.hpp"
 
 #include <toml++/toml.h>
 
@@ -330,6 +331,26 @@ Result run(const py::object& scene, const std::optional<std::string>& method,
   return Result(std::move(*record));
 }
 
+// scene_criterion(scene_or_path, friction): eta of each end of a scene's one deck, as
+// `nsbridge criterion --scene FILE --json`.
+py::dict scene_criterion(const py::object& scene, std::optional<double> friction) {
+  scene::Scene built;
+  if (py::isinstance<PyScene>(scene)) {
+    built = scene::build_scene(scene.cast<const PyScene&>().table);
+  } else if (py::isinstance<py::str>(scene) || py::hasattr(scene, "__fspath__")) {
+    built = scene::load_scene(scene.cast<std::filesystem::path>());
+  } else {
+    throw py::type_error("scene_criterion: scene_or_path: expected a Scene or a path");
+  }
+  if (!built.design) {
+    throw std::invalid_argument(
+        "scene_criterion: " + built.name + ": [model] kind = \"" + built.kind +
+        "\" has no deck of one body (a bridge of one deck or a rigid_deck); for a frame of a "
+        "bridge in segments give its plan to nsbridge.end_criterion");
+  }
+  return plan_criterion_dict(built.design->deck, friction.value_or(built.design->friction));
+}
+
 std::string scene_repr(const PyScene& s) {
   return "Scene('" + (s.path ? s.path->string() : s.table.origin.name) + "', name='" + s.name +
          "', method='" + s.method + "', end_time=" + io::three_digits(s.end_time) + ")";
@@ -427,6 +448,11 @@ void bind_result(py::module_& m) {
 void bind_runs(py::module_& m) {
   bind_scene(m);
   bind_result(m);
+  m.def("scene_criterion", &scene_criterion, py::arg("scene_or_path"),
+        py::arg("friction") = py::none(),
+        "The rotation criterion eta of each end of a scene's one deck (a Scene or a path), "
+        "at the seats' friction unless `friction` is given: the keys of `nsbridge criterion "
+        "--scene FILE --json`");
   m.def("run", &run, py::arg("scene_or_path"), py::arg("method") = py::none(),
         py::arg("overrides") = py::none(), py::arg("progress") = false,
         py::arg("cross_check") = py::none(),

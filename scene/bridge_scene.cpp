@@ -16,6 +16,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <map>
 #include <numbers>
@@ -245,8 +246,25 @@ struct BentsRead {
   std::vector<double> heights;
 };
 
+// A curved deck of radius R subtending angle_deg = phi has the arc L = R phi: a bent
+// beyond its ends at -+L/2 means that the radius cannot hold the deck. The error names the
+// radius (the key that set the arc's length), the arc, the bent and the radius it needs.
+[[noreturn]] void arc_error(const Section& deck, const DeckGeometry& plan, std::size_t bent,
+                            double position) {
+  const double phi = plan.subtended_angle();
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "R = %.6g m subtending angle_deg = %.6g gives an arc of %.6g m, its ends at "
+                "-+%.6g m from its middle: it cannot hold [[model.bents]] %zu at position = "
+                "%.6g m, which needs R >= 2 |position| / phi = %.6g m",
+                plan.radius, phi * 180.0 / std::numbers::pi, plan.length, 0.5 * plan.length,
+                bent, position, 2.0 * std::abs(position) / phi);
+  deck.fail("radius", text);
+}
+
+// arc: the deck's table when it is curved and its arc is R phi (angle_deg given), else null.
 BentsRead read_bents(const Section& m, const std::vector<double>& lengths, BridgeDesign& p,
-                     bool need_height) {
+                     bool need_height, const Section* arc) {
   BentsRead out;
   const bool one = !m.has("segments");
   const auto* bents = m.array_of_tables("bents");
@@ -272,6 +290,7 @@ BentsRead read_bents(const Section& m, const std::vector<double>& lengths, Bridg
     }
     const double half = 0.5 * lengths[static_cast<std::size_t>(b.segment)];
     if (std::abs(b.position) > half) {
+      if (arc != nullptr) arc_error(*arc, p.deck, j, b.position);
       s.fail("position", (one ? std::string("must lie on the deck, |position| <= length / 2 = ")
                               : "must lie on segment " + std::to_string(b.segment) +
                                     ", |position| <= its length / 2 = ") +
@@ -895,7 +914,8 @@ BridgeScene build_bridge(Section& m) {
   read_damping(m, p);
   BridgeAdditions add;
   add.limits = read_bridge_limits(m);
-  const BentsRead bents = read_bents(m, lengths, p, add.limits.limits.drift_ratio > 0);
+  const Section* arc = deck && p.deck.curved() && deck->has("angle_deg") ? &*deck : nullptr;
+  const BentsRead bents = read_bents(m, lengths, p, add.limits.limits.drift_ratio > 0, arc);
   add.limits.limits.bent_heights = bents.heights;
   const SeatMotions seats = read_seats(m, p);
   add.parts = read_bridge_parts(m, PartShape{lengths, p.deck});

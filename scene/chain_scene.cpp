@@ -45,10 +45,6 @@ std::vector<parts::RigidBody> read_bodies(const Section& m, std::string_view key
       if (!s.has(required)) s.fail_table(std::string("missing key ") + required);
     }
     check_body(s, b.mass, b.inertia, b.length, b.width);
-    if (i > 0 && b.width != out[0].width) {
-      s.fail("width", "must equal the width of element 0 (" + config::format_value(out[0].width) +
-                          " m): a joint's two corners lie on the other body's end face");
-    }
     out.push_back(b);
   }
   return out;
@@ -86,7 +82,7 @@ std::unique_ptr<integrators::System> build_deck_chain(Section& m) {
   p.width = bodies[0].width;
   for (const auto& b : bodies) {
     p.decks.push_back({.mass = b.mass, .inertia = b.inertia, .length = b.length,
-                       .initial_displacement = b.initial_position,
+                       .width = b.width, .initial_displacement = b.initial_position,
                        .initial_velocity = b.initial_velocity});
   }
   p.joints = read_joints(m, "joints", bodies.size() + 1,

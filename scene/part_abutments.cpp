@@ -101,7 +101,16 @@ std::any read_abutments(const Section& m, const PartShape&) {
 int add_backfill_seat(const AbutmentSettings& s, const BridgeDesign& p, std::size_t a,
                       const std::array<parts::Motion, 2>& ground, Assembly::Parts& parts) {
   const double side = a == 0 ? -1.0 : 1.0;  // the backfill lies beyond the wall on this side
-  const double w = s.width > 0 ? s.width : p.deck.width;
+  // The wall's default width: the deck end it faces (of a bridge in segments, the end
+  // segment's own width).
+  double deck_width = p.deck.width;
+  for (const auto& contact : parts.contacts) {
+    if (contact.obstacle == parts::Obstacle::kPrescribed &&
+        contact.obstacle_index == static_cast<int>(a)) {
+      deck_width = parts.bodies[static_cast<std::size_t>(contact.body)].width;
+    }
+  }
+  const double w = s.width > 0 ? s.width : deck_width;
   const double t = s.thickness;
   parts::RigidBody wall{.mass = s.mass, .inertia = s.mass * (w * w + t * t) / 12.0,
                         .length = t, .width = w,

@@ -65,7 +65,7 @@ BridgeScene build_bridge(Section& m);
 BridgeScene build_rigid_deck(Section& m);
 
 // The deck bodies of [[model.<key>]] (models/bridge_fields.hpp, segment_fields): at least one,
-// mass, inertia, length and width required, every width equal to the first.
+// mass, inertia, length and width required (neighbours may differ in width).
 std::vector<models::parts::RigidBody> read_bodies(const Section& m, std::string_view key);
 
 // A model's "initial penetration" error of a deck in bodies (the arrays of tables `bodies` and

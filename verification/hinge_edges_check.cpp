@@ -18,7 +18,9 @@
 //  (d) the redundant joint: equal widths, no relative rotation or offset, flush: the four
 //      corner-against-face pairs coincide two by two (equal columns: a Delassus matrix of rank
 //      2 for four contacts), and the model's two contacts of the joint are the right deck's
-//      corners, with a regular 2 x 2 Delassus matrix.
+//      corners, with a regular 2 x 2 Delassus matrix;
+//  (e) a narrow deck against a wide one: the narrow deck's corner strikes the wide face, and,
+//      offset across, the wide deck's corner strikes the narrow face, as in (a)-(b).
 #include "integrators/event_driven.hpp"
 #include "integrators/recorder.hpp"
 #include "models/deck_chain.hpp"
@@ -50,14 +52,14 @@ constexpr double kRoundOff = 1e-12;
 
 // One free deck of the pair: its plan and its exact motion, pose(t) = q0 + u0 t.
 struct Deck {
-  double mass = 0.0, inertia = 0.0, length = 0.0;
+  double mass = 0.0, inertia = 0.0, length = 0.0, width = 2.44;
   Vector3d q0 = Vector3d::Zero();  // world pose at t = 0 (x, y, theta)
   Vector3d u0 = Vector3d::Zero();  // (vx, vy, omega)
   Vector3d pose(double t) const { return q0 + u0 * t; }
 };
 
 struct Pair {
-  double width = 2.44, skew_deg = 0.0, restitution = 0.5;
+  double skew_deg = 0.0, restitution = 0.5;
   Deck left, right;
 };
 
@@ -77,7 +79,7 @@ End end_of(const Pair& p, bool left_deck) {
   const double a = p.skew_deg * std::numbers::pi / 180.0;
   const double s = left_deck ? 1.0 : -1.0;
   const double l = left_deck ? p.left.length : p.right.length;
-  const double h = 0.5 * p.width;
+  const double h = 0.5 * (left_deck ? p.left.width : p.right.width);
   End e;
   e.corner[0] = {s * 0.5 * l + h * std::tan(a), h};
   e.corner[1] = {s * 0.5 * l - h * std::tan(a), -h};
@@ -118,7 +120,8 @@ Vector2d gaps(const Pair& p, const Candidate& c, double t, Contact* at = nullptr
 // The earliest closing root of g_N in (0, t_end] on a grid of `steps`, bisected to round-off;
 // with `bounded`, only a root where the corner lies on the face counts.
 std::optional<double> first_root(const Pair& p, const Candidate& c, double t_end, bool bounded) {
-  const double half = 0.5 * p.width / std::cos(p.skew_deg * std::numbers::pi / 180.0);
+  const Deck& b = c.a_is_left ? p.right : p.left;  // the deck whose face is struck
+  const double half = 0.5 * b.width / std::cos(p.skew_deg * std::numbers::pi / 180.0);
   constexpr int kSteps = 20000;
   double t0 = 0.0, g0 = gaps(p, c, 0.0).x();
   for (int k = 1; k <= kSteps; ++k) {
@@ -200,10 +203,12 @@ Impact closed_form_impact(const Pair& p, const Contact& c) {
 // hinge's contacts are 2 (+W/2) and 3 (-W/2), frictionless with the pair's restitution.
 nm::DeckChain::Parameters chain(const Pair& p) {
   nm::DeckChain::Parameters c;
-  c.width = p.width;
+  c.width = p.left.width;
   c.skew_deg = p.skew_deg;
-  c.decks = {{.mass = p.left.mass, .inertia = p.left.inertia, .length = p.left.length},
-             {.mass = p.right.mass, .inertia = p.right.inertia, .length = p.right.length}};
+  c.decks = {{.mass = p.left.mass, .inertia = p.left.inertia, .length = p.left.length,
+              .width = p.left.width},
+             {.mass = p.right.mass, .inertia = p.right.inertia, .length = p.right.length,
+              .width = p.right.width}};
   const double gap = p.right.q0.x() - 0.5 * p.right.length - (p.left.q0.x() + 0.5 * p.left.length);
   c.joints = {{.gap = 1.0}, {.gap = gap, .restitution = p.restitution}, {.gap = 1.0}};
   const Deck* decks[2] = {&p.left, &p.right};
@@ -384,4 +389,30 @@ TEST_CASE("hinge edges: coincident corners make one contact per side, not two") 
   const Eigen::MatrixXd g2 = w2.transpose() * minv.asDiagonal() * w2;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> e2(g2);
   CHECK(e2.eigenvalues()(0) >= 1e-3 * e2.eigenvalues()(1));  // regular
+}
+
+TEST_CASE("hinge edges: a narrow deck against a wide one, first impact and impulse as the "
+          "enumeration") {
+  SUBCASE("the narrow deck's corner on the wide deck's face") {
+    // Left deck 4.0 m wide, right deck 2.44 m, offset by +0.5 m and turned by +0.01 rad: its
+    // +W/2 corner leads (it moves by -(W/2) 0.01 along the axis) at y = 0.5 + 1.22 - (L/2) 0.01
+    // = 1.6175 m, on the wide face (|y| <= 2.0). The wide deck's corners, at y = -+2.0, lie
+    // beyond the narrow face (from -0.8225 to 1.6175 m): the side's contact is the narrow
+    // deck's corner.
+    Pair p = make_pair(0.0, 0.0, 0.01, 0.5, 0.05, 0.5, 0.0);
+    p.left.width = 4.0;
+    check_against_enumeration(p, 0.5, {.a_is_left = false, .side = 0});
+  }
+  SUBCASE("offset across, the wide deck's corner on the narrow deck's face, skew") {
+    // 10 deg skew, left deck 4.0 m wide turned by +0.01 rad (its -W/2 corner at the right end
+    // leads), right deck 2.44 m offset by -2.5 m: its face runs from y = -3.72 to -1.28 m, so
+    // the wide deck's -W/2 corner (y = -2.0) lies on it, while the narrow deck's -W/2 corner
+    // (y = -3.72) lies beyond the wide face's end at -2.0. Its +W/2 corner (y = -1.28) lies
+    // on the wide face but trails. The faces are parallel lines at rest, 2.5 m apart across
+    // the axis, so 2.5 tan(10 deg) = 0.44 m further apart than the 0.05 m gap along it: the
+    // first contact comes after ~1 s at 0.5 m/s.
+    Pair p = make_pair(10.0, 0.01, 0.0, -2.5, 0.05, 0.5, 0.0);
+    p.left.width = 4.0;
+    check_against_enumeration(p, 1.5, {.a_is_left = true, .side = 1});
+  }
 }

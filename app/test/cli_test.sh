@@ -30,6 +30,34 @@ expect 0 'eta\+ = .*6\.83' -- criterion --skew 0 --width 2.44 --length 33.35 --f
 expect 0 '"rotation"' -- criterion --skew 30 --width 10 --length 30 --friction 0 --json
 expect 2 'width' -- criterion --skew 0 --width -1 --length 30 --friction 0.5
 expect 2 'friction' -- criterion --skew 0 --width 10 --length 30 --friction -0.1
+# eta of each end (docs/criterion.md, "Unequal end angles and curved decks"), by hand.
+# Straight deck W = 2, L = 10, left face at 0, right face at 45 deg, mu = 0.5: the centroid
+# lies at (W^2 (tan^2 45 - 0) / (24 L), W^2 (tan 45 - 0) / (12 L)) = (1/60, 1/30) from the axis's
+# midpoint. Right end: corners (6, 1) and (4, -1) from the midpoint, so M = (5 - 1/60, -1/30),
+# h = (1, 1), n = (-1, 1)/sqrt2, t = (-1, -1)/sqrt2, h x d = h x n = sqrt2 and
+# eta(k) = (M x (n + k t)) / sqrt2 = (297 - 301 k) / 120: eta+ = eta(-0.5) = 447.5/120 = 3.72917,
+# eta- = eta(0.5) = 146.5/120 = 1.22083. Left end: corners (-5, -+1), M = (-5 - 1/60, -1/30),
+# h = (0, 1), n = (1, 0), t = (0, 1), h x d = -1, eta(k) = (301 k - 2) / 60:
+# eta+ = -152.5/60 = -2.54167, eta- = 148.5/60 = 2.475.
+expect 0 'left end \(face at 0 deg\): eta\+ = -2\.54167, eta- = 2\.475, rotation predicted \(max \|eta\+-\| > 1\): yes' \
+  -- criterion --width 2 --length 10 --friction 0.5 --skew-left 0 --skew-right 45
+expect 0 'right end \(face at 45 deg\): eta\+ = 3\.72917, eta- = 1\.22083' \
+  -- criterion --width 2 --length 10 --friction 0.5 --skew-left 0 --skew-right 45
+# Curved deck R = 40 m, W = 8 m, phi = 60 deg (L = R phi = 41.8879 m), mu = 0.3: the sector's
+# centroid radius rbar = 4 sin 30 (44^3 - 36^3) / (3 (pi/3) (44^2 - 36^2)) = 120.4/pi
+# = 38.32451 m; at the right end (psi = 30 deg) M x n = R - rbar cos psi, M x t = -rbar sin psi,
+# h x n = W/2, so eta(k) = (R - rbar cos psi - k rbar sin psi) / (W/2):
+# eta+ = (40 - 33.18999 + 0.3 * 19.16226) / 4 = 3.13967, eta- = 0.265331; the left end mirrors
+# it (eta+ and eta- exchanged).
+expect 0 '"ends": \[\{"end": "left", "angle_deg": -30(\.0*[0-9])?, "eta_plus": 0\.26533[0-9]*, "eta_minus": 3\.13966[0-9]*, "rotation": true\}, \{"end": "right", "angle_deg": 30(\.0*[0-9])?, "eta_plus": 3\.13966[0-9]*, "eta_minus": 0\.26533[0-9]*, "rotation": true\}\]' \
+  -- criterion --width 8 --length 41.88790204786391 --radius 40 --friction 0.3 --json
+# The shipped curved scene, subtending 30 deg (radial ends at -+15 deg), at its seats' mu = 0.5:
+# eta+- = 9.07, -4.35 at the right end (docs/curved.md's sweep at 30 deg).
+expect 0 'right end \(face at 15 deg\): eta\+ = 9\.0705, eta- = -4\.35395' -- criterion --scene "$root/scenes/bridge-curved-three-span.toml"
+expect 2 'criterion: --radius: must exceed half the width' -- criterion --width 8 --length 10 --radius 3 --friction 0
+expect 2 'criterion: --skew with --scene' -- criterion --scene "$root/scenes/bridge-curved-three-span.toml" --skew 10
+expect 2 'bridge-two-frame\.toml.*no deck of one body' -- criterion --scene "$root/scenes/bridge-two-frame.toml"
+expect 2 'criterion: --skew is required' -- criterion --width 10 --length 30 --friction 0.5
 
 # --- nsbridge run -------------------------------------------------------------------------
 expect 0 'bouncing-ball' -- run "$root/scenes/bouncing-ball.toml" --out "$tmp/ball"

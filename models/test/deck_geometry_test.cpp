@@ -152,8 +152,10 @@ TEST_CASE("deck geometry: a curved deck's ends, faces and bents are radial") {
 TEST_CASE("deck geometry: bad plans name their field") {
   DeckGeometry g{.length = 10.0, .width = 4.0, .radius = 1.0};
   CHECK_THROWS_WITH_AS(g.validate(), doctest::Contains("radius"), std::invalid_argument);
-  g.radius = 3.0;  // L / R = 3.33 > pi
-  CHECK_THROWS_WITH_AS(g.validate(), doctest::Contains("length"), std::invalid_argument);
+  g.radius = 3.0;  // L / R = 3.33 > pi: the radius cannot hold the arc, R > L / pi = 3.18 m
+  CHECK_THROWS_WITH_AS(g.validate(),
+                       doctest::Contains("radius: R = 3 m cannot hold an arc of L = 10 m"),
+                       std::invalid_argument);
   g.radius = 1e5;  // L / R = 1e-4 rad: straight for every purpose
   CHECK_THROWS_WITH_AS(g.validate(), doctest::Contains("radius"), std::invalid_argument);
   g.radius = 30.0;

@@ -27,9 +27,11 @@ from ._nsbridge import (  # noqa: F401
     __version__,
     build_info,
     criterion,
+    end_criterion,
     lcp,
     load_scene,
     run,
+    scene_criterion,
     _sweep_columns,
 )
 
@@ -315,5 +317,5 @@ Result.plot = _plot
 # `import nsbridge.lcp` as well as `nsbridge.lcp`.
 _sys.modules[__name__ + ".lcp"] = lcp
 
-__all__ = ["InputError", "Result", "Scene", "Study", "build_info", "criterion", "lcp",
-           "load_scene", "open_study", "run", "sweep", "__version__"]
+__all__ = ["InputError", "Result", "Scene", "Study", "build_info", "criterion", "end_criterion",
+           "lcp", "load_scene", "open_study", "run", "scene_criterion", "sweep", "__version__"]

@@ -1,8 +1,9 @@
 #!/bin/bash
 # Fault injection on the deck's plan (docs/bridge.md, "Faces with their own angles", "Curved
-# decks"): a curved deck narrower than its radius allows, subtending 180 degrees or more or
-# almost nothing, angle_deg without radius or beside length, a curved deck with a skew, with
-# an abutment's own angle or with a connector, and an end angle out of range. Each case
+# decks"): a radius that cannot hold the deck (no more than half its width, an arc of 180
+# degrees or more, an arc R phi too short for its bents), subtending almost nothing,
+# angle_deg without radius or beside length, a curved deck with a skew, with an abutment's
+# own angle or with a connector, and an end angle out of range. Each case
 # checks exit 2, the message (file, line and key path) and that nothing was written.
 #   geometry_faults.sh NSBRIDGE
 set -u
@@ -39,7 +40,11 @@ bridge() {  # bridge DECK_LINES [MORE]: a curved or straight one-deck bridge on 
 bridge $'radius = 1.0\nangle_deg = 30.0' > narrow.toml
 expect narrow.toml 'narrow\.toml:[0-9]+:[0-9]+: model\.deck\.radius: must exceed half the width'
 bridge $'radius = 10.0\nlength = 40.0\ninertia = 13090.0' > wide.toml
-expect wide.toml 'wide\.toml:[0-9]+:[0-9]+: model\.deck\.length: of a curved deck must subtend less than 180'
+expect wide.toml 'wide\.toml:[0-9]+:[0-9]+: model\.deck\.radius: R = 10 m cannot hold an arc of L = 40 m: it would subtend 229\.183 deg, 180 or more \(L / R >= pi\); R > L / pi = 12\.7324 m'
+# R = 2 m at 30 degrees: an arc of 1.0472 m, whose ends at -+0.5236 m do not reach the bents
+# at -+5 m: the radius is named, with the radius that holds them, 2 * 5 / (pi / 6) = 19.0986 m.
+bridge $'radius = 2.0\nangle_deg = 30.0' > short.toml
+expect short.toml 'short\.toml:[0-9]+:[0-9]+: model\.deck\.radius: R = 2 m subtending angle_deg = 30 gives an arc of 1\.0472 m, its ends at -\+0\.523599 m from its middle: it cannot hold \[\[model\.bents\]\] 0 at position = -5 m, which needs R >= 2 \|position\| / phi = 19\.0986 m'
 bridge $'radius = 1.0e6\nlength = 33.5\ninertia = 13090.0' > flat.toml
 expect flat.toml 'flat\.toml:[0-9]+:[0-9]+: model\.deck\.radius: gives a subtended angle'
 bridge $'angle_deg = 30.0\nlength = 33.5' > noradius.toml
@@ -56,4 +61,4 @@ bridge $'length = 33.5\ninertia = 13090.0' $'[model.abutments]\nskew_right_deg =
 expect steep.toml 'steep\.toml:[0-9]+:[0-9]+: model\.abutments\.skew_right_deg'
 
 echo "geometry faults: $passed passed, $failed failed"
-[[ $failed -eq 0 && $passed -eq 9 ]]
+[[ $failed -eq 0 && $passed -eq 10 ]]
