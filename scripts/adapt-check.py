@@ -9,7 +9,8 @@ default) from the scene's own settings. Every deck peak (summary.json `peaks` of
 generalized coordinates x, y, theta of each body) is compared with a converged reference:
 event-driven at tolerance 1e-10 for the rigid methods (Moreau–Jean, event-driven), the
 compliance method at a tight tolerance (1e-9) for compliance, whose contact law is another
-model. Prints one row per scene and method: the worst relative error and its coordinate,
+model; where that reference does not reach a result (event-driven at 1e-10 stalls on an event
+storm of the unequal-skew bridge) the next tighter tolerance is taken. Prints one row per scene and method: the worst relative error and its coordinate,
 whether the run claimed to meet its target (summary.json `accuracy.met`), its attempts and
 final setting, its CPU seconds (`accuracy.total_cpu_seconds`, every attempt and companion).
 
@@ -37,9 +38,9 @@ METHODS = ("moreau", "event_driven", "compliance")
 WORK_PRECISION = ("bridge-exc7", "bridge-skew-three-span", "bridge-two-frame",
                   "bridge-shear-keys")
 WORK_PRECISION_END = 8.0
-# The references: (method, tolerance) per method checked.
-RIGID_REFERENCE = ("event_driven", 1e-10)
-COMPLIANCE_REFERENCE = ("compliance", 1e-9)
+# The references: (method, tolerances tried in turn) per method checked.
+RIGID_REFERENCE = ("event_driven", (1e-10, 1e-11, 1e-12))
+COMPLIANCE_REFERENCE = ("compliance", (1e-9, 1e-10))
 
 
 def reference_of(method):
@@ -87,8 +88,19 @@ class Case:
 
 
 def reference(case, method, nsbridge, cache):
-    """The cached reference peaks of case for method (computed on a miss)."""
-    ref_method, tol = reference_of(method)
+    """The reference peaks of case for method: the first of its tolerances that reaches a
+    result."""
+    ref_method, tolerances = reference_of(method)
+    for tol in tolerances:
+        entry = reference_at(case, ref_method, tol, nsbridge, cache)
+        if entry["rc"] == 0:
+            break
+    return entry
+
+
+def reference_at(case, ref_method, tol, nsbridge, cache):
+    """The cached reference peaks of case under ref_method at tol (computed on a miss; a
+    failed run is cached too, so that it is not run again)."""
     path = os.path.join(cache, f"{case.key()}-{ref_method}-{tol:g}.json")
     if os.path.exists(path):
         with open(path) as f:
@@ -101,9 +113,8 @@ def reference(case, method, nsbridge, cache):
              "status": summary["status"] if summary else "",
              "peaks": deck_peaks(summary) if summary else {}}
     shutil.rmtree(out, ignore_errors=True)
-    if rc == 0:
-        with open(path, "w") as f:
-            json.dump(entry, f, indent=1)
+    with open(path, "w") as f:
+        json.dump(entry, f, indent=1)
     return entry
 
 
@@ -123,7 +134,9 @@ def check(case, method, args, extra):
     ref = reference(case, method, args.nsbridge, args.cache)
     rc, summary, msg = adapt(case, method, args.nsbridge, args.out, args.accuracy, extra,
                              args.reuse)
-    row = {"case": case.label(), "method": method, "rc": rc, "message": msg}
+    row = {"case": case.label(), "method": method, "rc": rc, "message": msg,
+           "reference": f"{ref['method']} {ref['tolerance']:g}",
+           "tighter": ref["tolerance"] != reference_of(method)[1][0]}
     if ref["rc"] != 0 or not ref["peaks"]:
         row["message"] = "reference failed: " + ref["message"]
         return row
@@ -139,8 +152,7 @@ def check(case, method, args, extra):
     attempts = acc.get("attempts", [])
     row.update(worst=worst, coordinate=name, claimed=acc.get("met"),
                attempts=len(attempts),
-               setting=attempts[-1].get("local_tolerance", attempts[-1].get("tolerance", ""))
-               if attempts else "",
+               setting=acc.get("local_tolerance", acc.get("tolerance", float("nan"))),
                cpu=acc.get("total_cpu_seconds", float("nan")),
                status=summary.get("status", ""))
     return row
@@ -181,8 +193,9 @@ def main():
         rows = list(pool.map(lambda cm: check(cm[0], cm[1], args, extra), work))
 
     print(f"solver.adapt = true, solver.accuracy = {args.accuracy:g}; references: "
-          f"{RIGID_REFERENCE[0]} at {RIGID_REFERENCE[1]:g} (moreau, event_driven), "
-          f"{COMPLIANCE_REFERENCE[0]} at {COMPLIANCE_REFERENCE[1]:g} (compliance)")
+          f"{RIGID_REFERENCE[0]} at {RIGID_REFERENCE[1][0]:g} (moreau, event_driven), "
+          f"{COMPLIANCE_REFERENCE[0]} at {COMPLIANCE_REFERENCE[1][0]:g} (compliance), "
+          "tighter where marked")
     if extra:
         print("overrides: " + " ".join(f"{k}={v}" for k, v in extra))
     print("\n| scene | method | worst relative error | claimed met | attempts | setting | CPU s |")
@@ -196,8 +209,9 @@ def main():
             continue
         miss = r["worst"] > args.accuracy
         failed += miss
+        tighter = f" (against {r['reference']})" if r["tighter"] else ""
         print(f"| {r['case']} | {r['method']} | {100 * r['worst']:.3f} % ({r['coordinate']})"
-              f"{' **misses**' if miss else ''} | {str(r['claimed']).lower()} | "
+              f"{' **misses**' if miss else ''}{tighter} | {str(r['claimed']).lower()} | "
               f"{r['attempts']} | {r['setting']:g} | {r['cpu']:.3g} |")
     print(f"\n{len(rows) - failed} of {len(rows)} within {100 * args.accuracy:g} %")
     return 1 if failed else 0
