@@ -156,7 +156,10 @@ AdaptAttempt attempt_entry(const Attempt& a) {
 // refined one (refined_value) while the estimate exceeds solver.accuracy, at most
 // kAdaptAttempts runs. Returns the last attempt; `scene` becomes its scene and `warnings` its
 // step warnings. A refined value that the scene refuses (the bound on a run's work) ends the
-// search with the attempt before it.
+// search with the attempt before it; so does a refined attempt that fails (stalled,
+// diverged) after one that reached a result: a tighter setting would only fail again, and
+// the result with its estimate is worth more than a failure. The failed attempt stays in the
+// list of attempts.
 Attempt adapt(scene::Scene& scene, std::vector<std::string>& warnings,
               const integrators::Progress& progress, const integrators::RunHooks& hooks,
               Adaptation& adaptation) {
@@ -183,6 +186,11 @@ Attempt adapt(scene::Scene& scene, std::vector<std::string>& warnings,
         step_warnings(*refined.system, refined.run, refined.record_step);
     Attempt next_attempt = integrate_once(refined, progress, hooks, nullptr);
     adaptation.attempts.push_back(attempt_entry(next_attempt));
+    if (next_attempt.result.status != integrators::RunStatus::kInterrupted &&
+        !integrators::is_result(next_attempt.result.status) &&
+        integrators::is_result(last.result.status)) {
+      break;
+    }
     scene = std::move(refined);
     warnings = std::move(refined_warnings);
     last = std::move(next_attempt);

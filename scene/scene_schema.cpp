@@ -94,7 +94,8 @@ std::span<const c::Field<EstimateSettings>> EstimateSettings::fields() {
       c::boolean<&S::adapt>(
           "adapt",
           "choose the steps (Moreau–Jean: adaptive steps at solver.local_tolerance, 0.01 × "
-          "accuracy unless given) or the tolerance (event-driven, compliance) to meet "
+          "accuracy unless given) or the tolerance (event-driven, compliance; event-driven "
+          "starts no looser than 1e-8) to meet "
           "accuracy: refined while the estimate exceeds accuracy, at most 6 "
           "runs (docs/error-estimates.md, \"Choosing the step\"); needs error_estimate"),
   };
