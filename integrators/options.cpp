@@ -55,7 +55,8 @@ std::span<const c::Field<MoreauJeanOptions>> MoreauJeanOptions::fields() {
                               "contact impacts or changes state is reduced (solver.adapt sets "
                               "it to 0.01 s × accuracy when not given)"),
       c::number<&O::max_step>("max_step", "s", c::non_negative(),
-                              "adaptive steps: the largest step; 0: 10 × step"),
+                              "adaptive steps: the largest step; 0: 10 × step (solver.adapt sets "
+                              "it to 0.1 s × accuracy when not given)"),
   };
   return f;
 }

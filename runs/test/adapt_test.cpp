@@ -110,6 +110,23 @@ TEST_CASE("adapt: Moreau-Jean's smallest step is 0.01 s x accuracy unless the sc
   CHECK(min_step({"solver.adapt=true", "solver.min_step=2e-6"}) == 2e-6);
 }
 
+TEST_CASE("adapt: Moreau-Jean's largest step is 0.1 s x accuracy, whatever the scene's step") {
+  // scene/solver_section.cpp, kMaxStepOfAccuracy (docs/moreau-jean.md, "The largest step"):
+  // 1 ms at accuracy 1e-2 both for excitation 7 (step 1e-4 s) and for the two-frame bridge
+  // (2.5e-5 s), where 10 x its own step adapted to a run 16 % off on theta1. Without adapt
+  // the options' 0 stays (the integrator takes 10 x step).
+  const auto max_step = [](const char* scene, std::vector<std::string> o) {
+    const PreparedRun p = prepare({kScenes + scene, std::move(o), "moreau", {}});
+    return std::get<integrators::MoreauJeanOptions>(p.scene.run).max_step;
+  };
+  CHECK(max_step("/bridge-two-frame.toml", {}) == 0.0);
+  CHECK(max_step("/bridge-two-frame.toml", {"solver.adapt=true"}) == doctest::Approx(1e-3));
+  CHECK(max_step("/bridge-exc7.toml", {"solver.adapt=true"}) == doctest::Approx(1e-3));
+  CHECK(max_step("/bridge-exc7.toml", {"solver.adapt=true", "solver.accuracy=0.05"}) ==
+        doctest::Approx(5e-3));
+  CHECK(max_step("/bridge-exc7.toml", {"solver.adapt=true", "solver.max_step=2e-4"}) == 2e-4);
+}
+
 TEST_CASE("adapt: event-driven from tolerance 1e-2 starts at 1e-8 and ends within 1 %") {
   // From 1e-2 the run used to refine to 1e-4 and stop there, 32 % high on |theta|: at every
   // tolerance down to 1e-5 a near miss of 13.5 um at 4.21 s is taken for a pounding, and the
