@@ -16,7 +16,7 @@ final setting, its CPU seconds (`accuracy.total_cpu_seconds`, every attempt and 
 
 References are cached in CACHE (one JSON per scene, window, method and tolerance), so a second
 call runs only the adapt runs; `--reuse` keeps the adapt runs already in OUT as well.
-At most 2 runs at once (`--jobs`, 1 or 2).
+At most 2 runs at once (`--jobs`, 1 or 2); the runs themselves are nsb_runs.py's.
 
 Usage: adapt-check.py NSBRIDGE [--scenes DIR] [--cache DIR] [--out DIR] [--accuracy A]
                       [--methods m1,m2] [--only NAME,...] [--jobs N] [--reuse]
@@ -25,13 +25,12 @@ Exits 1 when a row misses the accuracy or a run failed, 2 on bad arguments.
 """
 import argparse
 import concurrent.futures
-import glob
 import json
 import os
-import re
 import shutil
-import subprocess
 import sys
+
+import nsb_runs
 
 METHODS = ("moreau", "event_driven", "compliance")
 # The work-precision bridges and their window (benchmarks/work_precision_bridges.py).
@@ -49,24 +48,14 @@ def reference_of(method):
 
 def deck_peaks(summary):
     """The peaks |q| of the generalized coordinates of every body (x, y, theta or x1, ...)."""
-    return {k: v["abs_max"] for k, v in summary["peaks"].items()
-            if re.fullmatch(r"(x|y|theta)\d*", k)}
+    return {k: v["abs_max"] for k, v in nsb_runs.coordinates(summary).items()}
 
 
 def run(nsbridge, scene_path, method, sets, out):
-    """One `nsbridge run` into out; returns (exit code, summary or None, message)."""
+    """One `nsbridge run` into a fresh out; returns (exit code, summary or None, message)."""
     if os.path.isdir(out):
         shutil.rmtree(out)
-    cmd = [nsbridge, "run", scene_path, "--method", method, "--out", out, "--quiet"]
-    for key, value in sets:
-        cmd += ["--set", f"{key}={value}"]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    path = os.path.join(out, "summary.json")
-    summary = None
-    if os.path.exists(path):
-        with open(path) as f:
-            summary = json.load(f)
-    return p.returncode, summary, (p.stderr or p.stdout).strip()[-300:]
+    return nsb_runs.attempt(nsbridge, scene_path, out, method, [f"{k}={v}" for k, v in sets])
 
 
 class Case:
@@ -168,22 +157,23 @@ def main():
     ap.add_argument("--accuracy", type=float, default=1e-2)
     ap.add_argument("--methods", default=",".join(METHODS))
     ap.add_argument("--only", default="", help="scene names (without .toml), comma-separated")
-    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--jobs", type=int, default=nsb_runs.MAX_WORKERS)
     ap.add_argument("--reuse", action="store_true", help="keep adapt runs already in --out")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="an override for the adapt runs, e.g. solver.min_step=1e-5")
     args = ap.parse_args()
     methods = [m for m in args.methods.split(",") if m]
     if any(m not in METHODS for m in methods) or args.jobs not in (1, 2) or \
-            not 0.0 < args.accuracy < 1.0 or any("=" not in s for s in args.set):
+            not 0.0 < args.accuracy < 1.0 or any("=" not in s for s in args.set) or \
+            not os.path.isdir(args.scenes):
         ap.print_usage(sys.stderr)
         return 2
     extra = [tuple(s.split("=", 1)) for s in args.set]
     os.makedirs(args.cache, exist_ok=True)
     os.makedirs(args.out, exist_ok=True)
     only = set(s for s in args.only.split(",") if s)
-    paths = sorted(glob.glob(os.path.join(args.scenes, "bridge-*.toml")))
-    cases = [Case(p, None) for p in paths]
+    cases = [Case(os.path.join(args.scenes, name + ".toml"), None)
+             for name in nsb_runs.bridge_scenes(args.scenes)]
     cases += [Case(os.path.join(args.scenes, s + ".toml"), WORK_PRECISION_END)
               for s in WORK_PRECISION]
     if only:

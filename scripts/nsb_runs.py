@@ -1,5 +1,5 @@
 """Runs of the nsbridge binary for the measuring scripts (estimate-effectivity.py,
-accuracy-coarse-check.py): one run and its summary.json, the generalized coordinates' peaks,
+accuracy-coarse-check.py, adapt-check.py): one run and its summary.json, the generalized coordinates' peaks,
 the shipped bridge scenes, and the converged references, kept across invocations in a folder.
 
 Every helper runs at most MAX_WORKERS processes at once (the machines these run on are small
@@ -24,19 +24,30 @@ REFERENCE_METHOD = "event_driven"
 REFERENCE_SETS = ("solver.tolerance=1e-10", "solver.error_estimate=false")
 
 
-def run(nsbridge, scene, out, method=None, sets=()):
+def attempt(nsbridge, scene, out, method=None, sets=()):
     """Runs `nsbridge run scene --quiet --out out [--method method] --set s ...` and returns
-    its summary.json. Exit 0 and 1 (a warning under --strict) are results; others raise."""
+    (exit code, its summary.json or None when it wrote none, the end of its message)."""
     args = [nsbridge, "run", scene, "--quiet", "--out", out]
     if method:
         args += ["--method", method]
     for s in sets:
         args += ["--set", s]
     done = subprocess.run(args, capture_output=True, text=True)
-    if done.returncode not in (0, 1):
-        raise RuntimeError(f"{scene} {list(sets)}: exit {done.returncode}: {done.stderr.strip()}")
-    with open(os.path.join(out, "summary.json")) as f:
-        return json.load(f)
+    path = os.path.join(out, "summary.json")
+    summary = None
+    if os.path.exists(path):
+        with open(path) as f:
+            summary = json.load(f)
+    return done.returncode, summary, (done.stderr or done.stdout).strip()[-300:]
+
+
+def run(nsbridge, scene, out, method=None, sets=()):
+    """attempt()'s summary.json. Exit 0 and 1 (a numerical failure, or a warning under
+    --strict) are results; others raise."""
+    code, summary, message = attempt(nsbridge, scene, out, method, sets)
+    if code not in (0, 1) or summary is None:
+        raise RuntimeError(f"{scene} {list(sets)}: exit {code}: {message}")
+    return summary
 
 
 def coordinates(summary):
