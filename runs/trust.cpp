@@ -1,10 +1,12 @@
 #include "runs/trust.hpp"
 
+#include "integrators/compliance.hpp"
 #include "io/csv.hpp"
 #include "runs/estimate.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -46,6 +48,43 @@ void compliance_penetration_warnings(const integrators::Recorder& history,
   }
 }
 
+// Under the compliance method, one warning per restitution e of the system's contacts whose
+// single-impact restitution under the run's damping law (floored as the law floors it) differs
+// from e by more than limits.restitution_mismatch, naming the contacts (1-based) that have it.
+void restitution_warnings(const integrators::System& system,
+                          const integrators::ComplianceOptions& options,
+                          const TrustLimits& limits, std::vector<std::string>& w) {
+  std::vector<integrators::ContactData> contacts = system.make_contact_buffer();
+  system.contact_data(system.initial_time(), system.initial_position(),
+                      system.initial_velocity(), contacts);
+  std::vector<std::pair<double, std::vector<int>>> by_restitution;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const double e = contacts[i].restitution;
+    auto same = std::find_if(by_restitution.begin(), by_restitution.end(),
+                             [e](const auto& group) { return group.first == e; });
+    if (same == by_restitution.end()) {
+      by_restitution.push_back({e, {}});
+      same = std::prev(by_restitution.end());
+    }
+    same->second.push_back(static_cast<int>(i) + 1);
+  }
+  for (const auto& [e, members] : by_restitution) {
+    const double returned = integrators::hunt_crossley_restitution(
+        integrators::damping_factor(options.law, e));
+    const double asked = std::max(e, integrators::kMinLawRestitution);
+    if (std::abs(returned - asked) <= limits.restitution_mismatch) continue;
+    std::string list;
+    for (const int c : members) list += (list.empty() ? "" : ", ") + std::to_string(c);
+    w.push_back("restitution: solver.damping_law = " +
+                std::string(integrators::to_string(options.law)) + " returns " +
+                brief(returned) + " from an impact where the restitution is " + brief(e) +
+                " (contacts " + list + "); the law holds within " +
+                brief(limits.restitution_mismatch) + " (solver.damping_law = "
+                "\"hunt_crossley_exact\" returns the restitution given; docs/compliance.md, "
+                "\"Damping laws\")");
+  }
+}
+
 }  // namespace
 
 void TrustLimits::validate() const {
@@ -60,6 +99,9 @@ void TrustLimits::validate() const {
   if (!(steps_per_period >= 1.0 && std::isfinite(steps_per_period)))
     bad("steps_per_period", "must be finite and >= 1");
   if (!(record_steps > 0.0 && std::isfinite(record_steps))) bad("record_steps", "must be > 0");
+  if (!(restitution_mismatch > 0.0 && restitution_mismatch < 1.0)) {
+    bad("restitution_mismatch", "must be in (0, 1)");
+  }
 }
 
 double shortest_period(integrators::System& system) {
@@ -91,6 +133,9 @@ std::vector<std::string> step_warnings(integrators::System& system,
                                        const TrustLimits& limits) {
   limits.validate();
   std::vector<std::string> w;
+  if (const auto* c = std::get_if<integrators::ComplianceOptions>(&config)) {
+    restitution_warnings(system, *c, limits, w);
+  }
   const auto* mj = std::get_if<integrators::MoreauJeanOptions>(&config);
   // The adaptive methods, and Moreau–Jean with adaptive steps, choose their steps by their
   // tolerance.

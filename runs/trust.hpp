@@ -2,7 +2,7 @@
 // Thresholds and their derivation: docs/cli.md, "Warnings".
 //
 // Each warning is one line "<code>: <what was found>; <what the method needs>", with <code>
-// one of energy_balance, penetration, step_period, step_record. runs::execute appends them to
+// one of energy_balance, penetration, restitution, step_period, step_record. runs::execute appends them to
 // RunResult::warnings and Digest::warnings (summary.json "warnings"), for `nsbridge run` and
 // every run of a sweep alike; `nsbridge run` prints them and with --strict exits 1 on any.
 #pragma once
@@ -32,6 +32,11 @@ struct TrustLimits {
   double steps_per_period = 20.0;
   // Largest Moreau–Jean step as a multiple of the record's sampling interval, > 0.
   double record_steps = 1.0;
+  // Largest difference between the restitution a compliance contact is given and the one its
+  // damping law returns from a single impact (integrators::hunt_crossley_restitution), in
+  // (0, 1): 0.05 lets hertzdamp pass from e = 0.8 (0.847) and warns at the paper's e = 0
+  // (0.663) and at 0.5 (0.725) (docs/compliance.md, "Damping laws").
+  double restitution_mismatch = 0.05;
   void validate() const;  // throws std::invalid_argument naming the field
 };
 
@@ -46,7 +51,9 @@ double shortest_period(integrators::System& system);
 void check_initial_state(const integrators::System& system);
 
 // Warnings about the configuration, before the run: the Moreau–Jean step against the shortest
-// period and the record's sampling interval (record_step [s], 0 without a record).
+// period and the record's sampling interval (record_step [s], 0 without a record); under the
+// compliance method, each restitution that its damping law does not return (code
+// restitution), with the contacts that have it.
 std::vector<std::string> step_warnings(integrators::System& system,
                                        const integrators::RunConfig& config, double record_step,
                                        const TrustLimits& limits = {});

@@ -188,6 +188,35 @@ TEST_CASE("a compliance contact softer than the bridge needs warns; the default 
         std::string::npos);
 }
 
+TEST_CASE("a compliance run whose damping law does not return the restitution given warns") {
+  // The restitution a law returns from a single impact (docs/compliance.md, "Damping laws";
+  // asserted against the closed form to 1e-5 by verification/compliance_impact_check.cpp):
+  // hertzdamp, chi = 3 (1 - e^2) / 4, returns 0.6630 at e = 0 and 0.7252 at e = 0.5, 0.8471
+  // at e = 0.8; hunt_crossley_exact returns e itself (1e-3 at the floored e = 0). The limit
+  // is 0.05 (TrustLimits::restitution_mismatch). Excitation 7 has four contacts, the
+  // abutment corners, at the seats' restitution.
+  const auto restitution_warnings = [](std::vector<std::string> o, const char* method) {
+    const PreparedRun p = prepare({kScenes + "/bridge-exc7.toml", std::move(o), method, {}});
+    std::vector<std::string> out;
+    for (const auto& w : p.warnings) {
+      if (w.rfind("restitution:", 0) == 0) out.push_back(w);
+    }
+    return out;
+  };
+  const auto plastic = restitution_warnings({}, "compliance");
+  REQUIRE(plastic.size() == 1);
+  CHECK(plastic[0].find("hertzdamp returns 0.663 from an impact where the restitution is 0 "
+                        "(contacts 1, 2, 3, 4)") != std::string::npos);
+  const auto half = restitution_warnings({"model.seats.restitution=0.5"}, "compliance");
+  REQUIRE(half.size() == 1);
+  CHECK(half[0].find("returns 0.725 from an impact where the restitution is 0.5") !=
+        std::string::npos);
+  CHECK(restitution_warnings({"model.seats.restitution=0.8"}, "compliance").empty());
+  CHECK(restitution_warnings({"solver.damping_law=\"hunt_crossley_exact\""}, "compliance")
+            .empty());
+  CHECK(restitution_warnings({}, "moreau").empty());
+}
+
 TEST_CASE("a family's compliance stiffness is the global one for its contacts") {
   // Excitation 7's only contacts are the four abutment corners: the abutments' own stiffness
   // must give the run of the same global solver.contact_stiffness, sample for sample.
