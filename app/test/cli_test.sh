@@ -211,7 +211,7 @@ expect 0 'warning: cross_check: the peak \|theta\| is 0\.00171 under compliance 
   -- run "${soft[@]}"
 check "summary.json records the cross-check" grep -q '"cross_check": {"method": "moreau"' \
   "$tmp/cross/summary.json"
-expect 1 'strict: 3 warning\(s\)' -- run "${soft[@]}" --strict
+expect 1 'strict: 4 warning\(s\)' -- run "${soft[@]}" --strict
 expect 2 'cross-check' -- run "$root/scenes/bridge-exc7.toml" --cross-check rk4 --out "$tmp/x"
 # Every shipped scene, with its own settings, is trusted.
 for s in bouncing-ball impact-oscillator sliding-block rigid-deck-skew rigid-deck-straight bridge-exc7; do
