@@ -403,6 +403,19 @@ void StudyStore::prepared(const sweep::Design& design,
       }
     }
   }
+  // An existing file keeps the groups of the runs it finished (the "done" flag is written
+  // last); the table of a finished sweep and every unfinished group are deleted, to be written
+  // again. A process killed while writing can leave a group HDF5 cannot delete: such a file
+  // is made again from the run folders, as one that does not open.
+  std::vector<bool> kept(rows.size(), false);
+  if (file_ >= 0 && !keep_finished_groups(design, rows, kept)) {
+    H5Fclose(file_);
+    file_ = -1;
+    kept.assign(rows.size(), false);
+    notes_.push_back(f.string() + " holds a group that cannot be deleted (a process stopped "
+                     "while writing it): made again from the run folders");
+    fs::remove(f, ec);
+  }
   if (file_ < 0) {
     errno = 0;
     file_ = H5Fcreate(f.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
@@ -422,23 +435,31 @@ void StudyStore::prepared(const sweep::Design& design,
       write_failed(f, "write the file's attributes");
     }
   }
-  // The table of a finished sweep is written again once every run is done.
-  if (H5Lexists(file_, "results", H5P_DEFAULT) > 0 && H5Ldelete(file_, "results", H5P_DEFAULT) < 0)
-    write_failed(f, "delete /results");
-  const Handle runs(H5Gopen2(file_, "runs", H5P_DEFAULT), H5Gclose);
-  if (!runs.ok()) write_failed(f, "open /runs");
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const char* id = design.runs[i].id.c_str();
-    bool done = false;
-    if (H5Lexists(runs.get(), id, H5P_DEFAULT) > 0) {
-      const Handle g(H5Gopen2(runs.get(), id, H5P_DEFAULT), H5Gclose);
-      done = g.ok() && H5Aexists(g.get(), "done") > 0;
-      if ((!done || !rows[i]) && H5Ldelete(runs.get(), id, H5P_DEFAULT) < 0)
-        write_failed(f, std::string("delete the unfinished group /runs/") + id);
-    }
-    if (rows[i] && !done) write_run(i, *rows[i], read_run_files(design, dir_, i, *rows[i]));
+    if (rows[i] && !kept[i]) write_run(i, *rows[i], read_run_files(design, dir_, i, *rows[i]));
   }
   if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) write_failed(f, "flush the file");
+}
+
+bool StudyStore::keep_finished_groups(const sweep::Design& design,
+                                      const std::vector<std::optional<sweep::Row>>& rows,
+                                      std::vector<bool>& kept) {
+  if (H5Lexists(file_, "results", H5P_DEFAULT) > 0 && H5Ldelete(file_, "results", H5P_DEFAULT) < 0)
+    return false;
+  const Handle runs(H5Gopen2(file_, "runs", H5P_DEFAULT), H5Gclose);
+  if (!runs.ok()) return false;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const char* id = design.runs[i].id.c_str();
+    if (H5Lexists(runs.get(), id, H5P_DEFAULT) <= 0) continue;
+    bool done = false;
+    {
+      const Handle g(H5Gopen2(runs.get(), id, H5P_DEFAULT), H5Gclose);
+      done = g.ok() && H5Aexists(g.get(), "done") > 0;
+    }
+    kept[i] = done && rows[i].has_value();
+    if (!kept[i] && H5Ldelete(runs.get(), id, H5P_DEFAULT) < 0) return false;
+  }
+  return true;
 }
 
 void StudyStore::finished(std::size_t index, const sweep::Row& row) {

@@ -53,11 +53,18 @@ class StudyStore final : public sweep::SweepObserver {
   void completed(const sweep::Results& table) override;
 
   std::filesystem::path file() const { return dir_ / kFileName; }
-  // Things to tell the user: the file was made again (unreadable, another history selection).
+  // Things to tell the user: the file was made again (unreadable, damaged, another history
+  // selection).
   const std::vector<std::string>& notes() const { return notes_; }
 
  private:
   void write_run(std::size_t index, const sweep::Row& row, const RunFiles& files);
+  // In an existing file: deletes /results and the group of every run not finished (no "done"
+  // flag) or not finished now (no row); kept[i] says whether run i's group stays. False when
+  // HDF5 cannot delete one (a group a killed process left half written).
+  bool keep_finished_groups(const sweep::Design& design,
+                            const std::vector<std::optional<sweep::Row>>& rows,
+                            std::vector<bool>& kept);
 
   std::filesystem::path dir_;
   bool restart_ = false;

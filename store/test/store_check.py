@@ -108,7 +108,9 @@ def check_dir(folder, complete):
         results = folder / "results.csv"
         RESULTS = csv_table(results.read_text()) if complete else (None, None)
         history_columns = f.attrs["hdf5_history"]
-        done = {name for name, g in f["runs"].items() if g.attrs.get("done", 0) == 1}
+        # A group a killed process left half written may not open (None): it is not done.
+        done = {name for name, g in f["runs"].items()
+                if g is not None and g.attrs.get("done", 0) == 1}
         finished = {p.parent.name for p in (folder / "runs").glob("*/row.csv")}
         if complete and done != finished:
             fail(f"groups done {sorted(done)} != runs finished {sorted(finished)}")
