@@ -22,15 +22,6 @@ import tempfile
 import nsb_runs
 
 
-def option(args, name, default=None):
-    if name not in args:
-        return default
-    i = args.index(name)
-    value = args[i + 1]
-    del args[i:i + 2]
-    return value
-
-
 def deck(summary):
     """The generalized coordinates' peaks: the columns whose error the accuracy judges."""
     return {k: v["abs_max"] for k, v in nsb_runs.coordinates(summary).items()}
@@ -43,13 +34,13 @@ def largest_relative(peaks, reference):
 
 def main():
     args = sys.argv[1:]
-    method = option(args, "--method")
-    cache = option(args, "--reference-cache")
-    names = option(args, "--scenes")
+    method = nsb_runs.option(args, "--method")
+    cache = nsb_runs.option(args, "--reference-cache")
+    names = nsb_runs.option(args, "--scenes")
     names = names.split(",") if names else None
     extra = []
     while "--set" in args:
-        extra.append(option(args, "--set"))
+        extra.append(nsb_runs.option(args, "--set"))
     if not args:
         print(__doc__)
         return 2

@@ -23,15 +23,6 @@ import tempfile
 import nsb_runs
 
 
-def option(args, name, default=None):
-    if name not in args:
-        return default
-    i = args.index(name)
-    value = args[i + 1]
-    del args[i:i + 2]
-    return value
-
-
 def main():
     args = sys.argv[1:]
     if not args:
@@ -40,10 +31,10 @@ def main():
     per_run = "--per-run" in args
     if per_run:
         args.remove("--per-run")
-    cache = option(args, "--reference-cache")
-    names = option(args, "--scenes")
+    cache = nsb_runs.option(args, "--reference-cache")
+    names = nsb_runs.option(args, "--scenes")
     names = names.split(",") if names else None
-    factors = tuple(float(f) for f in option(args, "--factors", "1,10,100").split(","))
+    factors = tuple(float(f) for f in nsb_runs.option(args, "--factors", "1,10,100").split(","))
     nsbridge = os.path.abspath(args[0])
     scenes = args[1] if len(args) > 1 else os.path.join(os.path.dirname(__file__), "..", "scenes")
     files = nsb_runs.bridge_scenes(scenes, names)

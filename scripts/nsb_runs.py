@@ -50,6 +50,16 @@ def run(nsbridge, scene, out, method=None, sets=()):
     return summary
 
 
+def option(args, name, default=None):
+    """Removes `name VALUE` from the argument list args and returns VALUE (default when absent)."""
+    if name not in args:
+        return default
+    i = args.index(name)
+    value = args[i + 1]
+    del args[i:i + 2]
+    return value
+
+
 def coordinates(summary):
     """The peaks entries of the generalized coordinates, by column name."""
     return {k: v for k, v in summary["peaks"].items() if COORDINATE.fullmatch(k)}
