@@ -116,6 +116,8 @@ Recorder::Recorder(const System& system, double sample_dt, OutputGroups groups)
     throw std::invalid_argument("output.sample_dt must be a finite number >= 0 [s]");
   }
   removed_at_.assign(static_cast<std::size_t>(ncontacts_), std::numeric_limits<double>::infinity());
+  observed_gaps_.assign(static_cast<std::size_t>(ncontacts_), 0.0);
+  observed_gap_rates_.assign(static_cast<std::size_t>(ncontacts_), 0.0);
   column_info_.push_back({"t", ColumnKind::kTime, 0});
   int i = 0;
   for (auto& n : system.coordinate_names()) column_info_.push_back({n, ColumnKind::kCoordinate, i++});
@@ -268,21 +270,48 @@ void Recorder::observe(double t, const Vector& q, const Vector& u,
     const double gap = ci < c.size() ? c[ci].gap_normal : 0.0;
     extremes_[k++].fold(gap, t);
     if (t <= removed_at_[ci]) gap_until_removal_[ci].fold(gap, t);
+    observed_gaps_[ci] = gap;
+    observed_gap_rates_[ci] =
+        ci < c.size() && c[ci].w_normal.size() == u.size() ? c[ci].gap_rate(u) : 0.0;
     extremes_[k++].fold(i < lambda_n.size() ? lambda_n[i] : 0.0, t);
     extremes_[k++].fold(i < lambda_t.size() ? lambda_t[i] : 0.0, t);
   }
+  observed_t_ = t;
+  for (std::size_t i : impacts_awaiting_rates_) events_[i].gap_rates_after = observed_gap_rates_;
+  impacts_awaiting_rates_.clear();
   extremes_[k++].fold(energy_error, t);
   if (group_values_.empty()) return;
   evaluate_groups(t, q, u, lambda_n, lambda_t);
   for (double v : group_values_) extremes_[k++].fold(v, t);
 }
 
+void Recorder::snapshot_gaps(Event& e) {
+  const double dt = std::isnan(observed_t_) ? 0.0 : e.t - observed_t_;
+  e.gaps.resize(observed_gaps_.size());
+  for (std::size_t i = 0; i < e.gaps.size(); ++i) {
+    e.gaps[i] = observed_gaps_[i] + observed_gap_rates_[i] * dt;
+  }
+  e.gap_rates = observed_gap_rates_;
+  e.gap_interval = dt;
+  impacts_awaiting_rates_.push_back(events_.size());  // e is pushed next
+}
+
 void Recorder::event(double t, int contact, EventKind kind, std::string note) {
-  events_.push_back(Event{t, contact, kind, std::move(note)});
+  Event e;
+  e.t = t;
+  e.contact = contact;
+  e.kind = kind;
+  e.note = std::move(note);
+  if (kind == EventKind::kImpact) snapshot_gaps(e);
+  events_.push_back(std::move(e));
 }
 
 void Recorder::impact(double t, int contact, double impulse_normal, double impulse_tangent) {
-  Event e{t, contact, EventKind::kImpact, {}};
+  Event e;
+  e.t = t;
+  e.contact = contact;
+  e.kind = EventKind::kImpact;
+  snapshot_gaps(e);
   if (groups_.has(OutputGroup::kImpulses)) {
     e.impulse_normal = impulse_normal;
     e.impulse_tangent = impulse_tangent;

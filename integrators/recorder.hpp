@@ -49,6 +49,14 @@ struct Event {
   // NaN for every other event and when the group is not asked for.
   double impulse_normal = std::numeric_limits<double>::quiet_NaN();
   double impulse_tangent = std::numeric_limits<double>::quiet_NaN();
+  // An impact's configuration: every contact's gap [m] and gap rate [m/s] at t, before the
+  // impact, extrapolated linearly from the last accepted step (the error estimate's check of
+  // the order in which contacts close, runs/estimate.hpp); empty for every other event.
+  std::vector<double> gaps{};
+  std::vector<double> gap_rates{};
+  double gap_interval = 0.0;  // [s]: t minus the last accepted step's time (Moreau–Jean: the
+                              //   step that ends with the impact)
+  std::vector<double> gap_rates_after{};  // [m/s] at the next accepted step (after the impact)
 };
 
 // The one list of output group names (`[output] groups`), in the order their columns follow
@@ -314,6 +322,8 @@ class Recorder {
               const Vector& lambda_n, const Vector& lambda_t, double energy_error, bool evaluate);
   // The next sampling time after a row sampled at t (sample(), step(); not sample_now()).
   void advance_sampling(double t);
+  // Sets an impact event's gaps and gap rates at its time from the last accepted step.
+  void snapshot_gaps(Event& e);
 
   const System* system_ = nullptr;
   OutputGroups groups_;
@@ -322,6 +332,12 @@ class Recorder {
   std::vector<std::size_t> system_columns_;  // per system group (bents, relative, ground)
   std::vector<double> group_values_;         // the group columns of the state last evaluated
   std::vector<double> last_impact_;          // per contact: time of its last impact [s]
+  // The last accepted step's time [s] (NaN before the first), and its contacts' gaps [m] and
+  // gap rates [m/s]: the configuration an impact's event extrapolates (Event::gaps).
+  double observed_t_ = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> observed_gaps_;
+  std::vector<double> observed_gap_rates_;
+  std::vector<std::size_t> impacts_awaiting_rates_;  // events_ indices: gap_rates_after unset
   std::vector<ContactData> group_contacts_;  // kForces: the full contact data at a state
   Matrix mass_;                              // kForces: M
   int ndof_ = 0;

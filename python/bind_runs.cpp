@@ -415,7 +415,7 @@ void bind_result(py::module_& m) {
       .def_property_readonly(
           "error_estimate", [](Result& r) -> py::object { return r.summary()["error_estimate"]; },
           "summary.json's error_estimate: the companion run, the order and factor of the "
-          "extrapolation, impacts and first_impact with their errors, cost "
+          "extrapolation, impacts and first_impact with their errors, impact_order, cost "
           "(docs/error-estimates.md)")
       .def_property_readonly(
           "accuracy", [](Result& r) -> py::object { return r.summary()["accuracy"]; },

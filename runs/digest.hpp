@@ -36,6 +36,18 @@ struct CoordinatePeak {
                                                             //   peak; NaN: not estimated
 };
 
+// An impact of the run at which another contact was closing within the estimated error of
+// the two contacts' relative gap: which of the two closes first is not resolved by the run's
+// step or tolerance (runs/estimate.hpp, impact_order), so no extrapolation bounds what follows.
+struct UnresolvedImpactOrder {
+  bool found = false;
+  double time = std::numeric_limits<double>::quiet_NaN();  // the run's impact [s]
+  int contact = 0;           // the impacting contact, 1-based
+  int other = 0;             // the contact closing with it, 1-based
+  double separation = 0.0;   // the other's gap minus the impacting one's at the impact [m]
+  double uncertainty = 0.0;  // factor |separation - the companion's| [m]
+};
+
 // The numerical error estimate of a run (runs/estimate.hpp, docs/error-estimates.md): the run
 // is repeated by a companion at a coarser step (Moreau–Jean) or a looser tolerance (the
 // adaptive methods), and the difference of each number is extrapolated at the method's
@@ -55,6 +67,7 @@ struct ErrorEstimate {
   double first_impact = std::numeric_limits<double>::quiet_NaN();   // time of the first
                                                                     //   impact [s]; NaN: none
   double first_impact_error = std::numeric_limits<double>::quiet_NaN();  // [s]
+  UnresolvedImpactOrder impact_order;  // found: every peak's error is at least the peak
   double run_cpu_seconds = 0.0;        // CPU time of the run's integration [s]
   double companion_cpu_seconds = 0.0;  // CPU time of the companion (build and integration) [s]
 };
@@ -129,6 +142,8 @@ struct ContactEvents {
 struct ContactLabel {
   std::string family;  // "abutment", "hinge" or "shear_key"
   std::string name;    // e.g. "left +W/2", "hinge 1 -W/2", "shear_key_left_plus"
+  int face = -1;       // contacts of one face share it: corners of one body on one face of
+                       //   one obstacle (the impact-order check, runs/estimate.hpp); not written
 };
 
 struct Digest {

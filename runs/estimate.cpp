@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -32,7 +33,72 @@ std::optional<CompanionPlan> looser(const Options& o, double top, double order) 
   return plan_of(c, "tolerance", o.tolerance, loose, order);
 }
 
+bool is_compliance(const integrators::RunConfig& config) {
+  return std::holds_alternative<integrators::ComplianceOptions>(config);
+}
+
+bool is_impact_with_gaps(const integrators::Event& e) {
+  return e.kind == integrators::EventKind::kImpact && e.contact >= 1 && !e.gaps.empty();
+}
+
+// The impact of `contact` in `events` nearest to t; nullptr when it has none.
+const integrators::Event* nearest_impact(const std::vector<integrators::Event>& events,
+                                         int contact, double t) {
+  const integrators::Event* best = nullptr;
+  for (const integrators::Event& e : events) {
+    if (!is_impact_with_gaps(e) || e.contact != contact) continue;
+    if (best == nullptr || std::abs(e.t - t) < std::abs(best->t - t)) best = &e;
+  }
+  return best;
+}
+
 }  // namespace
+
+UnresolvedImpactOrder impact_order(const integrators::Recorder& run,
+                                   const integrators::Recorder& companion,
+                                   const std::vector<ContactLabel>& labels, double factor,
+                                   bool stepped) {
+  UnresolvedImpactOrder found;
+  const auto& events = run.events();
+  // Whether each contact is closed (in contact) just before the event at hand: set by close,
+  // stick and slip, cleared by open.
+  std::vector<char> closed(static_cast<std::size_t>(run.contacts()), 0);
+  for (const integrators::Event& e : events) {
+    const auto ci = static_cast<std::size_t>(e.contact - 1);
+    if (e.contact >= 1 && ci < closed.size()) {
+      if (e.kind == integrators::EventKind::kOpen) closed[ci] = 0;
+      if (e.kind == integrators::EventKind::kClose || e.kind == integrators::EventKind::kStick ||
+          e.kind == integrators::EventKind::kSlip) {
+        closed[ci] = 1;
+      }
+    }
+    if (!is_impact_with_gaps(e)) continue;
+    const integrators::Event* other = nearest_impact(companion.events(), e.contact, e.t);
+    if (other == nullptr || other->gaps.size() != e.gaps.size() ||
+        nearest_impact(events, e.contact, other->t) != &e) {
+      continue;
+    }
+    for (std::size_t d = 0; d < e.gaps.size(); ++d) {
+      if (d == ci || closed[d] != 0) continue;
+      if (d < labels.size() && ci < labels.size() && labels[d].face != labels[ci].face) continue;
+      const int di = static_cast<int>(d);
+      if (!(e.t < run.removed_at(di)) || !(other->t < companion.removed_at(di))) continue;
+      // d's closing speed once c has struck: the next impact, if it is of c's size.
+      const double closing =
+          -(e.gap_rates_after.empty() ? e.gap_rates[d] : e.gap_rates_after[d]);
+      if (!(closing > kOrderConsequence * -e.gap_rates[ci])) continue;
+      const double s = e.gaps[d] - e.gaps[ci];
+      if (!(s > 0.0)) continue;
+      if (stepped && !(s > closing * other->gap_interval)) continue;
+      const double s_companion = other->gaps[d] - other->gaps[ci];
+      const double uncertainty = factor * std::abs(s - s_companion);
+      if (s < uncertainty && uncertainty > kOrderFloor) {
+        return UnresolvedImpactOrder{true, e.t, e.contact, di + 1, s, uncertainty};
+      }
+    }
+  }
+  return found;
+}
 
 std::pair<std::string, double> accuracy_setting(const integrators::RunConfig& config) {
   return std::visit(
@@ -101,6 +167,18 @@ void apply_estimate(Digest& run, const integrators::Recorder& run_history,
   for (std::size_t c = 0; c < run.coordinates.size() && c < companion.coordinates.size(); ++c) {
     run.coordinates[c].error =
         plan.factor * std::abs(run.coordinates[c].peak - companion.coordinates[c].peak);
+  }
+  // An impact whose order against another contact's closing is not resolved: what follows it
+  // is on one branch of two, which no extrapolation bounds; every peak's error is then at
+  // least the peak itself.
+  // The compliance method's contact forces are smooth in the order of closing: no branch.
+  if (!is_compliance(plan.config)) {
+    e.impact_order = impact_order(run_history, companion_history, run.contacts, plan.factor,
+                                  plan.setting != "tolerance");
+  }
+  if (e.impact_order.found) {
+    for (ColumnPeak& p : run.peaks) p.error = std::max(p.error, p.abs_max);
+    for (CoordinatePeak& c : run.coordinates) c.error = std::max(c.error, c.peak);
   }
   // A count has no asymptotic order: its error is the difference itself.
   e.impacts = run.count(integrators::EventKind::kImpact);
@@ -218,6 +296,17 @@ std::string accuracy_warning(const Digest& digest) {
            "; the peaks' errors are unknown";
   }
   if (a.met) return {};
+  if (e.impact_order.found) {
+    const UnresolvedImpactOrder& o = e.impact_order;
+    char at[32];
+    std::snprintf(at, sizeof at, "%.5g", o.time);
+    return "accuracy: at " + std::string(at) + " s contact " +
+           std::to_string(o.contact) + " strikes while contact " + std::to_string(o.other) +
+           " is " + io::three_digits(o.separation) + " m from closing, within the estimate's " +
+           "uncertainty of that distance (" + io::three_digits(o.uncertainty) +
+           " m): which closes first is not resolved, and no peak after it is bounded; reduce " +
+           knob + " (now " + io::three_digits(e.value) + ")";
+  }
   const CoordinatePeak* worst = nullptr;
   for (const CoordinatePeak& c : digest.coordinates) {
     if (c.name == a.worst) worst = &c;

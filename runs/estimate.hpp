@@ -98,6 +98,31 @@ void apply_estimate(Digest& run, const integrators::Recorder& run_history,
                     const Digest& companion, const integrators::Recorder& companion_history,
                     const CompanionPlan& plan);
 
+// The impact-order check (docs/error-estimates.md, "Impacts in an unresolved order"): at each
+// impact of contact c in the run, every other contact d still open and closing (gap rate
+// below -kClosingRate) has the separation s = g_d - g_c > 0; the companion's impact of c (the
+// nearest in time, when the run's impact is also the nearest to it) gives s'. When
+// s < factor |s - s'| (and that uncertainty exceeds kOrderFloor), the run cannot tell
+// whether c or d closes first, and what follows depends on it: the earliest such impact.
+// Only d on c's face (labels[].face; every d without labels): two corners of one face strike
+// with torques of opposite signs, so their order decides the sense of the rotation the impact
+// induces (the paper's mechanism); contacts of different faces, e.g. diagonal corners at the
+// two abutments, induce rotations of one sense whichever strikes first. And only a d that
+// still closes after c's impact at least kOrderConsequence times c's closing speed: a corner
+// that c's impact stops, or nearly, strikes softly or not at all, whichever the order.
+// stepped (Moreau–Jean): a d that closes within the companion's step of c's impact (s below
+// d's closing speed times that step) is left out: the companion takes the two in one impact
+// problem, so it cannot order them and its s' measures nothing; finer orders belong to the
+// run's own error, which the companion sees. Contacts removed (a broken key) are left out
+// from their removal on.
+inline constexpr double kClosingRate = 1e-6;  // [m/s], event_velocity_tolerance's default
+inline constexpr double kOrderFloor = 1e-9;   // [m]: round-off in a symmetric impact's gaps
+inline constexpr double kOrderConsequence = 0.3;
+UnresolvedImpactOrder impact_order(const integrators::Recorder& run,
+                                   const integrators::Recorder& companion,
+                                   const std::vector<ContactLabel>& labels, double factor,
+                                   bool stepped);
+
 // The run judged against solver.accuracy = target: met when every generalized coordinate's
 // error estimate is at most target times its peak. Not judged without an estimate.
 Accuracy judge_accuracy(const Digest& digest, double target);

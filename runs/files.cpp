@@ -236,6 +236,20 @@ void write_estimate(JsonText& j, const Digest& d) {
                   {{"count", static_cast<double>(e.impacts)}, {"error", e.impacts_error}});
     j.o += ", ";
     append_object(j.o, "first_impact", {{"time", e.first_impact}, {"error", e.first_impact_error}});
+    j.o += ",\n    \"impact_order\": ";
+    if (e.impact_order.found) {
+      const UnresolvedImpactOrder& o = e.impact_order;
+      j.o += "{\"time\": ";
+      io::append_json_number(j.o, o.time);
+      j.o += ", \"contact\": " + std::to_string(o.contact) +
+             ", \"other\": " + std::to_string(o.other) + ", \"separation\": ";
+      io::append_json_number(j.o, o.separation);
+      j.o += ", \"uncertainty\": ";
+      io::append_json_number(j.o, o.uncertainty);
+      j.o += "}";
+    } else {
+      j.o += "null";
+    }
   }
   j.o += ",\n    ";
   const double ratio = e.run_cpu_seconds > 0.0

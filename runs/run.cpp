@@ -42,8 +42,19 @@ std::vector<ContactLabel> contact_labels(const integrators::System& system) {
   const auto* assembly = dynamic_cast<const models::Assembly*>(&system);
   if (assembly == nullptr) return labels;
   bool named = false;
-  for (const auto& c : assembly->parts().contacts) {
-    labels.push_back({c.family, c.name});
+  const auto& contacts = assembly->parts().contacts;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const models::parts::CornerContact& c = contacts[i];
+    int face = static_cast<int>(i);
+    for (std::size_t j = 0; j < i; ++j) {
+      const models::parts::CornerContact& o = contacts[j];
+      if (o.body == c.body && o.obstacle == c.obstacle && o.obstacle_index == c.obstacle_index &&
+          o.face.point == c.face.point && o.face.normal == c.face.normal) {
+        face = labels[j].face;
+        break;
+      }
+    }
+    labels.push_back({c.family, c.name, face});
     named = named || !c.family.empty();
   }
   if (!named) labels.clear();

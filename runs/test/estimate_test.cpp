@@ -175,6 +175,88 @@ TEST_CASE("errors from a companion's digest, and the verdict against the accurac
   CHECK(accuracy_warning(plain).empty());
 }
 
+// One accepted step of a two-contact history at t: the contacts' gaps [m] and gap rates [m/s]
+// (the rates as the contacts' rheonomic parts, u = 0), nothing else.
+void observe_gaps(integrators::Recorder& h, double t, double g1, double g2, double rate1,
+                  double rate2) {
+  std::vector<integrators::ContactData> c(2);
+  c[0].gap_normal = g1, c[1].gap_normal = g2;
+  c[0].w_normal = c[1].w_normal = integrators::Vector::Zero(3);
+  c[0].what_normal = rate1, c[1].what_normal = rate2;
+  using integrators::Vector;
+  const Vector zero = Vector::Zero(3), none = Vector::Zero(2);
+  h.observe(t, zero, zero, c, none, none, 0.0);
+}
+
+TEST_CASE("an impact whose order against another contact's closing is not resolved") {
+  // Both contacts close at 0.1 m/s. Run: at 0.999 s gaps 1e-4 and 3e-4 m, contact 1 strikes
+  // at 1.000 s; extrapolated over the 1 ms step the gaps are 0 and 2e-4: separation
+  // s = 2e-4 m. Companion: at 0.9985 s gaps 1.5e-4 and 2e-4, contact 1 strikes at 1.000 s:
+  // s' = 0.5e-4. |s - s'| = 1.5e-4; with the factor 1 the uncertainty 1.5e-4 < s (resolved),
+  // with the factor 2.41 it is 3.615e-4 > s (not resolved).
+  testsupport::TwoCornerBody body({});
+  const auto histories = [&](bool closed, double rate2, double companion_step) {
+    std::pair<integrators::Recorder, integrators::Recorder> h{{body, 0.0}, {body, 0.0}};
+    observe_gaps(h.first, 0.999, 1e-4, 2e-4 - rate2 * 1e-3, -0.1, rate2);
+    if (closed) h.first.event(0.5, 2, integrators::EventKind::kClose);
+    h.first.impact(1.0, 1, 1.0, 0.0);
+    const double t0 = 1.0 - companion_step;
+    observe_gaps(h.second, t0, 0.1 * companion_step, 0.5e-4 - rate2 * companion_step, -0.1,
+                 rate2);
+    h.second.impact(1.0, 1, 1.0, 0.0);
+    return h;
+  };
+  const auto [run_history, companion_history] = histories(false, -0.1, 1.5e-3);
+  REQUIRE(run_history.events().size() == 1);
+  CHECK(run_history.events()[0].gaps[0] == doctest::Approx(0.0).epsilon(1e-12));
+  CHECK(run_history.events()[0].gaps[1] == doctest::Approx(2e-4).epsilon(1e-12));
+  CHECK(run_history.events()[0].gap_interval == doctest::Approx(1e-3).epsilon(1e-9));
+  CHECK_FALSE(impact_order(run_history, companion_history, {}, 1.0, false).found);
+  const UnresolvedImpactOrder o = impact_order(run_history, companion_history, {}, 2.41, false);
+  REQUIRE(o.found);
+  CHECK(o.time == 1.0);
+  CHECK(o.contact == 1);
+  CHECK(o.other == 2);
+  CHECK(o.separation == doctest::Approx(2e-4).epsilon(1e-9));
+  CHECK(o.uncertainty == doctest::Approx(3.615e-4).epsilon(1e-9));
+  // Stepped: contact 2 closes 2e-4 / 0.1 = 2 ms after contact 1, beyond the companion's
+  // 1.5 ms step (found) and within a 2.5 ms one (left out: one impact problem).
+  CHECK(impact_order(run_history, companion_history, {}, 2.41, true).found);
+  const auto [long_run, long_companion] = histories(false, -0.1, 2.5e-3);
+  CHECK(impact_order(long_run, long_companion, {}, 2.41, false).found);
+  CHECK_FALSE(impact_order(long_run, long_companion, {}, 2.41, true).found);
+  // Corners of two faces (diagonal corners at two abutments) are not a pair.
+  const std::vector<ContactLabel> two_faces{{"abutment", "left", 0}, {"abutment", "right", 1}};
+  CHECK_FALSE(impact_order(run_history, companion_history, two_faces, 2.41, false).found);
+  // A corner that contact 1's impact nearly stops (0.01 m/s at the next step, below half
+  // contact 1's 0.1 m/s) is no second impact of its size.
+  auto [stopped_run, stopped_companion] = histories(false, -0.1, 1.5e-3);
+  observe_gaps(stopped_run, 1.001, 0.0, 2e-4, 0.0, -0.01);
+  CHECK_FALSE(impact_order(stopped_run, stopped_companion, {}, 2.41, false).found);
+  // A contact already closed, or opening, is not closing with the impact.
+  const auto [closed_run, closed_companion] = histories(true, -0.1, 1.5e-3);
+  CHECK_FALSE(impact_order(closed_run, closed_companion, {}, 2.41, false).found);
+  const auto [opening_run, opening_companion] = histories(false, 0.1, 1.5e-3);
+  CHECK_FALSE(impact_order(opening_run, opening_companion, {}, 2.41, false).found);
+
+  // Through the estimate: every peak's error is at least the peak, and the warning says why.
+  Digest run = make_digest(run_history, {});
+  Digest companion = make_digest(companion_history, {});
+  run.coordinates = {{"x", 2.0, 0.0}};
+  companion.coordinates = {{"x", 2.0, 0.0}};
+  const CompanionPlan plan{integrators::MoreauJeanOptions{}, "step", 1e-3, 2e-3, 0.5, 2.41};
+  run.estimate.enabled = true;
+  apply_estimate(run, run_history, companion, companion_history, plan);
+  REQUIRE(run.estimate.impact_order.found);
+  CHECK(run.coordinates[0].error == 2.0);
+  run.accuracy = judge_accuracy(run, 0.01);
+  CHECK_FALSE(run.accuracy.met);
+  CHECK(accuracy_warning(run) ==
+        "accuracy: at 1 s contact 1 strikes while contact 2 is 0.0002 m from closing, within "
+        "the estimate's uncertainty of that distance (0.000362 m): which closes first is not "
+        "resolved, and no peak after it is bounded; reduce solver.step (now 0.001)");
+}
+
 TEST_CASE("the traced system keeps q on its grid, interpolated between accepted steps") {
   // The body starts at rest at q = 0; accepted steps of 0.03 s with x = t^2. Each grid time
   // of 0.1 s gets the chord between its two steps: at 0.1 s, between 0.09 s (0.0081) and
