@@ -80,10 +80,12 @@ EventDriven::EventDriven(System& system, const EventDrivenOptions& options, Reco
   u_event_ = Vector::Zero(n_);
   a_free_ = Vector::Zero(n_);
   step_impulse_ = Vector::Zero(m_);
+  impact_impulse_ = Vector::Zero(m_);
   lambda_start_ = Vector::Zero(m_);
   accepted_.q = &q_;
   accepted_.u = &u_;
   accepted_.normal_impulse = &step_impulse_;
+  accepted_.impact_impulse = &impact_impulse_;
 }
 
 RunResult EventDriven::run() {
@@ -289,6 +291,7 @@ StepVerdict EventDriven::accept_step() {
   accepted_.h = t_ - t_start_;
   const StepVerdict verdict = sys_.accept_step(accepted_);
   step_impulse_.setZero();
+  impact_impulse_.setZero();
   t_start_ = t_;
   if (verdict == StepVerdict::kContactsRemoved) {
     record_removed_contacts(sys_, t_, rec_);

@@ -170,7 +170,7 @@ class EventDriven {
   // The normal impulse of each contact over the step being accepted (System::accept_step):
   // the impacts' impulses plus the closed phase's lambda_N by the trapezoidal rule, from
   // lambda_start_ (lambda_N at the step's start) [kN s]; t_start_ is where the step began.
-  Vector step_impulse_, lambda_start_;
+  Vector step_impulse_, impact_impulse_, lambda_start_;
   double t_start_ = 0.0;
   AcceptedStep accepted_;
   std::deque<double> recent_events_;

@@ -62,6 +62,7 @@ void EventDriven::book_stage_impulses(const std::vector<int>& index, const Vecto
     const int jj = static_cast<int>(j);
     const double ln = stage_.lambda_n(jj), lt = stage_.lambda_t(jj);
     step_impulse_[index[j]] += ln;
+    impact_impulse_[index[j]] += ln;
     const double mid_n = 0.5 * (c.w_normal.dot(u_minus) + c.w_normal.dot(u_plus));
     impact_normal_work_ += ln * (mid_n + c.what_normal);
     impact_ground_work_ -= ln * c.what_normal;

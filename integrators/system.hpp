@@ -85,6 +85,10 @@ struct AcceptedStep {
   // the closed phases' lambda_N; compliance: the integral of the law's force. Divided by h it
   // is the step's mean contact force.
   const Vector* normal_impulse = nullptr;
+  // The part of normal_impulse delivered at an instant (event-driven's impact problems) [kN s]:
+  // a percussion, whose mean force over any interval that shrinks to its instant grows
+  // without bound. nullptr: the method delivers none apart (Moreau–Jean, compliance).
+  const Vector* impact_impulse = nullptr;
 };
 
 // What the structure did in an accepted step (System::accept_step).

@@ -2,6 +2,7 @@
 #include "models/field_checks.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace nsb::models {
@@ -66,13 +67,20 @@ void Assembly::build_keys() {
 }
 
 // The step's mean force of each key, normal impulse / h: a key with a capacity breaks at the
-// first step where it exceeds it. Under rigid impacts (Moreau–Jean, event-driven) an impact's
-// impulse over one step gives a mean force that grows as h shrinks (docs/bridge.md).
+// first step where it exceeds it. Under Moreau–Jean an impact's impulse over one step gives a
+// mean force that grows as 1/h, so as h shrinks every impact on a key breaks it; event-driven
+// delivers an impact's impulse at an instant (step.impact_impulse), and a key that receives
+// one breaks at once, the limit of Moreau–Jean's rule (docs/bridge.md, "Shear keys"). Its
+// peak is then infinite (margin -infinity).
 integrators::StepVerdict Assembly::watch_keys(const integrators::AcceptedStep& step) {
   auto verdict = integrators::StepVerdict::kContinue;
   for (KeyState& k : keys_) {
     if (k.broken) continue;
-    const double force = (*step.normal_impulse)[static_cast<Eigen::Index>(k.slot)] / step.h;
+    const auto slot = static_cast<Eigen::Index>(k.slot);
+    const bool percussion =
+        step.impact_impulse != nullptr && (*step.impact_impulse)[slot] > 0.0;
+    const double force = percussion ? std::numeric_limits<double>::infinity()
+                                    : (*step.normal_impulse)[slot] / step.h;
     k.peak = std::max(k.peak, force);
     if (k.capacity > 0.0 && force > k.capacity) {
       k.broken = true;

@@ -8,6 +8,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -76,6 +77,30 @@ TEST_CASE("a shear key breaks when the step's mean force exceeds its capacity") 
   CHECK_FALSE(states[1].exceeded);
   CHECK(states[1].margin == 500.0);
   CHECK(states[3].name == "shear_key_right_minus");
+}
+
+TEST_CASE("an impact's impulse, delivered at an instant, breaks a key of any capacity") {
+  // Event-driven hands an impact's impulse apart (AcceptedStep::impact_impulse). Over a step
+  // of 1 ms, 0.1 kN s is a mean force of 100 kN, below the capacity of 500 kN; but it acts at
+  // an instant, the limit of Moreau-Jean's impulse / h as h -> 0 (0.1 kN s / h > 500 kN for
+  // every h < 2e-4 s): the key breaks, its peak force infinite.
+  Assembly a(with_keys(500.0));
+  Eigen::VectorXd impulse = Eigen::VectorXd::Zero(8), percussion = Eigen::VectorXd::Zero(8);
+  ni::AcceptedStep step{.t = 0.1, .h = 1e-3, .q = nullptr, .u = nullptr,
+                        .normal_impulse = &impulse, .impact_impulse = &percussion};
+  impulse[5] = 0.1;  // a closed phase's 100 kN over the step: holds
+  CHECK(a.accept_step(step) == ni::StepVerdict::kContinue);
+  step.t = 0.2;
+  percussion[5] = 0.1;  // the same impulse from an impact: breaks
+  CHECK(a.accept_step(step) == ni::StepVerdict::kContactsRemoved);
+  const auto states = a.limit_states();
+  CHECK(states[1].exceeded);
+  CHECK(states[1].time == 0.2);
+  CHECK(states[1].margin == -std::numeric_limits<double>::infinity());
+  CHECK_FALSE(states[0].exceeded);
+  // An unbreakable key is not broken by an impact either.
+  Assembly unbreakable(with_keys(0.0));
+  CHECK(unbreakable.accept_step(step) == ni::StepVerdict::kContinue);
 }
 
 TEST_CASE("an unbreakable key never breaks and has no margin") {
