@@ -120,6 +120,8 @@ def test_peaks_carry_their_error_estimate_and_the_accuracy_verdict(source):
     assert e["factor"] == pytest.approx(1.0 / (2.0 ** 0.5 - 1.0))
     assert r.peaks["y"]["error"] >= 0
     assert e["cost"]["companion_cpu_seconds"] > 0
+    # One contact: no second corner whose order against the impact could be in question.
+    assert "impact_order" in e and e["impact_order"] is None
     assert r.accuracy["target"] == 0.01 and r.accuracy["step"] == 2e-3
     assert r.accuracy["met"] in (True, False)
     off = nsbridge.run(source / "scenes/bouncing-ball.toml", overrides=["solver.error_estimate=false"])
