@@ -564,7 +564,7 @@ bool MoreauJean::step(double h, double t1) {
 // the committed state; the system is left at its trial state of the step.
 bool MoreauJean::advance(double h, double t1) {
   if (refactor_ || h != h_factored_) factorize(h);
-  system_.forces(t1, q_, u_, f_pred_);
+  system_.forces_on_committed_branches(t1, q_, u_, f_pred_);
   if (!all_finite(f_pred_)) return diverge(t1, "non-finite smooth force");
   free_velocity(h);
   select_index_set(h);

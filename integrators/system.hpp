@@ -133,6 +133,17 @@ class System {
   // Evaluates the *trial* internal state from the committed one; commit() accepts it,
   // revert() drops it. Writes into f, already of size dofs(): no allocation.
   virtual void forces(double t, const Vector& q, const Vector& u, Vector& f) = 0;
+  // The same force with every history-dependent element on the branch of its committed state,
+  // extended as its tangent line (committed force + committed tangent x the change of its
+  // deformation), the trial state left as it is: the force a step linearised about the
+  // committed state starts from (docs/moreau-jean.md, "Smooth forces"). Evaluating the law
+  // itself at (t_k+1, q_k) would move an element along a path the step does not take (its
+  // support moves, its body not yet) and can put it on another branch. Default: forces(),
+  // right for a system without history.
+  virtual void forces_on_committed_branches(double t, const Vector& q, const Vector& u,
+                                            Vector& f) {
+    forces(t, q, u, f);
+  }
   // Tangent matrices K = -df/dq and C = -df/du at the trial state [kN/m, kN s/m].
   virtual void tangent(double t, const Vector& q, const Vector& u, Matrix& K, Matrix& C) = 0;
   // True when the tangent returned by tangent() has changed since the last commit

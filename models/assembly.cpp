@@ -381,13 +381,23 @@ double Assembly::bent_force_transverse(int j) const {
 void Assembly::forces(double t, const integrators::Vector& q, const integrators::Vector& u,
                       integrators::Vector& f) {
   if (one_body_) {
-    forces_of<true>(t, q, u, f);
+    forces_of<true, false>(t, q, u, f);
   } else {
-    forces_of<false>(t, q, u, f);
+    forces_of<false, false>(t, q, u, f);
   }
 }
 
-template <bool kOneBody>
+void Assembly::forces_on_committed_branches(double t, const integrators::Vector& q,
+                                            const integrators::Vector& u,
+                                            integrators::Vector& f) {
+  if (one_body_) {
+    forces_of<true, true>(t, q, u, f);
+  } else {
+    forces_of<false, true>(t, q, u, f);
+  }
+}
+
+template <bool kOneBody, bool kCommittedBranch>
 void Assembly::forces_of(double t, const integrators::Vector& q, const integrators::Vector& u,
                          integrators::Vector& f) {
   update_motions(t);
@@ -400,8 +410,9 @@ void Assembly::forces_of(double t, const integrators::Vector& q, const integrato
       BentState& b = bents_[j];
       if (b.general) {
         const double gx = motions_.value(b.ground_x).d, gy = motions_.value(b.ground_y).d;
-        const double fx = b.x.set_trial(b.deformation_x(q, o, gx, gy));
-        const double fy = b.y.set_trial(b.deformation_y(q, o, gx, gy));
+        const double dx = b.deformation_x(q, o, gx, gy), dy = b.deformation_y(q, o, gx, gy);
+        const double fx = kCommittedBranch ? b.x.force_on_committed_branch(dx) : b.x.set_trial(dx);
+        const double fy = kCommittedBranch ? b.y.force_on_committed_branch(dy) : b.y.set_trial(dy);
         fs -= fx * b.jx + fy * b.jy;
         continue;
       }
@@ -409,8 +420,8 @@ void Assembly::forces_of(double t, const integrators::Vector& q, const integrato
       // Body displacement at the bent relative to the bent's own ground (small rotations).
       const double dx = q(o) - motions_.value(b.ground_x).d;
       const double dy = q(o + 1) + s * q(o + 2) - motions_.value(b.ground_y).d;
-      const double fx = b.x.set_trial(dx);
-      const double fy = b.y.set_trial(dy);
+      const double fx = kCommittedBranch ? b.x.force_on_committed_branch(dx) : b.x.set_trial(dx);
+      const double fy = kCommittedBranch ? b.y.force_on_committed_branch(dy) : b.y.set_trial(dy);
       fs(0) -= fx;
       fs(1) -= fy;
       fs(2) -= s * fy;  // torque of the transverse bent force about the body centre
@@ -424,7 +435,11 @@ void Assembly::forces_of(double t, const integrators::Vector& q, const integrato
   }
   if (connected_) {
     update_seats(t);
-    connectors_.forces(q, motions_, seats_, f);
+    if constexpr (kCommittedBranch) {
+      connectors_.forces_on_committed_branches(q, motions_, seats_, f);
+    } else {
+      connectors_.forces(q, motions_, seats_, f);
+    }
   }
 }
 

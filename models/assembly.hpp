@@ -92,6 +92,9 @@ class Assembly final : public integrators::SystemBase {
 
   void forces(double t, const integrators::Vector& q, const integrators::Vector& u,
               integrators::Vector& f) override;
+  void forces_on_committed_branches(double t, const integrators::Vector& q,
+                                    const integrators::Vector& u,
+                                    integrators::Vector& f) override;
   void tangent(double t, const integrators::Vector& q, const integrators::Vector& u,
                integrators::Matrix& K, integrators::Matrix& C) override;
   bool tangent_changed() const override;
@@ -266,7 +269,8 @@ class Assembly final : public integrators::SystemBase {
   // prescribed faces) and for any number; the public calls pick one by one_body_.
   template <bool kOneBody>
   void quasi_static() const;
-  template <bool kOneBody>
+  // kCommittedBranch: every spring on its committed branch, trial states left as they are.
+  template <bool kOneBody, bool kCommittedBranch>
   void forces_of(double t, const integrators::Vector& q, const integrators::Vector& u,
                  integrators::Vector& f);
   template <bool kOneBody>

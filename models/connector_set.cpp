@@ -98,6 +98,7 @@ void ConnectorSet::add_support_velocity(int body, const parts::MotionTable& moti
   }
 }
 
+template <bool kCommittedBranch>
 void ConnectorSet::cable_force(CableState& c, const integrators::Vector& q,
                                const std::vector<PlanarMotion>& seats,
                                integrators::Vector& f) const {
@@ -119,19 +120,36 @@ void ConnectorSet::cable_force(CableState& c, const integrators::Vector& q,
   c.j_a << e.x(), e.y(), cross(r_a, e);
   c.j_b << e.x(), e.y(), cross(r_b, e);
   c.r_b = r_b;
-  const double tension = c.cable.set_trial(length - c.rest_length);
+  const double elongation = length - c.rest_length;
+  const double tension = kCommittedBranch ? c.cable.force_on_committed_branch(elongation)
+                                          : c.cable.set_trial(elongation);
   f.segment<3>(c.offset_a) -= tension * c.j_a;
   if (c.offset_b >= 0) f.segment<3>(c.offset_b) += tension * c.j_b;
 }
 
 void ConnectorSet::forces(const integrators::Vector& q, const parts::MotionTable& motions,
                           const std::vector<PlanarMotion>& seats, integrators::Vector& f) {
-  for (auto& c : cables_) cable_force(c, q, seats, f);
+  forces_of<false>(q, motions, seats, f);
+}
+
+void ConnectorSet::forces_on_committed_branches(const integrators::Vector& q,
+                                                const parts::MotionTable& motions,
+                                                const std::vector<PlanarMotion>& seats,
+                                                integrators::Vector& f) {
+  forces_of<true>(q, motions, seats, f);
+}
+
+template <bool kCommittedBranch>
+void ConnectorSet::forces_of(const integrators::Vector& q, const parts::MotionTable& motions,
+                             const std::vector<PlanarMotion>& seats, integrators::Vector& f) {
+  for (auto& c : cables_) cable_force<kCommittedBranch>(c, q, seats, f);
   for (auto& l : links_) {
     const double s = l.position;
     const int o = l.offset;
-    const double fx = l.x.set_trial(q(o) - motions.value(l.ground_x).d);
-    const double fy = l.y.set_trial(q(o + 1) + s * q(o + 2) - motions.value(l.ground_y).d);
+    const double dx = q(o) - motions.value(l.ground_x).d;
+    const double dy = q(o + 1) + s * q(o + 2) - motions.value(l.ground_y).d;
+    const double fx = kCommittedBranch ? l.x.force_on_committed_branch(dx) : l.x.set_trial(dx);
+    const double fy = kCommittedBranch ? l.y.force_on_committed_branch(dy) : l.y.set_trial(dy);
     f(o) -= fx;
     f(o + 1) -= fy;
     f(o + 2) -= s * fy;

@@ -44,6 +44,12 @@ class ConnectorSet {
   // f -= connector forces at (q, u), with the seats' poses `seats` (trial states set).
   void forces(const integrators::Vector& q, const parts::MotionTable& motions,
               const std::vector<PlanarMotion>& seats, integrators::Vector& f);
+  // The same with every law on its committed branch (force_on_committed_branch), trial
+  // states left as they are (integrators::System::forces_on_committed_branches).
+  void forces_on_committed_branches(const integrators::Vector& q,
+                                    const parts::MotionTable& motions,
+                                    const std::vector<PlanarMotion>& seats,
+                                    integrators::Vector& f);
   // K += the tangent of the last forces() call (the geometric stiffness of the cables'
   // direction change is left out: F / L0 is small against k).
   void tangent(integrators::Matrix& K) const;
@@ -75,8 +81,13 @@ class ConnectorSet {
     int ground_x = parts::MotionTable::kNone, ground_y = parts::MotionTable::kNone;
     Eigen::Vector3d qs_x = Eigen::Vector3d::Zero(), qs_y = Eigen::Vector3d::Zero();
   };
+  // kCommittedBranch: the cable's tension on its committed branch, its trial left as it is.
+  template <bool kCommittedBranch>
   void cable_force(CableState& c, const integrators::Vector& q,
                    const std::vector<PlanarMotion>& seats, integrators::Vector& f) const;
+  template <bool kCommittedBranch>
+  void forces_of(const integrators::Vector& q, const parts::MotionTable& motions,
+                 const std::vector<PlanarMotion>& seats, integrators::Vector& f);
 
   std::vector<CableState> cables_;
   std::vector<LinkState> links_;

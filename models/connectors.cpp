@@ -23,6 +23,7 @@ void CableParameters::validate(const std::string& prefix) const {
 
 double Cable::set_trial(double elongation) {
   State s = committed_;
+  s.elongation = elongation;
   const double stretch = elongation - p_.slack - s.plastic;  // beyond slack and set
   if (!(stretch > 0)) {
     s.f = std::isfinite(stretch) ? 0.0 : stretch;

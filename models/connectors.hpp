@@ -41,6 +41,11 @@ class Cable {
   double force() const { return trial_.f; }
   double tangent() const { return trial_.tangent; }
   bool tangent_changed() const { return trial_.tangent != committed_.tangent; }
+  // The tension at an elongation on the committed state's branch, extended as its tangent
+  // line [kN] (as takeda::Spring::force_on_committed_branch). The trial is left as it is.
+  double force_on_committed_branch(double elongation) const {
+    return committed_.f + committed_.tangent * (elongation - committed_.elongation);
+  }
   double stored_energy() const;      // F^2 / (2k) [kJ]
   double dissipated_energy() const;  // F_y times the permanent elongation [kJ]
   double permanent_elongation() const { return trial_.plastic; }
@@ -50,7 +55,7 @@ class Cable {
 
  private:
   struct State {
-    double f = 0.0, plastic = 0.0, tangent = 0.0;
+    double elongation = 0.0, f = 0.0, plastic = 0.0, tangent = 0.0;
   };
   CableParameters p_;
   State committed_, trial_;
@@ -84,6 +89,11 @@ class Law {
   double tangent() const { return trial_.tangent; }
   double initial_stiffness() const { return p_.stiffness; }
   bool tangent_changed() const { return trial_.tangent != committed_.tangent; }
+  // The force at d on the committed state's branch, extended as its tangent line [kN]
+  // (as takeda::Spring::force_on_committed_branch). The trial is left as it is.
+  double force_on_committed_branch(double d) const {
+    return committed_.f + committed_.tangent * (d - committed_.d);
+  }
   double stored_energy() const;
   double dissipated_energy() const;
   void commit() { committed_ = trial_; }

@@ -68,6 +68,11 @@ class Spring {  // one uniaxial Takeda spring with committed and trial state
   double set_trial(double d);
   double force() const { return trial_.f; }        // trial force
   double tangent() const { return trial_tangent_; }  // trial tangent stiffness [kN/m]
+  // The force at d on the committed state's branch, extended as its tangent line:
+  // committed force + committed tangent (d - committed d) [kN]. The trial is left as it is.
+  double force_on_committed_branch(double d) const {
+    return committed_.f + committed_tangent_ * (d - committed_.d);
+  }
   bool tangent_changed() const {       // trial tangent differs from the committed one
     return std::abs(trial_tangent_ - committed_tangent_) >
            kTangentChangeTolerance * std::max(std::abs(committed_tangent_), k_elastic_);

@@ -61,6 +61,11 @@ class TracedSystem final : public integrators::System {
               integrators::Vector& f) override {
     inner_.forces(t, q, u, f);
   }
+  void forces_on_committed_branches(double t, const integrators::Vector& q,
+                                    const integrators::Vector& u,
+                                    integrators::Vector& f) override {
+    inner_.forces_on_committed_branches(t, q, u, f);
+  }
   void tangent(double t, const integrators::Vector& q, const integrators::Vector& u,
                integrators::Matrix& K, integrators::Matrix& C) override {
     inner_.tangent(t, q, u, K, C);

@@ -65,6 +65,10 @@ class DeletedContacts final : public ni::System {
   void forces(double t, const ni::Vector& q, const ni::Vector& u, ni::Vector& f) override {
     s_.forces(t, q, u, f);
   }
+  void forces_on_committed_branches(double t, const ni::Vector& q, const ni::Vector& u,
+                                    ni::Vector& f) override {
+    s_.forces_on_committed_branches(t, q, u, f);
+  }
   void tangent(double t, const ni::Vector& q, const ni::Vector& u, ni::Matrix& K,
                ni::Matrix& C) override {
     s_.tangent(t, q, u, K, C);

@@ -201,3 +201,32 @@ TEST_CASE("connector laws: work = stored + dissipated on a random path") {
   }
   CHECK(work == doctest::Approx(c.stored_energy() + c.dissipated_energy()).epsilon(kWork));
 }
+
+TEST_CASE("a law on its committed branch: the branch's line through the committed state") {
+  // Bilinear (k = 1000 kN/m, F_y = 10 kN, r = 0.1), committed at d = 0.02 on the post-yield
+  // branch with F = 11 kN (the path above). On that branch F = 11 + 100 (d - 0.02): at
+  // d = 0.015 (a smaller deformation, which the law itself would take as elastic unloading to
+  // 11 - 1000 * 0.005 = 6 kN) the branch gives 11 - 0.5 = 10.5 kN, and at d = 0.03,
+  // 11 + 1 = 12 kN, as the law.
+  Law b(LawParameters::bilinear(1000.0, 10.0, 0.1));
+  b.set_trial(0.02);
+  b.commit();
+  CHECK(b.force_on_committed_branch(0.015) == doctest::Approx(10.5).epsilon(kHand));
+  CHECK(b.force_on_committed_branch(0.03) == doctest::Approx(12.0).epsilon(kHand));
+  CHECK(b.set_trial(0.03) == doctest::Approx(12.0).epsilon(kHand));
+  // The trial is left as it is: still the last set_trial's.
+  b.force_on_committed_branch(0.015);
+  CHECK(b.force() == doctest::Approx(12.0).epsilon(kHand));
+  CHECK(b.set_trial(0.015) == doctest::Approx(6.0).epsilon(kHand));
+  // A cable committed slack stays slack on its branch (tangent 0), whatever the elongation;
+  // the line of a taut one goes on below its slack (a linearisation: the law gives 0 there);
+  // committed taut at e = 0.02 (F = 10 kN, k = 1000 kN/m, slack 0.01) it is 10 + 1000 (e - 0.02).
+  Cable c({.stiffness = 1000.0, .slack = 0.01, .yield_force = 0.0});
+  c.set_trial(0.0);
+  c.commit();
+  CHECK(c.force_on_committed_branch(0.05) == 0.0);
+  c.set_trial(0.02);
+  c.commit();
+  CHECK(c.force_on_committed_branch(0.005) == doctest::Approx(-5.0).epsilon(kHand));
+  CHECK(c.force_on_committed_branch(0.03) == doctest::Approx(20.0).epsilon(kHand));
+}

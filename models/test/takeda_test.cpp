@@ -554,3 +554,20 @@ TEST_CASE("takeda: rule 7 after very large excursions (hand values)") {
     t.commit();
   }
 }
+
+TEST_CASE("takeda: on its committed branch, the branch's line through the committed state") {
+  // The bilinear example (f_y = 100 kN, d_y = 0.01 m, k_y = 1e4 kN/m, k_post = 500 kN/m)
+  // committed at 2 d_y on the post-yield branch, F = 105 kN (turning point A above). On that
+  // branch F = 105 + 500 (d - 0.02): 104.5 kN at 0.019 m, where the law unloads at
+  // k_u = 7578.58 kN/m to 105 - 7.57858 = 97.42 kN; 105.5 kN at 0.021 m, as the law.
+  const double dy = 0.01;
+  Spring s(bilinear_example());
+  s.set_trial(2 * dy);
+  s.commit();
+  CHECK(s.force_on_committed_branch(0.019) == doctest::Approx(104.5).epsilon(kHandTolerance));
+  CHECK(s.force_on_committed_branch(0.021) == doctest::Approx(105.5).epsilon(kHandTolerance));
+  CHECK(s.set_trial(0.021) == doctest::Approx(105.5).epsilon(kHandTolerance));
+  s.force_on_committed_branch(0.019);  // leaves the trial as it is
+  CHECK(s.force() == doctest::Approx(105.5).epsilon(kHandTolerance));
+  CHECK(s.set_trial(0.019) == doctest::Approx(97.42).epsilon(kQuotedDigitsTolerance));
+}
