@@ -9,8 +9,11 @@
 #include <stdexcept>
 
 #include "io/csv.hpp"
+#include "io/files.hpp"
 #include "paper-figures/figure.hpp"
 #include "paper-figures/figures.hpp"
+#include "scene/cosmos.hpp"
+#include "scene/records.hpp"
 #include "scene/scene.hpp"
 
 namespace nsb::paper_figures {
@@ -128,10 +131,14 @@ std::vector<std::string> point_overrides(const std::vector<double>& v, const Cla
   // and processed as the seats' displacement is (same time scale, baseline correction and
   // delay), scaled by c / W times the longitudinal record's amplitude factor.
   if (const double c = at("seat_rotation"); c != 0.0) {
+    if (targets.rotation_record.empty()) {
+      throw std::invalid_argument("point_overrides: a seat rotation needs the rotation record "
+                                  "(write_rotation_record)");
+    }
     const double factor = pga_x / targets.longitudinal_record_pga;
     for (const char* side : {"left", "right"}) {
       o.push_back(std::string("model.seats.rotation_record_") + side + "=" +
-                  targets.longitudinal_record);
+                  targets.rotation_record.string());
     }
     o.push_back(override_text("model.seats.rotation_scale", c / width * factor));
   }
@@ -179,6 +186,35 @@ SceneTargets scene_targets(const fs::path& scenes, const std::vector<ClaimRun>& 
     throw std::invalid_argument("scene_targets: the longitudinal record has no acceleration");
   }
   return t;
+}
+
+fs::path write_rotation_record(const fs::path& scenes, const SceneTargets& targets,
+                               const fs::path& dir) {
+  // Where the scene loader looks for a relative record: beside the scenes, then in data/.
+  const fs::path name(targets.longitudinal_record);
+  fs::path source;
+  for (const fs::path& p : {scenes / name, scenes / ".." / "data" / name}) {
+    std::error_code ec;
+    if (fs::is_regular_file(p, ec)) {
+      source = p;
+      break;
+    }
+  }
+  if (source.empty()) {
+    throw std::invalid_argument("write_rotation_record: record \"" + name.string() +
+                                "\" not found beside " + scenes.string() + " or in its data/");
+  }
+  const models::Record r = scene::read_at2(source, scene::kStandardGravity);
+  fs::create_directories(dir);
+  const fs::path out = dir / ("seat-rotation-" + source.stem().string() + ".txt");
+  std::ostringstream text;
+  text << "# " << source.filename().string()
+       << ": the ground acceleration [m/s^2] read as the seats' angular acceleration [rad/s^2]\n"
+       << "# (the seat-rotation assumption, docs/paper-figures.md); t [s], a [rad/s^2]\n";
+  text << std::setprecision(17);
+  for (std::size_t i = 0; i < r.t.size(); ++i) text << r.t[i] << ' ' << r.a[i] << '\n';
+  io::write_file_atomically(out, text.str());
+  return fs::absolute(out);
 }
 
 sweep::Design make_design(const std::string& name, const fs::path& base_scene,

@@ -37,12 +37,13 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   UncertaintyResult res;
   res.claims = kStudyClaims;
-  const SceneTargets targets = scene_targets(options.scenes, claim_runs());
+  SceneTargets targets = scene_targets(options.scenes, claim_runs());
   const fs::path base_scene =
       options.scenes / ("bridge-exc" + std::to_string(kBaseExcitation) + ".toml");
   const InputPga pga = input_pgas(options.scenes, kStudyPgaRuns);
   const fs::path work = options.out / "uncertainty";
   fs::create_directories(work);
+  targets.rotation_record = write_rotation_record(options.scenes, targets, work);
   const auto& as = assumptions();
 
   // One factor at a time. The tornado's run at every point; the claims' other runs: not in

@@ -3,11 +3,15 @@
 // values are worked out by hand beside each case.
 #include "studies/uncertainty.hpp"
 #include "io/csv.hpp"
+#include "scene/cosmos.hpp"
+#include "scene/records.hpp"
+#include "scene/scene.hpp"
 #include "studies/uncertainty_steps.hpp"
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -40,6 +44,7 @@ SceneTargets targets() {
   t.longitudinal_pga = {{1, 0.2}, {3, 0.6}, {5, 1.0}, {7, 1.2}};
   t.longitudinal_record = "ground-motions/x.AT2";
   t.longitudinal_record_pga = 0.25;
+  t.rotation_record = "/work/seat-rotation-x.txt";
   return t;
 }
 }  // namespace
@@ -144,7 +149,7 @@ TEST_CASE("a point's overrides: no pounding, mu = 0, the ratio and the seat rota
     });
     REQUIRE(it != o.end());
     CHECK(std::stod(it->substr(it->find('=') + 1)) == doctest::Approx(0.1).epsilon(1e-14));
-    CHECK(has(o, "model.seats.rotation_record_left=ground-motions/x.AT2"));
+    CHECK(has(o, "model.seats.rotation_record_left=/work/seat-rotation-x.txt"));
     if (r.name == "exc5-no-pounding") {
       CHECK(has(o, "model.gaps.left=1"));
       CHECK(has(o, "model.seats.friction=0.5"));
@@ -156,6 +161,49 @@ TEST_CASE("a point's overrides: no pounding, mu = 0, the ratio and the seat rota
   CHECK_THROWS_AS(point_overrides({1.0}, claim_runs()[0], targets()), std::invalid_argument);
   SceneTargets none;
   CHECK_THROWS_AS(point_overrides(nominal_point(), claim_runs()[0], none), std::invalid_argument);
+  // A seat rotation without the rotation record is refused, not given the .AT2 record.
+  SceneTargets no_record = targets();
+  no_record.rotation_record.clear();
+  CHECK_THROWS_AS(point_overrides(v, claim_runs()[0], no_record), std::invalid_argument);
+}
+
+// The seat-rotation record the study writes: the longitudinal record's samples in m/s^2 (its
+// .AT2 values in g times 9.80665), which a scene accepts as a rotation record in rad/s^2; the
+// .AT2 file itself it refuses (a rotation record is never read in g). The base scene with a
+// seat rotation at c = 0.05 loads with it.
+TEST_CASE("the seat-rotation record: the record in m/s^2 as rad/s^2, and a scene takes it") {
+  const std::filesystem::path scenes = NSB_SCENES_DIR;
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "nsb-uncertainty-rotation-test";
+  std::filesystem::remove_all(dir);
+  const SceneTargets t = scene_targets(scenes, claim_runs());
+  const std::filesystem::path file = write_rotation_record(scenes, t, dir);
+  const nsb::models::Record at2 = nsb::scene::read_at2(
+      scenes / ".." / "data" / t.longitudinal_record, nsb::scene::kStandardGravity);
+  const nsb::models::Record text = nsb::scene::read_two_column(file);
+  REQUIRE(text.t.size() == at2.t.size());
+  for (std::size_t i = 0; i < at2.t.size(); ++i) {
+    CHECK(text.t[i] == at2.t[i]);  // 17 digits: the doubles round-trip
+    CHECK(text.a[i] == at2.a[i]);
+  }
+  SceneTargets with_record = t;
+  with_record.rotation_record = file;
+  auto v = nominal_point();
+  const auto& as = assumptions();
+  for (std::size_t k = 0; k < as.size(); ++k) {
+    if (as[k].key == "seat_rotation") v[k] = 0.05;
+  }
+  const auto o = point_overrides(v, claim_runs()[0], with_record);
+  CHECK_NOTHROW(nsb::scene::load_scene(scenes / "bridge-exc7.toml", o));
+  std::vector<std::string> at2_record = o;
+  for (auto& s : at2_record) {
+    if (s.rfind("model.seats.rotation_record_", 0) == 0) {
+      s = s.substr(0, s.find('=') + 1) + t.longitudinal_record;
+    }
+  }
+  CHECK_THROWS_AS(nsb::scene::load_scene(scenes / "bridge-exc7.toml", at2_record),
+                  std::invalid_argument);
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("C4's runs: excitation 5 under the compliance method, both laws, the study's tolerance") {
