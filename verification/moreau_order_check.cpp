@@ -25,7 +25,7 @@ constexpr double kSampleDt = 0.001;  // [s]
 constexpr double kWindow7 = 6.0;
 constexpr double kWindow5 = 6.0;
 // Least order accepted.
-constexpr double kOrderMin = 0.85;  // measured 0.95 .. 1.95 (docs/moreau-jean.md)
+constexpr double kOrderMin = 0.85;  // measured 0.87 .. 2.18 (docs/moreau-jean.md)
 const std::array<const char*, 3> kColumns = {"x", "y", "theta"};
 
 struct Study {
