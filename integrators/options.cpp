@@ -53,7 +53,7 @@ std::span<const c::Field<MoreauJeanOptions>> MoreauJeanOptions::fields() {
       c::number<&O::min_step>("min_step", "s", c::positive(),
                               "adaptive steps: the smallest step, to which a step where a "
                               "contact impacts or changes state is reduced (solver.adapt sets "
-                              "it to 0.01 s × accuracy when not given)"),
+                              "it to 0.01 s × accuracy, at most step, when not given)"),
       c::number<&O::max_step>("max_step", "s", c::non_negative(),
                               "adaptive steps: the largest step; 0: 10 × step (solver.adapt sets "
                               "it to 0.1 s × accuracy when not given)"),

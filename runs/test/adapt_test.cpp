@@ -96,24 +96,29 @@ TEST_CASE("adapt: adaptive Moreau-Jean at 1 % is within 1 % of event-driven at 1
   CHECK(json.find("\"total_cpu_seconds\": ") != std::string::npos);
 }
 
-TEST_CASE("adapt: Moreau-Jean's smallest step is 0.01 s x accuracy unless the scene gives one") {
+TEST_CASE("adapt: Moreau-Jean's smallest step is 0.01 s x accuracy, at most the scene's step") {
   // scene/solver_section.cpp, kMinStepOfAccuracy (docs/moreau-jean.md, "The smallest step"); without adapt
-  // the options' default 1 us stays.
-  const auto min_step = [](std::vector<std::string> o) {
-    const PreparedRun p = prepare({kScenes + "/bridge-exc7.toml", std::move(o), "moreau", {}});
+  // the options' default 1 us stays. Excitation 7's step is 1e-4 s, the two-frame bridge's
+  // 2e-5 s.
+  const auto min_step = [](const char* scene, std::vector<std::string> o) {
+    const PreparedRun p = prepare({kScenes + scene, std::move(o), "moreau", {}});
     return std::get<integrators::MoreauJeanOptions>(p.scene.run).min_step;
   };
-  CHECK(min_step({}) == 1e-6);
-  CHECK(min_step({"solver.local_tolerance=1e-4"}) == 1e-6);
-  CHECK(min_step({"solver.adapt=true", "solver.accuracy=0.05"}) == doctest::Approx(5e-4));
-  CHECK(min_step({"solver.adapt=true"}) == doctest::Approx(1e-4));  // accuracy 1e-2
-  CHECK(min_step({"solver.adapt=true", "solver.min_step=2e-6"}) == 2e-6);
+  CHECK(min_step("/bridge-exc7.toml", {}) == 1e-6);
+  CHECK(min_step("/bridge-exc7.toml", {"solver.local_tolerance=1e-4"}) == 1e-6);
+  CHECK(min_step("/bridge-exc7.toml", {"solver.adapt=true", "solver.accuracy=1e-3"}) ==
+        doctest::Approx(1e-5));
+  CHECK(min_step("/bridge-exc7.toml", {"solver.adapt=true"}) == doctest::Approx(1e-4));
+  // 0.01 s x 0.05 = 5e-4 s, coarser than the scene's step: the step.
+  CHECK(min_step("/bridge-exc7.toml", {"solver.adapt=true", "solver.accuracy=0.05"}) == 1e-4);
+  CHECK(min_step("/bridge-two-frame.toml", {"solver.adapt=true"}) == 2e-5);
+  CHECK(min_step("/bridge-exc7.toml", {"solver.adapt=true", "solver.min_step=2e-6"}) == 2e-6);
 }
 
 TEST_CASE("adapt: Moreau-Jean's largest step is 0.1 s x accuracy, whatever the scene's step") {
   // scene/solver_section.cpp, kMaxStepOfAccuracy (docs/moreau-jean.md, "The largest step"):
   // 1 ms at accuracy 1e-2 both for excitation 7 (step 1e-4 s) and for the two-frame bridge
-  // (2.5e-5 s), where 10 x its own step adapted to a run 16 % off on theta1. Without adapt
+  // (2e-5 s), where 10 x its own step adapted to a run 16 % off on theta1. Without adapt
   // the options' 0 stays (the integrator takes 10 x step).
   const auto max_step = [](const char* scene, std::vector<std::string> o) {
     const PreparedRun p = prepare({kScenes + scene, std::move(o), "moreau", {}});
