@@ -185,24 +185,16 @@ SceneTargets scene_targets(const fs::path& scenes, const std::vector<ClaimRun>& 
   if (!(t.longitudinal_record_pga > 0)) {
     throw std::invalid_argument("scene_targets: the longitudinal record has no acceleration");
   }
+  // input_pga found the record, so the base scene has a design, a bent and its motion.
+  t.longitudinal_record_file = raw.design->excitation.bents[0].longitudinal->source();
   return t;
 }
 
-fs::path write_rotation_record(const fs::path& scenes, const SceneTargets& targets,
-                               const fs::path& dir) {
-  // Where the scene loader looks for a relative record: beside the scenes, then in data/.
-  const fs::path name(targets.longitudinal_record);
-  fs::path source;
-  for (const fs::path& p : {scenes / name, scenes / ".." / "data" / name}) {
-    std::error_code ec;
-    if (fs::is_regular_file(p, ec)) {
-      source = p;
-      break;
-    }
-  }
+fs::path write_rotation_record(const SceneTargets& targets, const fs::path& dir) {
+  const fs::path& source = targets.longitudinal_record_file;
   if (source.empty()) {
-    throw std::invalid_argument("write_rotation_record: record \"" + name.string() +
-                                "\" not found beside " + scenes.string() + " or in its data/");
+    throw std::invalid_argument("write_rotation_record: no longitudinal record file "
+                                "(scene_targets)");
   }
   const models::Record r = scene::read_at2(source, scene::kStandardGravity);
   fs::create_directories(dir);

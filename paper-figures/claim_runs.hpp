@@ -69,6 +69,7 @@ inline constexpr int kBaseExcitation = 7;
 struct SceneTargets {
   std::map<int, double> transverse_pga, longitudinal_pga;  // [g] by excitation
   std::string longitudinal_record;       // the base scene's longitudinal record file
+  std::filesystem::path longitudinal_record_file;  // where the scene loader found it
   double longitudinal_record_pga = 0.0;  // [g], the record as recorded (seat rotation's scale)
   // The seats' angular acceleration record of the seat-rotation assumption
   // (write_rotation_record); empty: no point may ask for a seat rotation.
@@ -81,10 +82,9 @@ SceneTargets scene_targets(const std::filesystem::path& scenes, const std::vecto
 // Writes the longitudinal record's ground acceleration [m/s^2], read as the seats' angular
 // acceleration [rad/s^2] of the seat-rotation assumption (phi = c u_x / W), as a two-column
 // text file into `dir`, and returns its path: a rotation record is a file in rad/s^2, never
-// an .AT2 file in g (scene/bridge_scene.cpp). Throws std::invalid_argument when the record
-// cannot be found or read.
-std::filesystem::path write_rotation_record(const std::filesystem::path& scenes,
-                                            const SceneTargets& targets,
+// an .AT2 file in g (scene/bridge_scene.cpp). Throws std::invalid_argument when targets has
+// no record file or it cannot be read.
+std::filesystem::path write_rotation_record(const SceneTargets& targets,
                                             const std::filesystem::path& dir);
 
 // The overrides of the base scene (bridge-exc7.toml) that give claim run `run` at the point

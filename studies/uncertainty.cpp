@@ -43,7 +43,7 @@ UncertaintyResult run_uncertainty(const UncertaintyOptions& options) {
   const InputPga pga = input_pgas(options.scenes, kStudyPgaRuns);
   const fs::path work = options.out / "uncertainty";
   fs::create_directories(work);
-  targets.rotation_record = write_rotation_record(options.scenes, targets, work);
+  targets.rotation_record = write_rotation_record(targets, work);
   const auto& as = assumptions();
 
   // One factor at a time. The tornado's run at every point; the claims' other runs: not in

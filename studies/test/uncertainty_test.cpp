@@ -177,7 +177,7 @@ TEST_CASE("the seat-rotation record: the record in m/s^2 as rad/s^2, and a scene
       std::filesystem::temp_directory_path() / "nsb-uncertainty-rotation-test";
   std::filesystem::remove_all(dir);
   const SceneTargets t = scene_targets(scenes, claim_runs());
-  const std::filesystem::path file = write_rotation_record(scenes, t, dir);
+  const std::filesystem::path file = write_rotation_record(t, dir);
   const nsb::models::Record at2 = nsb::scene::read_at2(
       scenes / ".." / "data" / t.longitudinal_record, nsb::scene::kStandardGravity);
   const nsb::models::Record text = nsb::scene::read_two_column(file);
