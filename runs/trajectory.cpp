@@ -109,7 +109,8 @@ void bound_by_trajectories(Digest& run, const integrators::Recorder& run_history
     }
     double error = std::max(mine.error, plan.factor * bound);
     if (plan.setting == "step" && impacts) {
-      error = std::max(error, plan.value * velocity_magnitude(run_history, static_cast<int>(c)));
+      error = std::max(error, kImpactShiftBound * plan.value *
+                                  velocity_magnitude(run_history, static_cast<int>(c)));
     }
     mine.error = error;
     for (ColumnPeak& p : run.peaks) {

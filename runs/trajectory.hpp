@@ -8,9 +8,10 @@
 // impact, another cycle), where the difference of the peaks can be near zero while both are
 // off. The right side is taken over a window around the instants where either run peaks,
 // on a grid on which both runs' coordinates are kept (TracedSystem). Moreau–Jean's estimate
-// of a run with impacts is also at least h |u|max: the method dates an impact at the end of
-// the step that contains it, so the position after it is off by up to the velocity times
-// the step.
+// of a run with impacts is also at least kImpactShiftBound h |u|max: the method dates an
+// impact at the end of the step that contains it, up to a step late, and a coordinate whose
+// velocity jumps from u- to u+ at the impact ends up (u- - u+) times that delay away from
+// the trajectory of the true instant; |u- - u+| <= |u-| + |u+| <= 2 |u|max.
 #pragma once
 
 #include "integrators/run.hpp"
@@ -29,6 +30,10 @@ namespace nsb::runs {
 // window: kPeakWindow before the earlier and after the later of the two runs' peak instants.
 inline constexpr double kTraceInterval = 1e-3;  // [s]
 inline constexpr double kPeakWindow = 0.1;      // [s]
+
+// The bound of a velocity jump at an impact in units of the coordinate's largest speed: a
+// rotation or a tangential velocity can reverse at an eccentric impact (u+ = -u-).
+inline constexpr double kImpactShiftBound = 2.0;
 
 // The generalized coordinates of a run at the times t0 + k dt, k = 0, 1, ...
 struct CoordinateTrace {
