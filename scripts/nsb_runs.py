@@ -93,7 +93,8 @@ def _cache_file(cache, path, method, sets):
 
 def references(nsbridge, paths, tmp, cache=None, pool=None, method=REFERENCE_METHOD, sets=()):
     """The reference summary of each scene path (`method` with REFERENCE_SETS: the tolerance
-    1e-10; event-driven unless given; and the overrides `sets`, e.g. a shorter end_time),
+    1e-10; event-driven unless given; then the overrides `sets`, e.g. a shorter end_time or
+    a finer tolerance),
     read from the folder `cache` when it holds one for the scene's content and overrides and
     written there otherwise. Returns {path: future}; pool: the executor to run on
     (MAX_WORKERS)."""
@@ -108,8 +109,9 @@ def references(nsbridge, paths, tmp, cache=None, pool=None, method=REFERENCE_MET
         if cached and os.path.exists(cached):
             with open(cached) as f:
                 return json.load(f)
-        out = os.path.join(tmp, os.path.basename(path)[:-5] + "-reference-" + method)
-        summary = run(nsbridge, path, out, method, list(sets) + list(REFERENCE_SETS))
+        out = os.path.join(tmp, os.path.basename(path)[:-5] + "-reference-" + method +
+                           "".join("-" + x.replace("=", "-") for x in sets))
+        summary = run(nsbridge, path, out, method, list(REFERENCE_SETS) + list(sets))
         if cached:
             with open(cached + ".part", "w") as f:
                 json.dump(summary, f)
