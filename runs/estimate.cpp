@@ -1,5 +1,6 @@
 #include "runs/estimate.hpp"
 
+#include "integrators/contact_stage.hpp"
 #include "io/csv.hpp"
 
 #include <algorithm>
@@ -196,6 +197,13 @@ void apply_estimate(Digest& run, const integrators::Recorder& run_history,
   }
 }
 
+double judged_peak(const Digest& digest, const CoordinatePeak& coordinate) {
+  double largest = 0.0;
+  for (const CoordinatePeak& c : digest.coordinates) largest = std::max(largest, std::abs(c.peak));
+  return std::max(std::abs(coordinate.peak),
+                  integrators::ContactTolerances::kRoundOff * largest);
+}
+
 Accuracy judge_accuracy(const Digest& digest, double target) {
   Accuracy a;
   a.target = target;
@@ -205,7 +213,7 @@ Accuracy judge_accuracy(const Digest& digest, double target) {
   a.worst_relative = 0.0;
   for (const CoordinatePeak& c : digest.coordinates) {
     // A peak of zero with a zero error is exact; with a nonzero one, infinitely wrong.
-    const double rel = c.error == 0.0 ? 0.0 : c.error / c.peak;
+    const double rel = c.error == 0.0 ? 0.0 : c.error / judged_peak(digest, c);
     if (!(rel <= target)) a.met = false;
     if (!(rel <= a.worst_relative)) {
       a.worst_relative = rel;
@@ -244,7 +252,7 @@ CrossCheck compare_runs(const Digest& run, const Digest& other, double run_first
       p.error = other.coordinates[c].error;
     }
     p.difference = mine.peak - p.peak;
-    p.allowed = known(mine.error) + known(p.error) + accuracy * std::abs(mine.peak);
+    p.allowed = known(mine.error) + known(p.error) + accuracy * judged_peak(run, mine);
     p.agrees = std::abs(p.difference) <= p.allowed;
     x.coordinates.push_back(std::move(p));
   }
@@ -277,7 +285,7 @@ std::vector<std::string> cross_check_warnings(const Digest& run, const std::stri
                 check.method + ", a difference of " +
                 io::three_digits(std::abs(other.difference)) + " beyond the two estimates (" +
                 io::three_digits(known(mine.error)) + " and " + io::three_digits(known(other.error)) +
-                ") and the floor " + io::three_digits(check.floor * std::abs(mine.peak)) +
+                ") and the floor " + io::three_digits(check.floor * judged_peak(run, mine)) +
                 " (solver.accuracy x the peak)");
   }
   return w;

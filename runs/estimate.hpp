@@ -123,8 +123,15 @@ UnresolvedImpactOrder impact_order(const integrators::Recorder& run,
                                    const std::vector<ContactLabel>& labels, double factor,
                                    bool stepped);
 
+// The peak a coordinate's error is judged against: its own, and at least the round-off of
+// the largest coordinate's peak (kRoundOff times it, in the coordinates' own units as
+// ContactTolerances::gap takes them). A deck that does not turn has a rotation of round-off
+// alone (1e-19 to 1e-16 rad after symmetric impacts, against translations of 0.2 m), and its
+// relative error is not a number any step or tolerance can bring below a target.
+double judged_peak(const Digest& digest, const CoordinatePeak& coordinate);
+
 // The run judged against solver.accuracy = target: met when every generalized coordinate's
-// error estimate is at most target times its peak. Not judged without an estimate.
+// error estimate is at most target times its judged peak. Not judged without an estimate.
 Accuracy judge_accuracy(const Digest& digest, double target);
 
 // The first impact's time in a history's events [s]; NaN without an impact.

@@ -174,6 +174,20 @@ TEST_CASE("errors from a companion's digest, and the verdict against the accurac
         "accuracy: the peak |theta| 0.001 has an estimated error of 0.0005 (50 % of it), above "
         "solver.accuracy = 10 %; reduce solver.step (now 0.001)");
 
+  // A deck that does not turn: |theta| 4.7e-19 rad of round-off with an error of 1.1e-18 (the
+  // measured run of a symmetric skew deck) against |x| 0.2 m. The round-off of the largest
+  // peak is kRoundOff x 0.2 = 1024 x 2.22e-16 x 0.2 = 4.55e-14, so theta's relative error is
+  // 1.1e-18 / 4.55e-14 = 2.4e-5, not 234 %, and the run meets 1 %.
+  Digest level = run;
+  level.coordinates = {{"x", 0.2, 0.0, 1e-4}, {"theta", 4.7e-19, 0.0, 1.1e-18}};
+  CHECK(judged_peak(level, level.coordinates[1]) ==
+        doctest::Approx(1024.0 * std::numeric_limits<double>::epsilon() * 0.2));
+  CHECK(judged_peak(level, level.coordinates[0]) == 0.2);
+  level.accuracy = judge_accuracy(level, 0.01);
+  CHECK(level.accuracy.met);
+  CHECK(level.accuracy.worst == "x");
+  CHECK(level.accuracy.worst_relative == doctest::Approx(5e-4));
+
   // Without an estimate there is no verdict; a companion that failed says so.
   Digest plain = make_digest(run_history, {});
   plain.estimate.enabled = true;
