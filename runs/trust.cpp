@@ -128,6 +128,12 @@ void check_initial_state(const integrators::System& system) {
   }
 }
 
+// A step equal to the record's sampling interval is not longer than it: the interval is the
+// smallest difference of the record's times, which are i DT (and then times time_scale), so
+// it can come out a few units of round-off below DT (0.005 s read from an .AT2 header gives
+// 0.0049999999999999...).
+constexpr double kRecordStepSlack = 1e-9;
+
 std::vector<std::string> step_warnings(integrators::System& system,
                                        const integrators::RunConfig& config, double record_step,
                                        const TrustLimits& limits) {
@@ -148,7 +154,7 @@ std::vector<std::string> step_warnings(integrators::System& system,
                 " steps; the method needs >= " + brief(limits.steps_per_period) +
                 " (solver.step <= " + brief(period / limits.steps_per_period) + " s)");
   }
-  if (record_step > 0.0 && h > limits.record_steps * record_step) {
+  if (record_step > 0.0 && h > limits.record_steps * record_step * (1.0 + kRecordStepSlack)) {
     w.push_back("step_record: solver.step = " + brief(h) + " s is longer than the record's "
                 "sampling interval " + brief(record_step) + " s (after time_scale): samples of "
                 "the excitation fall between steps; the method needs solver.step <= " +

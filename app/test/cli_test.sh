@@ -181,6 +181,12 @@ expect 0 'step_record: .* 0\.0025 s' -- run "${sylmar7[@]}" --set solver.step=0.
   --set solver.end_time=0.3 --out "$tmp/x"
 expect 0 'warnings   0$' -- run "${sylmar7[@]}" --set solver.step=0.002 \
   --set solver.end_time=0.3 --out "$tmp/x"
+# A step equal to the interval (0.005 s at time_scale 1; the record's times i DT carry round-off
+# below DT) is not longer than it.
+check "a step equal to the record's sampling interval does not warn step_record" \
+  bash -c '! "$0" run "$@" 2>&1 | grep -q step_record' "$nsb" \
+  "$root/scenes/bridge-exc7-sylmar.toml" --set solver.step=0.005 --set solver.end_time=0.3 \
+  --set model.excitation.time_scale=1.0 --out "$tmp/x"
 # Outcomes of the integration (docs/run-api.md): a run whose contact problems were all solved,
 # some by the fallback chain, succeeds (exit 0); a run that cannot go on is exit 1 with its
 # status and time, and nothing prints "nan". The wedged deck (both gaps closed) left 651 of
